@@ -1,0 +1,14 @@
+"""vines: exact simulation and map-based analysis of the vibro-impact nonlinear energy sink.
+
+Dimensionless model (see docs/model.md): between impacts
+    z_m'' + d z_m' + z_m = F sin(W t + phi) + d W F cos(W t + phi),   z_b'' = 0,
+walls at w = z_m - z_b = +1 (L) and -1 (R), Newtonian impact law with restitution r.
+"""
+from .params import (D_DEFAULT, L_HALF_M, ModelParams, ParameterError, SolverSettings)
+from .result import IMPACT_DTYPE, SimulationResult
+from .simulation import simulate, simulate_batch
+
+__version__ = "0.1.0"
+
+__all__ = ["simulate", "simulate_batch", "ModelParams", "SolverSettings", "ParameterError",
+           "SimulationResult", "IMPACT_DTYPE", "D_DEFAULT", "L_HALF_M", "__version__"]

@@ -1,0 +1,202 @@
+"""Model parameters, solver settings and their validation.
+
+Conventions (see docs/model.md and the spec):
+
+* Everything is dimensionless: lengths in units of the half cavity length L, time
+  t = w0 * t_dim with w0 = sqrt(k/M), velocities in units of L*w0.
+* d = c/(M w0) is the LO damping coefficient in the dimensionless equation
+  z_m'' + d z_m' + z_m = F sin(W t + phi) + d W F cos(W t + phi). It is held fixed
+  when the ball mass ratio eta changes (c and M are fixed). Keeping the paper's
+  xi = c/(m w0) fixed instead is offered explicitly through ``ModelParams.from_xi``.
+* Walls: w = z_m - z_b. Wall L is w = +1, wall R is w = -1.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass, field
+
+# Table 1 of the paper (SI units).
+M_LO_KG = 3.807          # mass of the linear oscillator M [kg]
+L_HALF_M = 0.015         # half cavity length L [m] (2L = 0.03 m)
+R_DEFAULT = 0.65         # coefficient of restitution r [-]
+K_SPRING_N_PER_M = 11680.0   # spring stiffness k [N/m]
+C_DAMP_NS_PER_M = 2.53       # damping coefficient c [N s/m]
+
+W0_RAD_S = math.sqrt(K_SPRING_N_PER_M / M_LO_KG)                 # 55.390 rad/s
+D_DEFAULT = C_DAMP_NS_PER_M / (M_LO_KG * W0_RAD_S)                # 0.011998
+
+T_END_DEFAULT = 7000.0
+T_TRANSIENT_DEFAULT = 4000.0
+V_STICK_DEFAULT = 1e-6
+MAX_IMPACTS_DEFAULT = 2_000_000
+ROOT_TOL_DEFAULT = 1e-13
+
+
+class ParameterError(ValueError):
+    """A user-supplied value is outside its allowed range.
+
+    ``str(err)`` is one line naming the parameter, the value and what is allowed.
+    """
+
+    def __init__(self, name: str, value, allowed: str):
+        self.name = name
+        self.value = value
+        self.allowed = allowed
+        super().__init__(f"invalid {name} = {value!r}: {allowed}")
+
+
+def _as_float(name, value) -> float:
+    if isinstance(value, bool):
+        raise ParameterError(name, value, "must be a number")
+    try:
+        x = float(value)
+    except (TypeError, ValueError):
+        raise ParameterError(name, value, "must be a number") from None
+    if not math.isfinite(x):
+        raise ParameterError(name, value, "must be a finite number")
+    return x
+
+
+def check_real(name, value, *, lo=None, hi=None, lo_open=False, hi_open=False) -> float:
+    """Return ``value`` as a float or raise ParameterError naming ``name``."""
+    x = _as_float(name, value)
+    parts = []
+    if lo is not None:
+        parts.append(f"> {lo:g}" if lo_open else f">= {lo:g}")
+    if hi is not None:
+        parts.append(f"< {hi:g}" if hi_open else f"<= {hi:g}")
+    allowed = "must be a finite number" + (" " + " and ".join(parts) if parts else "")
+    if lo is not None and (x < lo or (lo_open and x == lo)):
+        raise ParameterError(name, value, allowed)
+    if hi is not None and (x > hi or (hi_open and x == hi)):
+        raise ParameterError(name, value, allowed)
+    return x
+
+
+def check_int(name, value, *, lo=None) -> int:
+    if isinstance(value, bool):
+        raise ParameterError(name, value, "must be an integer")
+    try:
+        x = int(value)
+        if x != float(value):
+            raise ValueError
+    except (TypeError, ValueError, OverflowError):
+        raise ParameterError(name, value, "must be an integer") from None
+    if lo is not None and x < lo:
+        raise ParameterError(name, value, f"must be an integer >= {lo}")
+    return x
+
+
+@dataclass(frozen=True)
+class ModelParams:
+    """Dimensionless VINES parameters (validated on construction).
+
+    eta   ball-to-LO mass ratio m/M (> 0)
+    omega forcing frequency ratio W = w/w0 (> 0)
+    F     forcing amplitude A/L (>= 0)
+    r     coefficient of restitution (0 <= r <= 1)
+    d     LO damping c/(M w0) (>= 0), fixed for every eta by default
+    phi   forcing phase at t = 0 [rad]
+    """
+
+    eta: float
+    omega: float
+    F: float
+    r: float = R_DEFAULT
+    d: float = D_DEFAULT
+    phi: float = 0.0
+
+    def __post_init__(self):
+        set_ = object.__setattr__
+        set_(self, "eta", check_real("eta", self.eta, lo=0.0, lo_open=True))
+        set_(self, "omega", check_real("omega", self.omega, lo=0.0, lo_open=True))
+        set_(self, "F", check_real("F", self.F, lo=0.0))
+        set_(self, "r", check_real("r", self.r, lo=0.0, hi=1.0))
+        set_(self, "d", check_real("d", self.d, lo=0.0))
+        set_(self, "phi", check_real("phi", self.phi))
+
+    @classmethod
+    def from_xi(cls, eta, omega, F, xi, r=R_DEFAULT, phi=0.0) -> "ModelParams":
+        """Paper's parameterisation with xi = c/(m w0) held fixed: d = eta * xi."""
+        eta = check_real("eta", eta, lo=0.0, lo_open=True)
+        xi = check_real("xi", xi, lo=0.0)
+        return cls(eta=eta, omega=omega, F=F, r=r, d=eta * xi, phi=phi)
+
+    @classmethod
+    def from_dimensional(cls, *, m_ball_kg, omega_rad_s, A_m, M_kg=M_LO_KG, L_m=L_HALF_M,
+                         k_N_per_m=K_SPRING_N_PER_M, c_Ns_per_m=C_DAMP_NS_PER_M,
+                         r=R_DEFAULT, phi=0.0) -> "ModelParams":
+        """Build the dimensionless set from SI quantities (paper Eq. 7)."""
+        M = check_real("M_kg", M_kg, lo=0.0, lo_open=True)
+        k = check_real("k_N_per_m", k_N_per_m, lo=0.0, lo_open=True)
+        L = check_real("L_m", L_m, lo=0.0, lo_open=True)
+        c = check_real("c_Ns_per_m", c_Ns_per_m, lo=0.0)
+        m = check_real("m_ball_kg", m_ball_kg, lo=0.0, lo_open=True)
+        w = check_real("omega_rad_s", omega_rad_s, lo=0.0, lo_open=True)
+        A = check_real("A_m", A_m, lo=0.0)
+        w0 = math.sqrt(k / M)
+        return cls(eta=m / M, omega=w / w0, F=A / L, r=r, d=c / (M * w0), phi=phi)
+
+    @property
+    def period(self) -> float:
+        """Forcing period T = 2 pi / W (dimensionless time)."""
+        return 2.0 * math.pi / self.omega
+
+    @property
+    def omega_s(self) -> float:
+        """Natural frequency of the stuck system, w_s/w0 = 1/sqrt(1 + eta)."""
+        return 1.0 / math.sqrt(1.0 + self.eta)
+
+    def as_dict(self) -> dict:
+        return asdict(self)
+
+
+@dataclass(frozen=True)
+class SolverSettings:
+    """Settings of one simulation run (validated on construction).
+
+    t_end        end of the run (dimensionless time)
+    t_transient  start of the measurement window [t_transient, t_end]
+    v_stick      chatter threshold: after an impact with |w'+| < v_stick while the
+                 relative acceleration presses the ball on the wall, ball and LO stick
+    max_impacts  guard: the run stops with status "max_impacts" after this many impacts
+    root_tol     distance to the wall (in units of L) at which contact is declared
+    state0       initial (z_m, z_m', z_b, z_b') at t = 0, |z_m - z_b| <= 1
+    """
+
+    t_end: float = T_END_DEFAULT
+    t_transient: float = T_TRANSIENT_DEFAULT
+    v_stick: float = V_STICK_DEFAULT
+    max_impacts: int = MAX_IMPACTS_DEFAULT
+    root_tol: float = ROOT_TOL_DEFAULT
+    state0: tuple = field(default=(0.0, 0.0, 0.0, 0.0))
+
+    def __post_init__(self):
+        set_ = object.__setattr__
+        t_end = check_real("t_end", self.t_end, lo=0.0, lo_open=True)
+        set_(self, "t_end", t_end)
+        tt = check_real("t_transient", self.t_transient, lo=0.0)
+        if tt >= t_end:
+            raise ParameterError("t_transient", self.t_transient,
+                                 f"must be >= 0 and < t_end = {t_end:g}")
+        set_(self, "t_transient", tt)
+        set_(self, "v_stick", check_real("v_stick", self.v_stick, lo=0.0))
+        set_(self, "max_impacts", check_int("max_impacts", self.max_impacts, lo=1))
+        set_(self, "root_tol", check_real("root_tol", self.root_tol, lo=0.0, lo_open=True,
+                                          hi=1e-3))
+        try:
+            s0 = tuple(self.state0)
+        except TypeError:
+            raise ParameterError("state0", self.state0, "must be 4 numbers (z_m, z_m', z_b, z_b')") from None
+        if len(s0) != 4:
+            raise ParameterError("state0", self.state0, "must be 4 numbers (z_m, z_m', z_b, z_b')")
+        names = ("z_m0", "v_m0", "z_b0", "v_b0")
+        s0 = tuple(check_real(n, v) for n, v in zip(names, s0))
+        if abs(s0[0] - s0[2]) > 1.0:
+            raise ParameterError("state0", self.state0, "needs |z_m0 - z_b0| <= 1 (ball inside the cavity)")
+        set_(self, "state0", s0)
+
+    def as_dict(self) -> dict:
+        d = asdict(self)
+        d["state0"] = list(self.state0)
+        return d
