@@ -1,0 +1,358 @@
+"""Event-driven exact VINES kernel (numba, nogil).
+
+A trajectory is a sequence of *segments*, each starting at an absolute time t0 with a state
+(z_m, z_m', z_b, z_b') and a mode: free flight (0) or stuck at a wall (+1 = L, -1 = R).
+Inside a segment the motion is the closed form of ``vines.flow`` in local time s = t - t0.
+Segments end at an impact, at the start or end of sticking, at t_transient (so that every
+segment lies wholly inside or outside the measurement window) or at t_end.
+
+First-contact rule (cannot miss a crossing, grazing included). Between impacts
+w = z_m - z_b has w'' = z_m'', and |z_m''| <= B2 on [s, s + h_cap] by the energy bound of
+``vines.flow``. From a point with gap g = 1 - w (wall L) or 1 + w (wall R) >= 0 and closing
+speed c toward that wall, the wall cannot be reached before
+        h = 2 g / (c + sqrt(c^2 + 2 B2 g))      (root of c h + B2 h^2 / 2 = g),
+so each step goes to the smaller of the two walls' h (and at most h_cap = 1/rate). The
+iteration approaches a transversal contact quadratically and a grazing one geometrically,
+and can never step over a wall. Contact is declared when g <= root_tol with c > 0; one
+Newton step s += g/c then places the impact (error ~ g^2). Leaving a wall with zero
+relative velocity (after sticking, or with r = 0) uses the first non-zero derivative of w
+(second or third) and a bound on the next one to take a first step that provably moves away.
+
+Release from sticking uses the same rule on the contact force, proportional to z_m'' of the
+stuck body (mass 1 + eta), with a bound on z_m''''.
+
+Maximum of |z_m|: on each step interval [a, b] the value cannot exceed
+max(|z(a)|, |z(b)|) + B2 (b - a)^2 / 8; only intervals where this beats the running
+maximum are refined (z' = 0 by safeguarded Newton, or bisection).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from .flow import I_D, I_RATE, deriv_bound, flow, forcing, v2_integral
+
+# Return codes of run_kernel.
+RC_DONE, RC_BUFFER_FULL, RC_MAX_IMPACTS, RC_STALLED = 0, 1, 2, 3
+STATUS_TEXT = {RC_DONE: "ok", RC_MAX_IMPACTS: "max_impacts", RC_STALLED: "stalled"}
+
+# Accumulator slots.
+A_INT_VM2, A_INT_VB2, A_XMAX_WIN, A_XMAX_ALL, A_TSTUCK_WIN, A_TSTUCK_ALL, A_NSTICK, A_NEVAL = range(8)
+N_ACC = 8
+# Counter slots.
+C_NIMP_TOTAL, C_NIMP_REC, C_NSEG_REC = range(3)
+N_CNT = 3
+
+MAX_STEPS_PER_SEGMENT = 200_000
+
+
+@njit(cache=True, nogil=True)
+def _safe_step(gap, closing, B):
+    """Largest h with gap - closing h - B h^2/2 >= 0 for all [0, h] (B > 0)."""
+    if gap < 0.0:
+        gap = 0.0
+    den = closing + math.sqrt(closing * closing + 2.0 * B * gap)
+    if den > 0.0:
+        return 2.0 * gap / den
+    if closing < 0.0:
+        return -2.0 * closing / B
+    return 0.0
+
+
+@njit(cache=True, nogil=True)
+def _extremum(osc, x0, v0, sth0, cth0, sa, va, sb, vb):
+    """|z| at the zero of z' inside [sa, sb] (z'(sa) z'(sb) < 0): safeguarded Newton."""
+    lo, hi = sa, sb
+    vlo = va
+    s = sa - va * (sb - sa) / (vb - va)
+    z = 0.0
+    for _ in range(60):
+        z, v, a, _, _ = flow(osc, x0, v0, sth0, cth0, s)
+        if (v > 0.0) == (vlo > 0.0):
+            lo = s
+            vlo = v
+        else:
+            hi = s
+        if a != 0.0:
+            s_new = s - v / a
+        else:
+            s_new = 0.5 * (lo + hi)
+        if not (lo < s_new < hi):
+            s_new = 0.5 * (lo + hi)
+        if abs(s_new - s) <= 1e-10 * (1.0 + abs(s)) or hi - lo <= 1e-12 * (1.0 + abs(s)):
+            s = s_new
+            z, v, a, _, _ = flow(osc, x0, v0, sth0, cth0, s)
+            break
+        s = s_new
+    return abs(z)
+
+
+@njit(cache=True, nogil=True)
+def _interval_max(osc, x0, v0, sth0, cth0, sa, za, va, sb, zb, vb, B2, m):
+    """Running maximum m updated with max |z| over [sa, sb]."""
+    za_ = abs(za)
+    zb_ = abs(zb)
+    if za_ > m:
+        m = za_
+    if zb_ > m:
+        m = zb_
+    h = sb - sa
+    if max(za_, zb_) + 0.125 * B2 * h * h <= m:
+        return m
+    # small explicit stack for bisection
+    st_a = np.empty(24)
+    st_za = np.empty(24)
+    st_va = np.empty(24)
+    st_b = np.empty(24)
+    st_zb = np.empty(24)
+    st_vb = np.empty(24)
+    n = 0
+    st_a[0], st_za[0], st_va[0], st_b[0], st_zb[0], st_vb[0] = sa, za, va, sb, zb, vb
+    n = 1
+    while n > 0:
+        n -= 1
+        a_, za1, va1 = st_a[n], st_za[n], st_va[n]
+        b_, zb1, vb1 = st_b[n], st_zb[n], st_vb[n]
+        h = b_ - a_
+        if max(abs(za1), abs(zb1)) + 0.125 * B2 * h * h <= m:
+            continue
+        if va1 * vb1 < 0.0:
+            ze = _extremum(osc, x0, v0, sth0, cth0, a_, va1, b_, vb1)
+            if ze > m:
+                m = ze
+            continue
+        if n + 2 > 24 or h <= 1e-9:
+            continue
+        mid = 0.5 * (a_ + b_)
+        zm, vm, _, _, _ = flow(osc, x0, v0, sth0, cth0, mid)
+        if abs(zm) > m:
+            m = abs(zm)
+        st_a[n], st_za[n], st_va[n], st_b[n], st_zb[n], st_vb[n] = a_, za1, va1, mid, zm, vm
+        n += 1
+        st_a[n], st_za[n], st_va[n], st_b[n], st_zb[n], st_vb[n] = mid, zm, vm, b_, zb1, vb1
+        n += 1
+    return m
+
+
+@njit(cache=True, nogil=True)
+def run_kernel(osc_f, osc_s, eta, r, W, phi, t_end, t_tr, v_stick, root_tol, max_impacts,
+               record_from, cur, acc, cnt, imp, seg):
+    """Advance the trajectory in ``cur`` = [t, z_m, z_m', z_b, z_b', mode] to t_end.
+
+    osc_f, osc_s   packed oscillators (``flow.make_osc``) of the free LO and the stuck body
+    imp            (cap, 6) buffer of impacts: t, z_m, z_m', z_b, z_b' (pre-impact), wall
+    seg            (cap, 6) buffer of segment starts: t0, z_m, z_m', z_b, z_b', mode
+    Impacts and segments are recorded only from t >= record_from. ``cur``, ``acc`` and
+    ``cnt`` are updated in place, so a call that returns RC_BUFFER_FULL can be resumed with
+    larger buffers. Returns one of RC_DONE, RC_BUFFER_FULL, RC_MAX_IMPACTS, RC_STALLED.
+    """
+    one_eta = 1.0 + eta
+    n_zero = 0              # consecutive segments that did not advance time
+    while True:
+        t0 = cur[0]
+        if n_zero > 1000:
+            return RC_STALLED
+        if t0 >= t_end:
+            return RC_DONE
+        if cnt[C_NSEG_REC] >= seg.shape[0] or cnt[C_NIMP_REC] >= imp.shape[0]:
+            return RC_BUFFER_FULL
+        zm0, vm0, zb0, vb0 = cur[1], cur[2], cur[3], cur[4]
+        mode = int(cur[5])
+        if t0 >= record_from:
+            k = cnt[C_NSEG_REC]
+            seg[k, 0], seg[k, 1], seg[k, 2], seg[k, 3], seg[k, 4] = t0, zm0, vm0, zb0, vb0
+            seg[k, 5] = mode
+            cnt[C_NSEG_REC] = k + 1
+        in_window = t0 >= t_tr
+        osc = osc_f if mode == 0 else osc_s
+        th0 = W * t0 + phi
+        sth0 = math.sin(th0)
+        cth0 = math.cos(th0)
+        h_cap = 1.0 / osc[I_RATE]
+        s_stop = t_end - t0
+        if t0 < t_tr:
+            s_stop = min(s_stop, t_tr - t0)
+        s = 0.0
+        z, v, a, j, b1 = flow(osc, zm0, vm0, sth0, cth0, 0.0)
+        event = 0        # 0 none, 1 forced stop, 2 impact, 3 release, 4 stick (pressed, w' = 0)
+        wall = 0
+        steps = 0
+        while True:
+            steps += 1
+            if steps > MAX_STEPS_PER_SEGMENT:
+                cur[0] = t0
+                return RC_STALLED
+            B2 = deriv_bound(osc, b1, 2, s + h_cap)
+            if mode == 0:
+                w = z - (zb0 + vb0 * s)
+                wd = v - vb0
+                gL = 1.0 - w
+                gR = 1.0 + w
+                hL = _safe_step(gL, wd, B2)
+                hR = _safe_step(gR, -wd, B2)
+                # departure from a wall with (almost) zero relative velocity
+                if gL <= root_tol or gR <= root_tol:
+                    sw = 1.0 if gL <= gR else -1.0
+                    acc_away = -sw * a
+                    jerk_away = -sw * j
+                    h0 = 0.0
+                    if acc_away > 0.0:
+                        h0 = acc_away / deriv_bound(osc, b1, 3, s + h_cap)
+                    elif jerk_away > 0.0 and acc_away > -1e-12 * (1.0 + abs(a)):
+                        h0 = jerk_away / deriv_bound(osc, b1, 4, s + h_cap)
+                    elif -sw * wd <= 1e-14 * (1.0 + abs(v)):
+                        # pressed onto the wall with no relative velocity: sticking
+                        event = 4
+                        wall = int(sw)
+                        break
+                    if sw > 0.0:
+                        hL = max(hL, h0)
+                    else:
+                        hR = max(hR, h0)
+                h = min(hL, hR)
+            else:
+                gap = mode * a           # contact force ~ z'' of the stuck body, > 0 while stuck
+                closing = -mode * j
+                h = _safe_step(gap, closing, deriv_bound(osc, b1, 4, s + h_cap))
+            forced = False
+            if h >= h_cap:
+                h = h_cap
+            if s + h >= s_stop:
+                s_new = s_stop
+                forced = True
+            else:
+                s_new = s + h
+            if s_new <= s:
+                cur[0] = t0
+                return RC_STALLED
+            z1, v1, a1, j1, b11 = flow(osc, zm0, vm0, sth0, cth0, s_new)
+            if in_window:
+                m = _interval_max(osc, zm0, vm0, sth0, cth0, s, z, v, s_new, z1, v1, B2,
+                                  acc[A_XMAX_WIN])
+                acc[A_XMAX_WIN] = m
+                if m > acc[A_XMAX_ALL]:
+                    acc[A_XMAX_ALL] = m
+            else:
+                acc[A_XMAX_ALL] = _interval_max(osc, zm0, vm0, sth0, cth0, s, z, v, s_new, z1,
+                                                v1, B2, acc[A_XMAX_ALL])
+            s, z, v, a, j, b1 = s_new, z1, v1, a1, j1, b11
+            acc[A_NEVAL] += 1.0
+            if mode == 0:
+                w = z - (zb0 + vb0 * s)
+                wd = v - vb0
+                if 1.0 - w <= root_tol and wd > 0.0:
+                    event = 2
+                    wall = 1
+                    gap = max(1.0 - w, 0.0)
+                    closing = wd
+                    break
+                if 1.0 + w <= root_tol and wd < 0.0:
+                    event = 2
+                    wall = -1
+                    gap = max(1.0 + w, 0.0)
+                    closing = -wd
+                    break
+            else:
+                gap = mode * a
+                closing = -mode * j
+                if gap <= root_tol and closing > 0.0:
+                    event = 3
+                    gap = max(gap, 0.0)
+                    break
+            if forced:
+                event = 1
+                break
+        if event == 2 or event == 3:
+            # one Newton step onto the event surface (error ~ gap^2), never past t_end
+            ds = gap / closing
+            if s + ds > t_end - t0:
+                ds = max(t_end - t0 - s, 0.0)
+            if ds > 0.0:
+                s_new = s + ds
+                z1, v1, a1, j1, b11 = flow(osc, zm0, vm0, sth0, cth0, s_new)
+                m_ref = acc[A_XMAX_WIN] if in_window else acc[A_XMAX_ALL]
+                if abs(z1) > m_ref:
+                    if in_window:
+                        acc[A_XMAX_WIN] = abs(z1)
+                    if abs(z1) > acc[A_XMAX_ALL]:
+                        acc[A_XMAX_ALL] = abs(z1)
+                s, z, v, a, j, b1 = s_new, z1, v1, a1, j1, b11
+        # window integrals and time stuck over this segment [t0, t0 + s]
+        if mode == 0:
+            vb_end = vb0
+            zb_end = zb0 + vb0 * s
+        else:
+            vb_end = v
+            zb_end = z - mode
+        if in_window:
+            iv = v2_integral(osc, zm0, vm0, sth0, cth0, s)
+            acc[A_INT_VM2] += iv
+            if mode == 0:
+                acc[A_INT_VB2] += vb0 * vb0 * s
+            else:
+                acc[A_INT_VB2] += iv
+                acc[A_TSTUCK_WIN] += s
+        if mode != 0:
+            acc[A_TSTUCK_ALL] += s
+        t_new = t0 + s
+        n_zero = n_zero + 1 if s <= 0.0 else 0
+        if event == 1:
+            cur[0], cur[1], cur[2], cur[3], cur[4], cur[5] = t_new, z, v, zb_end, vb_end, mode
+            if t_new >= t_end:
+                cur[0] = t_end
+                return RC_DONE
+            continue
+        if event == 3:
+            # release: free flight from the wall with zero relative velocity
+            cur[0], cur[1], cur[2], cur[3], cur[4], cur[5] = t_new, z, v, z - mode, v, 0.0
+            continue
+        if event == 4:
+            vc = (v + eta * vb_end) / one_eta
+            acc[A_NSTICK] += 1.0
+            cur[0], cur[1], cur[2], cur[3], cur[4], cur[5] = t_new, z, vc, z - wall, vc, wall
+            continue
+        # impact at `wall`: pre-impact state, ball placed exactly on the wall
+        zb_imp = z - wall
+        if t_new >= record_from:
+            k = cnt[C_NIMP_REC]
+            imp[k, 0], imp[k, 1], imp[k, 2], imp[k, 3], imp[k, 4], imp[k, 5] = \
+                t_new, z, v, zb_imp, vb_end, wall
+            cnt[C_NIMP_REC] = k + 1
+        cnt[C_NIMP_TOTAL] += 1
+        vm_p = ((1.0 - r * eta) * v + eta * (1.0 + r) * vb_end) / one_eta
+        vb_p = ((1.0 + r) * v + (eta - r) * vb_end) / one_eta
+        mode_new = 0
+        if abs(vm_p - vb_p) <= v_stick:
+            vc = (v + eta * vb_end) / one_eta
+            g = forcing(osc_f, sth0, cth0, s) - osc_f[I_D] * vc - z    # free LO acceleration
+            if wall * g > 0.0:
+                mode_new = wall
+                vm_p = vc
+                vb_p = vc
+                acc[A_NSTICK] += 1.0
+        cur[0], cur[1], cur[2], cur[3], cur[4], cur[5] = t_new, z, vm_p, zb_imp, vb_p, mode_new
+        if cnt[C_NIMP_TOTAL] >= max_impacts:
+            return RC_MAX_IMPACTS
+
+
+@njit(cache=True, nogil=True)
+def dense_states(seg, idx, times, osc_f, osc_s, W, phi, out):
+    """State (z_m, z_m', z_b, z_b') at ``times``; idx[k] is the segment holding times[k]."""
+    for k in range(times.shape[0]):
+        i = idx[k]
+        t0 = seg[i, 0]
+        mode = int(seg[i, 5])
+        osc = osc_f if mode == 0 else osc_s
+        th0 = W * t0 + phi
+        s = times[k] - t0
+        z, v, _, _, _ = flow(osc, seg[i, 1], seg[i, 2], math.sin(th0), math.cos(th0), s)
+        out[0, k] = z
+        out[1, k] = v
+        if mode == 0:
+            out[2, k] = seg[i, 3] + seg[i, 4] * s
+            out[3, k] = seg[i, 4]
+        else:
+            out[2, k] = z - mode
+            out[3, k] = v

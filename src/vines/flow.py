@@ -1,0 +1,271 @@
+"""Closed-form flow of the forced, damped linear oscillator in *local* time.
+
+One oscillator covers both phases of the VINES motion:
+
+    m z'' + d z' + z = F sin(theta) + d W F cos(theta),   theta = theta0 + W s,
+
+with m = 1 for the LO in free flight and m = 1 + eta for the stuck body (paper Eq. 28).
+``s`` is the local time since the start of the segment (s = t - t0) and theta0 = W t0 + phi
+the forcing phase at that start: nothing grows like exp(d t / 2), unlike the paper's Eq. 12.
+
+The solution is z(s) = z_p(s) + x_h C(s) + v_h S(s) with the fundamental solutions C, S of
+the homogeneous equation (C(0)=1, C'(0)=0, S(0)=0, S'(0)=1) and x_h, v_h the initial
+homogeneous parts. Every damping regime is covered by one expression (kappa = 1/m - sigma^2,
+sigma = d/(2m)): underdamped (kappa > 0), critically damped (kappa = 0) and overdamped
+(kappa < 0), and the undamped resonance d = 0, m W^2 = 1 with its secular particular solution
+z_p = A s cos(theta), A = -F/(2 m W).
+
+Bounds used by the event search: the homogeneous energy E_h = (z_h'^2 + z_h^2/m)/2 never
+increases (d >= 0), so for every later time |z_h'| <= b1 = sqrt(2 E_h), |z_h| <= b1/omega and
+|z_h^(n)| <= b_n with b_n = 2 sigma b_(n-1) + omega^2 b_(n-2); the particular part adds
+P W^n (P its amplitude), or the secular growth in the resonant case.
+
+The oscillator constants are packed in a float64 array (``make_osc``) so that numba kernels
+can take them as plain arguments.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+# Indices into the packed oscillator array.
+I_SIGMA, I_OM2, I_OM, I_KAPPA, I_SQ, I_KIND, I_W, I_PS, I_PC, I_RES, I_ARES, I_PAMP, I_M, \
+    I_RATE, I_D, I_F = range(16)
+N_OSC = 16
+
+KIND_UNDER, KIND_CRIT, KIND_OVER = 1.0, 0.0, -1.0
+
+
+def make_osc(m: float, d: float, W: float, F: float) -> np.ndarray:
+    """Pack the constants of m z'' + d z' + z = F sin(th) + d W F cos(th), th = th0 + W s."""
+    osc = np.zeros(N_OSC)
+    sigma = d / (2.0 * m)
+    om2 = 1.0 / m
+    kappa = om2 - sigma * sigma
+    osc[I_SIGMA], osc[I_OM2], osc[I_OM] = sigma, om2, math.sqrt(om2)
+    osc[I_KAPPA], osc[I_SQ] = kappa, math.sqrt(abs(kappa))
+    osc[I_KIND] = KIND_UNDER if kappa > 0 else (KIND_CRIT if kappa == 0 else KIND_OVER)
+    osc[I_W], osc[I_M], osc[I_D], osc[I_F] = W, m, d, F
+    det = 1.0 - m * W * W
+    den = det * det + (d * W) ** 2
+    if den == 0.0:                       # d = 0 and m W^2 = 1: exact resonance
+        osc[I_RES] = 1.0
+        osc[I_ARES] = -F / (2.0 * m * W)
+    else:                                # H = (1 + i d W)/(1 - m W^2 + i d W), z_p = F Im(H e^{i th})
+        osc[I_PS] = F * (det + (d * W) ** 2) / den
+        osc[I_PC] = -F * m * d * W ** 3 / den
+        osc[I_PAMP] = math.hypot(osc[I_PS], osc[I_PC])
+    osc[I_RATE] = max(osc[I_OM], W, sigma + (osc[I_SQ] if kappa < 0 else 0.0))
+    return osc
+
+
+@njit(cache=True, nogil=True)
+def fundamentals(osc, s):
+    """(C, C', S, S') of the homogeneous equation at local time s >= 0."""
+    sigma = osc[I_SIGMA]
+    sq = osc[I_SQ]
+    kind = osc[I_KIND]
+    if kind > 0.5:
+        e = math.exp(-sigma * s)
+        x = sq * s
+        ecs = e * math.cos(x)
+        esn = e * math.sin(x) / sq
+    elif kind < -0.5:
+        x = sq * s
+        if x < 20.0:
+            e = math.exp(-sigma * s)
+            ecs = e * math.cosh(x)
+            esn = e * math.sinh(x) / sq
+        else:                            # avoid exp underflow times cosh overflow
+            ep = math.exp((sq - sigma) * s)
+            em = math.exp((-sq - sigma) * s)
+            ecs = 0.5 * (ep + em)
+            esn = 0.5 * (ep - em) / sq
+    else:
+        e = math.exp(-sigma * s)
+        ecs = e
+        esn = e * s
+    S = esn
+    C = ecs + sigma * esn
+    dS = ecs - sigma * esn
+    dC = -osc[I_OM2] * esn
+    return C, dC, S, dS
+
+
+@njit(cache=True, nogil=True)
+def particular(osc, sth0, cth0, s):
+    """Particular solution z_p and its first three derivatives at local time s.
+
+    sth0, cth0 are sin and cos of the forcing phase theta0 at s = 0.
+    """
+    W = osc[I_W]
+    sw = math.sin(W * s)
+    cw = math.cos(W * s)
+    sth = sth0 * cw + cth0 * sw
+    cth = cth0 * cw - sth0 * sw
+    if osc[I_RES] > 0.5:
+        A = osc[I_ARES]
+        zp = A * s * cth
+        zp1 = A * cth - A * W * s * sth
+        zp2 = -2.0 * A * W * sth - A * W * W * s * cth
+        zp3 = -3.0 * A * W * W * cth + A * W * W * W * s * sth
+    else:
+        ps = osc[I_PS]
+        pc = osc[I_PC]
+        zp = ps * sth + pc * cth
+        zp1 = W * (ps * cth - pc * sth)
+        zp2 = -W * W * zp
+        zp3 = -W * W * zp1
+    return zp, zp1, zp2, zp3
+
+
+@njit(cache=True, nogil=True)
+def particular0(osc, sth0, cth0):
+    """z_p(0) and z_p'(0)."""
+    if osc[I_RES] > 0.5:
+        return 0.0, osc[I_ARES] * cth0
+    ps = osc[I_PS]
+    pc = osc[I_PC]
+    return ps * sth0 + pc * cth0, osc[I_W] * (ps * cth0 - pc * sth0)
+
+
+@njit(cache=True, nogil=True)
+def flow(osc, x0, v0, sth0, cth0, s):
+    """State at local time s from (x0, v0) at s = 0.
+
+    Returns (z, z', z'', z''', b1) where b1 = sqrt(2 E_h(s)) bounds |z_h'| from s on.
+    """
+    zp0, zp10 = particular0(osc, sth0, cth0)
+    xh = x0 - zp0
+    vh = v0 - zp10
+    C, dC, S, dS = fundamentals(osc, s)
+    zh = xh * C + vh * S
+    zh1 = xh * dC + vh * dS
+    om2 = osc[I_OM2]
+    two_sigma = 2.0 * osc[I_SIGMA]
+    zh2 = -two_sigma * zh1 - om2 * zh
+    zh3 = -two_sigma * zh2 - om2 * zh1
+    zp, zp1, zp2, zp3 = particular(osc, sth0, cth0, s)
+    b1 = math.sqrt(zh1 * zh1 + om2 * zh * zh)
+    return zp + zh, zp1 + zh1, zp2 + zh2, zp3 + zh3, b1
+
+
+@njit(cache=True, nogil=True)
+def deriv_bound(osc, b1, n, s_hi):
+    """Upper bound of |z^(n)| (n = 0..4) on [s, s_hi] given b1 = sqrt(2 E_h(s))."""
+    om = osc[I_OM]
+    om2 = osc[I_OM2]
+    two_sigma = 2.0 * osc[I_SIGMA]
+    bm2 = b1 / om          # b_0
+    bm1 = b1               # b_1
+    if n == 0:
+        bh = bm2
+    elif n == 1:
+        bh = bm1
+    else:
+        bh = 0.0
+        for _ in range(n - 1):
+            bh = two_sigma * bm1 + om2 * bm2
+            bm2 = bm1
+            bm1 = bh
+    W = osc[I_W]
+    if osc[I_RES] > 0.5:
+        # z_p^(n) = A W^(n-1) (n * trig + W s * trig): bounded by |A| W^(n-1) (n + W s_hi)
+        A = abs(osc[I_ARES])
+        bp = A * W ** (n - 1) * (n + W * s_hi) if n >= 1 else A * s_hi
+    else:
+        bp = osc[I_PAMP] * W ** n
+    return bh + bp
+
+
+@njit(cache=True, nogil=True)
+def forcing(osc, sth0, cth0, s):
+    """Right-hand side F sin(theta) + d W F cos(theta) at local time s."""
+    W = osc[I_W]
+    sw = math.sin(W * s)
+    cw = math.cos(W * s)
+    sth = sth0 * cw + cth0 * sw
+    cth = cth0 * cw - sth0 * sw
+    F = osc[I_F]
+    return F * sth + osc[I_D] * W * F * cth
+
+
+# ---------------------------------------------------------------------------------------------
+# Exact integral of z'(s)^2 over [0, L].
+
+@njit(cache=True, nogil=True)
+def _phi1(x, ex):
+    """(e^x - 1)/x for complex x, given ex = e^x; series near 0."""
+    if abs(x) > 0.1:
+        return (ex - 1.0) / x
+    term = 1.0 + 0.0j
+    acc = 1.0 + 0.0j
+    for k in range(2, 14):
+        term = term * x / k
+        acc += term
+    return acc
+
+
+_GL_X, _GL_W = np.polynomial.legendre.leggauss(8)
+
+
+@njit(cache=True, nogil=True)
+def _v2_gauss(osc, x0, v0, sth0, cth0, L, gx, gw):
+    rate = osc[I_RATE]
+    npan = int(math.ceil(L * rate)) if L * rate > 1.0 else 1
+    if osc[I_RES] > 0.5:                 # secular growth: finer panels on long segments
+        npan = max(npan, int(math.ceil(L * osc[I_W] * (1.0 + 0.05 * L))))
+    h = L / npan
+    acc = 0.0
+    for p in range(npan):
+        a = p * h
+        part = 0.0
+        for k in range(gx.shape[0]):
+            s = a + 0.5 * h * (gx[k] + 1.0)
+            z, v, _, _, _ = flow(osc, x0, v0, sth0, cth0, s)
+            part += gw[k] * v * v
+        acc += 0.5 * h * part
+    return acc
+
+
+@njit(cache=True, nogil=True)
+def v2_integral(osc, x0, v0, sth0, cth0, L):
+    """Exact integral of z'(s)^2 over local time [0, L].
+
+    Closed form (sums of complex exponentials) when the oscillator is clearly underdamped and
+    not resonant; otherwise an 8-point Gauss-Legendre rule on panels of length <= 1/rate,
+    which is exact to round-off for these smooth, band-limited integrands.
+    """
+    if L <= 0.0:
+        return 0.0
+    sigma = osc[I_SIGMA]
+    om2 = osc[I_OM2]
+    kappa = osc[I_KAPPA]
+    if osc[I_KIND] < 0.5 or osc[I_RES] > 0.5 or kappa < 0.01 * om2:
+        return _v2_gauss(osc, x0, v0, sth0, cth0, L, _GL_X, _GL_W)
+    alpha = osc[I_SQ]
+    W = osc[I_W]
+    zp0, zp10 = particular0(osc, sth0, cth0)
+    xh = x0 - zp0
+    vh = v0 - zp10
+    # z_h'(s) = e^{-sigma s} (a cos(alpha s) + b sin(alpha s)) = Re(Ah e^{lam s})
+    a = vh
+    b = -(om2 * xh + sigma * vh) / alpha
+    Ah = complex(a, -b)
+    lam = complex(-sigma, alpha)
+    # z_p'(s) = Re(Bp e^{i W s})
+    Bp = W * complex(osc[I_PS], osc[I_PC]) * complex(cth0, sth0)
+    E = math.exp(-sigma * L) * complex(math.cos(alpha * L), math.sin(alpha * L))   # e^{lam L}
+    G = complex(math.cos(W * L), math.sin(W * L))                                  # e^{iWL}
+    iW = complex(0.0, W)
+    J_m2s = L * _phi1(complex(-2.0 * sigma * L, 0.0), complex(abs(E) ** 2, 0.0))
+    J_lmw = L * _phi1((lam - iW) * L, E * G.conjugate())
+    J_2l = L * _phi1(2.0 * lam * L, E * E)
+    J_2w = L * _phi1(2.0 * iW * L, G * G)
+    J_lpw = L * _phi1((lam + iW) * L, E * G)
+    mod2 = (abs(Ah) ** 2) * J_m2s.real + (abs(Bp) ** 2) * L \
+        + 2.0 * (Ah * Bp.conjugate() * J_lmw).real
+    sq2 = (Ah * Ah * J_2l + Bp * Bp * J_2w + 2.0 * Ah * Bp * J_lpw).real
+    return 0.5 * (mod2 + sq2)
