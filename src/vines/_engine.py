@@ -13,8 +13,13 @@ speed c toward that wall, the wall cannot be reached before
         h = 2 g / (c + sqrt(c^2 + 2 B2 g))      (root of c h + B2 h^2 / 2 = g),
 so each step goes to the smaller of the two walls' h (and at most h_cap = 1/rate). The
 iteration approaches a transversal contact quadratically and a grazing one geometrically,
-and can never step over a wall. Contact is declared when g <= root_tol with c > 0; one
-Newton step s += g/c then places the impact (error ~ g^2). Leaving a wall with zero
+and can never step over a wall. Contact is declared when c > 0 and g <= root_tol, and either
+g is at round-off level or the crossing is transversal (c^2 >= 2 B2 g); one Newton step
+s += g/c then places the impact (error <= g/4). Near-grazing approaches keep stepping
+conservatively (geometric convergence) instead of taking a long, unsafe Newton step.
+After an impact the ball sticks when |w'+| <= max(v_stick, v_floor), where v_floor is the
+speed of a bounce only a few round-off units high (such bounces cannot be resolved), and
+the relative acceleration presses the ball onto the wall. Leaving a wall with zero
 relative velocity (after sticking, or with r = 0) uses the first non-zero derivative of w
 (second or third) and a bound on the next one to take a first step that provably moves away.
 
@@ -46,6 +51,7 @@ C_NIMP_TOTAL, C_NIMP_REC, C_NSEG_REC = range(3)
 N_CNT = 3
 
 MAX_STEPS_PER_SEGMENT = 200_000
+ROUNDOFF = 8.0 * 2.220446049250313e-16   # a few ulps: contact/release at this gap is exact
 
 
 @njit(cache=True, nogil=True)
@@ -176,6 +182,7 @@ def run_kernel(osc_f, osc_s, eta, r, W, phi, t_end, t_tr, v_stick, root_tol, max
             s_stop = min(s_stop, t_tr - t0)
         s = 0.0
         z, v, a, j, b1 = flow(osc, zm0, vm0, sth0, cth0, 0.0)
+        B4s = 0.0
         event = 0        # 0 none, 1 forced stop, 2 impact, 3 release, 4 stick (pressed, w' = 0)
         wall = 0
         steps = 0
@@ -215,7 +222,8 @@ def run_kernel(osc_f, osc_s, eta, r, W, phi, t_end, t_tr, v_stick, root_tol, max
             else:
                 gap = mode * a           # contact force ~ z'' of the stuck body, > 0 while stuck
                 closing = -mode * j
-                h = _safe_step(gap, closing, deriv_bound(osc, b1, 4, s + h_cap))
+                B4s = deriv_bound(osc, b1, 4, s + h_cap)
+                h = _safe_step(gap, closing, B4s)
             forced = False
             if h >= h_cap:
                 h = h_cap
@@ -240,24 +248,28 @@ def run_kernel(osc_f, osc_s, eta, r, W, phi, t_end, t_tr, v_stick, root_tol, max
             s, z, v, a, j, b1 = s_new, z1, v1, a1, j1, b11
             acc[A_NEVAL] += 1.0
             if mode == 0:
-                w = z - (zb0 + vb0 * s)
+                zb_now = zb0 + vb0 * s
+                w = z - zb_now
                 wd = v - vb0
-                if 1.0 - w <= root_tol and wd > 0.0:
-                    event = 2
-                    wall = 1
+                floor = ROUNDOFF * (1.0 + abs(z) + abs(zb_now))
+                if wd > 0.0:
                     gap = max(1.0 - w, 0.0)
                     closing = wd
-                    break
-                if 1.0 + w <= root_tol and wd < 0.0:
-                    event = 2
-                    wall = -1
+                    wall = 1
+                else:
                     gap = max(1.0 + w, 0.0)
                     closing = -wd
+                    wall = -1
+                if closing > 0.0 and gap <= root_tol and (
+                        gap <= floor or closing * closing >= 2.0 * B2 * gap):
+                    event = 2
                     break
             else:
                 gap = mode * a
                 closing = -mode * j
-                if gap <= root_tol and closing > 0.0:
+                floor = ROUNDOFF * (1.0 + abs(a))
+                if closing > 0.0 and gap <= root_tol and (
+                        gap <= floor or closing * closing >= 2.0 * B4s * gap):
                     event = 3
                     gap = max(gap, 0.0)
                     break
@@ -324,9 +336,11 @@ def run_kernel(osc_f, osc_s, eta, r, W, phi, t_end, t_tr, v_stick, root_tol, max
         vm_p = ((1.0 - r * eta) * v + eta * (1.0 + r) * vb_end) / one_eta
         vb_p = ((1.0 + r) * v + (eta - r) * vb_end) / one_eta
         mode_new = 0
-        if abs(vm_p - vb_p) <= v_stick:
-            vc = (v + eta * vb_end) / one_eta
-            g = forcing(osc_f, sth0, cth0, s) - osc_f[I_D] * vc - z    # free LO acceleration
+        vc = (v + eta * vb_end) / one_eta
+        g = forcing(osc_f, sth0, cth0, s) - osc_f[I_D] * vc - z    # free LO acceleration
+        # bounces lower than a few round-off units cannot be resolved: they count as sticking
+        v_floor = math.sqrt(32.0 * abs(g) * ROUNDOFF * (1.0 + abs(z) + abs(zb_imp)))
+        if abs(vm_p - vb_p) <= max(v_stick, v_floor):
             if wall * g > 0.0:
                 mode_new = wall
                 vm_p = vc
