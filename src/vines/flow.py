@@ -234,8 +234,8 @@ def _v2_gauss(osc, x0, v0, sth0, cth0, L, gx, gw):
 def v2_integral(osc, x0, v0, sth0, cth0, L):
     """Exact integral of z'(s)^2 over local time [0, L].
 
-    Closed form (sums of complex exponentials) when the oscillator is clearly underdamped and
-    not resonant; otherwise an 8-point Gauss-Legendre rule on panels of length <= 1/rate,
+    Closed form (sums of complex exponentials) when the oscillator is clearly underdamped, not
+    resonant and the terms do not cancel heavily (near resonance); otherwise an 8-point Gauss-Legendre rule on panels of length <= 1/rate,
     which is exact to round-off for these smooth, band-limited integrands.
     """
     if L <= 0.0:
@@ -268,4 +268,9 @@ def v2_integral(osc, x0, v0, sth0, cth0, L):
     mod2 = (abs(Ah) ** 2) * J_m2s.real + (abs(Bp) ** 2) * L \
         + 2.0 * (Ah * Bp.conjugate() * J_lmw).real
     sq2 = (Ah * Ah * J_2l + Bp * Bp * J_2w + 2.0 * Ah * Bp * J_lpw).real
-    return 0.5 * (mod2 + sq2)
+    res = 0.5 * (mod2 + sq2)
+    # Near resonance the terms are much larger than their sum (cancellation): use quadrature.
+    big = abs(Ah) + abs(Bp)
+    if big * big * L > 1e3 * res:
+        return _v2_gauss(osc, x0, v0, sth0, cth0, L, _GL_X, _GL_W)
+    return res

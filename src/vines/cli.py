@@ -1,0 +1,303 @@
+"""Command-line interface: ``vines <command> ...`` (also ``python -m vines``).
+
+Contract (see the README and the project specification, section 7):
+
+* ``--json`` prints exactly one JSON object on stdout (NaN and infinities become null).
+* Bad input of any kind (a non-number, a value out of range, an unknown flag, a missing
+  required flag, a bad choice) exits with status 2 after printing exactly one line
+  ``vines <command>: error: <message>`` on stderr, naming the parameter, the value given and
+  what is allowed. No traceback, no output file.
+* Unexpected internal errors are not caught: they keep their traceback.
+
+Every number is read as a string and validated by the same code the Python API uses
+(``vines.params``), so the CLI and the API accept exactly the same values.
+
+Adding a command: write ``_add_<name>(subparsers)`` that builds its sub-parser (reusing
+``_add_model_args`` for eta/omega/F/r/d) and sets ``handler=_cmd_<name>``, then list it in
+``_COMMANDS``.
+"""
+from __future__ import annotations
+
+import argparse
+import contextlib
+import json
+import math
+import sys
+from typing import NoReturn, Sequence
+
+from . import __version__
+from .params import (D_DEFAULT, MAX_IMPACTS_DEFAULT, R_DEFAULT, T_END_DEFAULT,
+                     T_TRANSIENT_DEFAULT, V_STICK_DEFAULT, ModelParams, ParameterError,
+                     SolverSettings, check_real)
+
+PROG = "vines"
+RTOL_DEFAULT = 1e-12
+SOLVERS = ("exact", "rk")
+
+
+class VinesArgumentParser(argparse.ArgumentParser):
+    """ArgumentParser whose errors are one line on stderr and exit status 2."""
+
+    def __init__(self, *args, **kwargs):
+        kwargs.setdefault("allow_abbrev", False)
+        super().__init__(*args, **kwargs)
+        # flag -> short description of the allowed values (used in error messages)
+        self.allowed_values: dict[str, str] = {}
+
+    def error(self, message: str) -> NoReturn:  # noqa: D401 - argparse API
+        prefix = "the following arguments are required: "
+        if message.startswith(prefix):
+            flags = [f.strip() for f in message[len(prefix):].split(",")]
+            parts = []
+            for flag in flags:
+                allowed = self.allowed_values.get(flag)
+                parts.append(f"{flag} ({allowed})" if allowed else flag)
+            message = "missing required option " + ", ".join(parts)
+        message = " ".join(str(message).split())  # exactly one line
+        self.exit(2, f"{self.prog}: error: {message}\n")
+
+
+def _flag_for(name: str) -> str:
+    """Command-line flag of a parameter name used by ``vines.params`` (t_end -> --t-end)."""
+    return "--" + name.replace("_", "-")
+
+
+def _add_value(parser: VinesArgumentParser, flag: str, allowed: str, help: str, **kwargs):
+    """Add an option taking one value (parsed as a string and validated later)."""
+    parser.allowed_values[flag] = allowed
+    metavar = kwargs.pop("metavar", flag.lstrip("-").upper().replace("-", "_"))
+    parser.add_argument(flag, metavar=metavar, help=f"{help} [{allowed}]", **kwargs)
+
+
+def _add_model_args(parser: VinesArgumentParser, *, phi: bool = False):
+    """The model parameters eta, omega, F (required) and r, d (and phi) (optional)."""
+    req = parser.add_argument_group("model parameters (required)")
+    for flag, allowed, help in (
+        ("--eta", "a number > 0", "ball-to-LO mass ratio m/M"),
+        ("--omega", "a number > 0", "forcing frequency ratio W = w/w0"),
+        ("--F", "a number >= 0", "forcing amplitude A/L"),
+    ):
+        parser.allowed_values[flag] = allowed
+        req.add_argument(flag, metavar=flag.lstrip("-").upper(), required=True,
+                         help=f"{help} [{allowed}]")
+    opt = parser.add_argument_group("model parameters (optional)")
+    parser.allowed_values["--r"] = "a number in [0, 1]"
+    opt.add_argument("--r", metavar="R", default=R_DEFAULT,
+                     help=f"coefficient of restitution [0 <= r <= 1; default {R_DEFAULT:g}]")
+    parser.allowed_values["--d"] = "a number >= 0"
+    opt.add_argument("--d", metavar="D", default=D_DEFAULT,
+                     help=f"LO damping c/(M w0), fixed for every eta [>= 0; default {D_DEFAULT:.6f}]")
+    if phi:
+        parser.allowed_values["--phi"] = "a finite number"
+        opt.add_argument("--phi", metavar="P", default=0.0,
+                         help="forcing phase at t = 0 in rad [finite number; default 0]")
+
+
+def _model_params(args: argparse.Namespace) -> ModelParams:
+    return ModelParams(eta=args.eta, omega=args.omega, F=args.F, r=args.r, d=args.d,
+                       phi=getattr(args, "phi", 0.0))
+
+
+# --------------------------------------------------------------------------- simulate
+
+def _add_simulate(subparsers) -> VinesArgumentParser:
+    p = subparsers.add_parser(
+        "simulate",
+        help="exact event-driven simulation: KE ratio, x_max and regime of one parameter point",
+        description="Simulate the VI NES from rest and report the energy-transfer measures "
+                    "over the window [t_transient, t_end] (exact time averages).",
+    )
+    _add_model_args(p, phi=True)
+    run = p.add_argument_group("run and solver settings")
+    run.add_argument("--t-end", metavar="T", default=T_END_DEFAULT,
+                     help=f"end of the run, dimensionless time [> 0; default {T_END_DEFAULT:g}]")
+    run.add_argument("--t-transient", metavar="T0", default=T_TRANSIENT_DEFAULT,
+                     help="start of the measurement window [>= 0 and < t-end; "
+                          f"default {T_TRANSIENT_DEFAULT:g}]")
+    run.add_argument("--solver", choices=SOLVERS, default="exact",
+                     help="exact: closed-form event-driven flow (default); rk: general-purpose "
+                          "ODE solver with event location (reference)")
+    run.add_argument("--rtol", metavar="X", default=RTOL_DEFAULT,
+                     help=f"relative tolerance of the rk solver [> 0 and < 1; default {RTOL_DEFAULT:g}]")
+    run.add_argument("--v-stick", metavar="V", default=V_STICK_DEFAULT,
+                     help="chatter threshold on the post-impact relative velocity below which "
+                          f"ball and LO stick [>= 0; default {V_STICK_DEFAULT:g}]")
+    run.add_argument("--max-impacts", metavar="N", default=MAX_IMPACTS_DEFAULT,
+                     help=f"stop after this many impacts [integer >= 1; default {MAX_IMPACTS_DEFAULT}]")
+    p.allowed_values.update({
+        "--t-end": "a number > 0", "--t-transient": "a number >= 0 and < t-end",
+        "--rtol": "a number > 0 and < 1", "--v-stick": "a number >= 0",
+        "--max-impacts": "an integer >= 1",
+    })
+    p.add_argument("--json", action="store_true",
+                   help="print one JSON object on stdout (keys: see the README)")
+    p.set_defaults(handler=_cmd_simulate)
+    return p
+
+
+def _simulate_inputs(args: argparse.Namespace) -> dict:
+    """Validate every simulate option; return the keyword arguments of ``simulate``."""
+    params = _model_params(args)
+    settings = SolverSettings(t_end=args.t_end, t_transient=args.t_transient,
+                              v_stick=args.v_stick,
+                              max_impacts=_int_like(args.max_impacts))
+    rtol = check_real("rtol", args.rtol, lo=0.0, lo_open=True, hi=1.0, hi_open=True)
+    return dict(eta=params.eta, omega=params.omega, F=params.F, r=params.r, d=params.d,
+                phi=params.phi, t_end=settings.t_end, t_transient=settings.t_transient,
+                solver=args.solver, rtol=rtol, v_stick=settings.v_stick,
+                max_impacts=settings.max_impacts)
+
+
+def _int_like(value):
+    """Accept '2000000' and also '2e6' for integer options (validation happens later)."""
+    if isinstance(value, str):
+        try:
+            return int(value)
+        except ValueError:
+            try:
+                x = float(value)
+            except ValueError:
+                return value
+            if math.isfinite(x) and x.is_integer():
+                return int(x)
+    return value
+
+
+def _cmd_simulate(args: argparse.Namespace) -> int:
+    kwargs = _simulate_inputs(args)
+    from . import simulation  # imported lazily: argument errors never pay for the solver
+
+    if args.json:
+        # stdout carries the JSON object only; stray prints from the solver go to stderr.
+        with contextlib.redirect_stdout(sys.stderr):
+            result = simulation.simulate(**kwargs)
+        sys.stdout.write(json.dumps(_jsonable(result.to_dict()), allow_nan=False) + "\n")
+    else:
+        result = simulation.simulate(**kwargs)
+        sys.stdout.write(_simulate_table(result.to_dict()))
+    sys.stdout.flush()
+    return 0
+
+
+def _simulate_table(d: dict) -> str:
+    p = d.get("params", {})
+
+    def num(x, fmt):
+        if x is None or (isinstance(x, float) and not math.isfinite(x)):
+            return "n/a"
+        return format(x, fmt)
+
+    head = (f"eta = {p.get('eta')!s}, omega = {p.get('omega')!s}, F = {p.get('F')!s}, "
+            f"window [{p.get('t_transient')!s}, {p.get('t_end')!s}], solver {d.get('solver')}")
+    rows = [
+        ("ke_ratio", num(d.get("ke_ratio"), ".6g")),
+        ("xmax [m]", num(d.get("xmax_m"), ".6g")),
+        ("xmax whole run [m]", num(d.get("xmax_whole_run_m"), ".6g")),
+        ("regime", str(d.get("regime"))),
+        ("impacts per period", num(d.get("impacts_per_period"), ".4g")),
+        ("t_stuck", num(d.get("t_stuck"), ".6g")),
+        ("status", str(d.get("status"))),
+    ]
+    width = max(len(k) for k, _ in rows)
+    return head + "\n" + "".join(f"  {k:<{width}}  {v}\n" for k, v in rows)
+
+
+def _jsonable(x):
+    """Plain JSON types only; NaN and +-inf become None (null)."""
+    if isinstance(x, dict):
+        return {str(k): _jsonable(v) for k, v in x.items()}
+    if isinstance(x, (list, tuple)):
+        return [_jsonable(v) for v in x]
+    if hasattr(x, "tolist") and not isinstance(x, (str, bytes)):  # numpy arrays and scalars
+        return _jsonable(x.tolist())
+    if isinstance(x, bool) or x is None or isinstance(x, str):
+        return x
+    if isinstance(x, int):
+        return int(x)
+    if isinstance(x, float):
+        return float(x) if math.isfinite(x) else None
+    if isinstance(x, complex):
+        return [_jsonable(x.real), _jsonable(x.imag)]
+    return str(x)
+
+
+# --------------------------------------------------------------------------- main
+
+_COMMANDS = (_add_simulate,)
+
+
+def _value_flags(subparsers_map: dict) -> set[str]:
+    flags = set()
+    for sub in subparsers_map.values():
+        for action in sub._actions:
+            if action.option_strings and action.nargs is None and not isinstance(
+                    action, (argparse._StoreTrueAction, argparse._StoreFalseAction)):
+                flags.update(action.option_strings)
+    return flags
+
+
+def _join_negative_values(argv: list[str], value_flags: set[str]) -> list[str]:
+    """Turn ``--phi -1e-3`` into ``--phi=-1e-3``.
+
+    argparse only recognises plain negative numbers such as -1 or -0.5 as option values;
+    exponent forms like -1e-3 would otherwise be rejected as an unknown option.
+    """
+    out, i = [], 0
+    while i < len(argv):
+        tok = argv[i]
+        if tok == "--":
+            out.extend(argv[i:])
+            break
+        if tok in value_flags and i + 1 < len(argv) and argv[i + 1].startswith("-"):
+            try:
+                float(argv[i + 1])
+            except ValueError:
+                pass
+            else:
+                out.append(f"{tok}={argv[i + 1]}")
+                i += 2
+                continue
+        out.append(tok)
+        i += 1
+    return out
+
+
+def build_parser() -> tuple[VinesArgumentParser, dict]:
+    parser = VinesArgumentParser(
+        prog=PROG,
+        description="Exact simulation and map-based analysis of the vibro-impact nonlinear "
+                    "energy sink (VI NES).",
+    )
+    parser.add_argument("--version", action="version", version=f"{PROG} {__version__}")
+    subparsers = parser.add_subparsers(dest="command", metavar="command",
+                                       parser_class=VinesArgumentParser)
+    commands = {}
+    for add in _COMMANDS:
+        sub = add(subparsers)
+        commands[sub.prog.split()[-1]] = sub
+    return parser, commands
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser, commands = build_parser()
+    argv = list(sys.argv[1:] if argv is None else argv)
+    argv = _join_negative_values(argv, _value_flags(commands))
+    args, extras = parser.parse_known_args(argv)
+    if args.command is None:
+        parser.print_help(sys.stderr)
+        return 2
+    sub = commands[args.command]
+    if extras:
+        known = sorted(f for a in sub._actions for f in a.option_strings)
+        sub.error(f"unrecognized argument {extras[0]!r} (allowed options: {', '.join(known)})")
+    try:
+        return args.handler(args)
+    except ParameterError as err:
+        flag = _flag_for(err.name)
+        if any(flag in a.option_strings for a in sub._actions):
+            sub.error(f"argument {flag}: {err}")
+        sub.error(str(err))
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,81 @@
+"""Closed-form local-time flow against an independent numerical integration."""
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import quad, solve_ivp
+
+from vines import flow as fl
+
+# (m, d, W, F): LO and stuck body, under-, critically, over-damped, undamped, resonance
+CASES = [
+    (1.0, 0.011998, 1.0, 0.05),
+    (1.2, 0.011998, 0.9, 0.4),      # stuck body near its resonance
+    (1.0, 2.0, 1.0, 0.3),           # critical
+    (1.0, 2.5, 1.3, 0.3),           # overdamped
+    (1.0, 1.999999, 0.8, 0.3),      # just underdamped
+    (1.0, 0.0, 1.0, 0.2),           # undamped exact resonance (secular term)
+    (1.0, 0.0, 0.7, 0.2),           # undamped
+    (1.5, 0.3, 2.0, 1.0),
+    (51.0, 0.011998, 0.14, 20.0),   # very heavy stuck body
+]
+X0, V0, TH0 = 0.3, -0.4, 1.1
+
+
+def _reference(m, d, W, F, s_end):
+    def rhs(t, y):
+        th = TH0 + W * t
+        return [y[1], (F * math.sin(th) + d * W * F * math.cos(th) - d * y[1] - y[0]) / m]
+    return solve_ivp(rhs, (0.0, s_end), [X0, V0], method="DOP853", rtol=1e-13, atol=1e-15,
+                     dense_output=True)
+
+
+@pytest.mark.parametrize("m,d,W,F", CASES)
+def test_flow_matches_numerical_integration(m, d, W, F):
+    osc = fl.make_osc(m, d, W, F)
+    ref = _reference(m, d, W, F, 40.0)
+    for s in (0.0, 0.37, 3.1, 11.0, 40.0):
+        z, v, a, j, _ = fl.flow(osc, X0, V0, math.sin(TH0), math.cos(TH0), s)
+        zr, vr = ref.sol(s)
+        assert abs(z - zr) <= 1e-10 * (1 + abs(zr))
+        assert abs(v - vr) <= 1e-10 * (1 + abs(vr))
+        # z'' from the equation of motion itself
+        f = fl.forcing(osc, math.sin(TH0), math.cos(TH0), s)
+        assert abs(a - (f - d * v - z) / m) <= 1e-12 * (1 + abs(a))
+
+
+@pytest.mark.parametrize("m,d,W,F", CASES)
+def test_velocity_square_integral(m, d, W, F):
+    osc = fl.make_osc(m, d, W, F)
+    sth, cth = math.sin(TH0), math.cos(TH0)
+    for L in (0.01, 2.3, 17.0):
+        exact = fl.v2_integral(osc, X0, V0, sth, cth, L)
+        num = quad(lambda s: fl.flow(osc, X0, V0, sth, cth, s)[1] ** 2, 0.0, L,
+                   epsabs=1e-15, epsrel=1e-13, limit=400)[0]
+        assert abs(exact - num) <= 1e-11 * max(1.0, abs(num))
+
+
+@pytest.mark.parametrize("m,d,W,F", CASES)
+def test_derivative_bounds_hold_for_all_later_times(m, d, W, F):
+    """The event search relies on these bounds: they must hold on [s, s + span]."""
+    osc = fl.make_osc(m, d, W, F)
+    sth, cth = math.sin(TH0), math.cos(TH0)
+    s0 = 1.7
+    _, _, _, _, b1 = fl.flow(osc, X0, V0, sth, cth, s0)
+    span = 30.0
+    B2 = fl.deriv_bound(osc, b1, 2, s0 + span)
+    B3 = fl.deriv_bound(osc, b1, 3, s0 + span)
+    for s in np.linspace(s0, s0 + span, 2001):
+        _, _, a, j, _ = fl.flow(osc, X0, V0, sth, cth, s)
+        assert abs(a) <= B2 * (1 + 1e-12)
+        assert abs(j) <= B3 * (1 + 1e-12)
+
+
+def test_local_time_is_translation_invariant():
+    """Starting a segment later with the shifted phase gives the same motion."""
+    osc = fl.make_osc(1.0, 0.011998, 1.0, 0.1)
+    z1, v1, *_ = fl.flow(osc, X0, V0, math.sin(TH0), math.cos(TH0), 2.0)
+    th = TH0 + 1.0 * 2.0
+    z2, v2, *_ = fl.flow(osc, z1, v1, math.sin(th), math.cos(th), 3.0)
+    z3, v3, *_ = fl.flow(osc, X0, V0, math.sin(TH0), math.cos(TH0), 5.0)
+    assert abs(z2 - z3) < 1e-13 and abs(v2 - v3) < 1e-13
