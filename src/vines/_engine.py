@@ -143,6 +143,89 @@ def _interval_max(osc, x0, v0, sth0, cth0, sa, za, va, sb, zb, vb, B2, m):
 
 
 @njit(cache=True, nogil=True)
+def free_step(osc, s, z, v, a, j, b1, zb0, vb0, h_cap, B2, root_tol):
+    """Step that provably reaches neither wall in free flight (module docstring).
+
+    Returns (h, pressed): pressed = +1/-1 when the ball rests on that wall with no relative
+    velocity while the relative acceleration presses it on (sticking), else 0.
+    """
+    w = z - (zb0 + vb0 * s)
+    wd = v - vb0
+    gL = 1.0 - w
+    gR = 1.0 + w
+    hL = _safe_step(gL, wd, B2)
+    hR = _safe_step(gR, -wd, B2)
+    # departure from a wall with (almost) zero relative velocity
+    if gL <= root_tol or gR <= root_tol:
+        sw = 1.0 if gL <= gR else -1.0
+        acc_away = -sw * a
+        jerk_away = -sw * j
+        h0 = 0.0
+        if acc_away > 0.0:
+            h0 = acc_away / deriv_bound(osc, b1, 3, s + h_cap)
+        elif jerk_away > 0.0 and acc_away > -1e-12 * (1.0 + abs(a)):
+            h0 = jerk_away / deriv_bound(osc, b1, 4, s + h_cap)
+        elif -sw * wd <= 1e-14 * (1.0 + abs(v)):
+            return 0.0, int(sw)
+        if sw > 0.0:
+            hL = max(hL, h0)
+        else:
+            hR = max(hR, h0)
+    return min(hL, hR), 0
+
+
+@njit(cache=True, nogil=True)
+def free_contact(z, v, zb, vb, B2, root_tol):
+    """(wall, gap, closing speed) when contact is accepted at this point, else wall = 0."""
+    w = z - zb
+    wd = v - vb
+    floor = ROUNDOFF * (1.0 + abs(z) + abs(zb))
+    if wd > 0.0:
+        gap = max(1.0 - w, 0.0)
+        closing = wd
+        wall = 1
+    else:
+        gap = max(1.0 + w, 0.0)
+        closing = -wd
+        wall = -1
+    if closing > 0.0 and gap <= root_tol and (gap <= floor or closing * closing >= 2.0 * B2 * gap):
+        return wall, gap, closing
+    return 0, gap, closing
+
+
+@njit(cache=True, nogil=True)
+def first_contact(osc, zm0, vm0, zb0, vb0, sth0, cth0, s_max, root_tol):
+    """First wall contact of a free flight within local time [0, s_max].
+
+    Same rule as the trajectory kernel. Returns (wall, s, z_m, z_m'): wall = +1 (L) or
+    -1 (R) for an impact, 0 when no contact happens before s_max (then s = s_max), and
+    +2/-2 when the ball starts pressed on wall L/R with zero relative velocity.
+    """
+    h_cap = 1.0 / osc[I_RATE]
+    s = 0.0
+    z, v, a, j, b1 = flow(osc, zm0, vm0, sth0, cth0, 0.0)
+    for _ in range(MAX_STEPS_PER_SEGMENT):
+        B2 = deriv_bound(osc, b1, 2, s + h_cap)
+        h, pressed = free_step(osc, s, z, v, a, j, b1, zb0, vb0, h_cap, B2, root_tol)
+        if pressed != 0:
+            return 2 * pressed, s, z, v
+        h = min(h, h_cap)
+        if s + h >= s_max:
+            z, v, a, j, b1 = flow(osc, zm0, vm0, sth0, cth0, s_max)
+            return 0, s_max, z, v
+        if h <= 0.0:
+            break
+        s = s + h
+        z, v, a, j, b1 = flow(osc, zm0, vm0, sth0, cth0, s)
+        wall, gap, closing = free_contact(z, v, zb0 + vb0 * s, vb0, B2, root_tol)
+        if wall != 0:
+            s = s + gap / closing
+            z, v, a, j, b1 = flow(osc, zm0, vm0, sth0, cth0, s)
+            return wall, s, z, v
+    return 0, math.nan, math.nan, math.nan
+
+
+@njit(cache=True, nogil=True)
 def run_kernel(osc_f, osc_s, eta, r, W, phi, t_end, t_tr, v_stick, root_tol, max_impacts,
                record_from, cur, acc, cnt, imp, seg):
     """Advance the trajectory in ``cur`` = [t, z_m, z_m', z_b, z_b', mode] to t_end.
@@ -193,32 +276,11 @@ def run_kernel(osc_f, osc_s, eta, r, W, phi, t_end, t_tr, v_stick, root_tol, max
                 return RC_STALLED
             B2 = deriv_bound(osc, b1, 2, s + h_cap)
             if mode == 0:
-                w = z - (zb0 + vb0 * s)
-                wd = v - vb0
-                gL = 1.0 - w
-                gR = 1.0 + w
-                hL = _safe_step(gL, wd, B2)
-                hR = _safe_step(gR, -wd, B2)
-                # departure from a wall with (almost) zero relative velocity
-                if gL <= root_tol or gR <= root_tol:
-                    sw = 1.0 if gL <= gR else -1.0
-                    acc_away = -sw * a
-                    jerk_away = -sw * j
-                    h0 = 0.0
-                    if acc_away > 0.0:
-                        h0 = acc_away / deriv_bound(osc, b1, 3, s + h_cap)
-                    elif jerk_away > 0.0 and acc_away > -1e-12 * (1.0 + abs(a)):
-                        h0 = jerk_away / deriv_bound(osc, b1, 4, s + h_cap)
-                    elif -sw * wd <= 1e-14 * (1.0 + abs(v)):
-                        # pressed onto the wall with no relative velocity: sticking
-                        event = 4
-                        wall = int(sw)
-                        break
-                    if sw > 0.0:
-                        hL = max(hL, h0)
-                    else:
-                        hR = max(hR, h0)
-                h = min(hL, hR)
+                h, pressed = free_step(osc, s, z, v, a, j, b1, zb0, vb0, h_cap, B2, root_tol)
+                if pressed != 0:
+                    event = 4
+                    wall = pressed
+                    break
             else:
                 gap = mode * a           # contact force ~ z'' of the stuck body, > 0 while stuck
                 closing = -mode * j
@@ -248,20 +310,8 @@ def run_kernel(osc_f, osc_s, eta, r, W, phi, t_end, t_tr, v_stick, root_tol, max
             s, z, v, a, j, b1 = s_new, z1, v1, a1, j1, b11
             acc[A_NEVAL] += 1.0
             if mode == 0:
-                zb_now = zb0 + vb0 * s
-                w = z - zb_now
-                wd = v - vb0
-                floor = ROUNDOFF * (1.0 + abs(z) + abs(zb_now))
-                if wd > 0.0:
-                    gap = max(1.0 - w, 0.0)
-                    closing = wd
-                    wall = 1
-                else:
-                    gap = max(1.0 + w, 0.0)
-                    closing = -wd
-                    wall = -1
-                if closing > 0.0 and gap <= root_tol and (
-                        gap <= floor or closing * closing >= 2.0 * B2 * gap):
+                wall, gap, closing = free_contact(z, v, zb0 + vb0 * s, vb0, B2, root_tol)
+                if wall != 0:
                     event = 2
                     break
             else:
