@@ -62,9 +62,9 @@ def _safe_step(gap, closing, B):
     den = closing + math.sqrt(closing * closing + 2.0 * B * gap)
     if den > 0.0:
         return 2.0 * gap / den
-    if closing < 0.0:
+    if B > 0.0:
         return -2.0 * closing / B
-    return 0.0
+    return math.inf if gap > 0.0 or closing < 0.0 else 0.0
 
 
 @njit(cache=True, nogil=True)
@@ -160,12 +160,14 @@ def free_step(osc, s, z, v, a, j, b1, zb0, vb0, h_cap, B2, root_tol):
         sw = 1.0 if gL <= gR else -1.0
         acc_away = -sw * a
         jerk_away = -sw * j
+        # -w' stays > 0 on (0, h0] by a Taylor bound of order 2 (acceleration away) or 3
+        # (jerk away, acceleration not towards the wall beyond round-off)
         h0 = 0.0
         if acc_away > 0.0:
             h0 = acc_away / deriv_bound(osc, b1, 3, s + h_cap)
-        elif jerk_away > 0.0 and acc_away > -1e-12 * (1.0 + abs(a)):
-            h0 = jerk_away / deriv_bound(osc, b1, 4, s + h_cap)
-        elif -sw * wd <= 1e-14 * (1.0 + abs(v)):
+        if jerk_away > 0.0 and acc_away >= -ROUNDOFF * (1.0 + abs(z) + abs(v)):
+            h0 = max(h0, jerk_away / deriv_bound(osc, b1, 4, s + h_cap))
+        if h0 == 0.0 and -sw * wd <= ROUNDOFF * (1.0 + abs(v) + abs(vb0)):
             return 0.0, int(sw)
         if sw > 0.0:
             hL = max(hL, h0)
@@ -188,7 +190,9 @@ def free_contact(z, v, zb, vb, B2, root_tol):
         gap = max(1.0 + w, 0.0)
         closing = -wd
         wall = -1
-    if closing > 0.0 and gap <= root_tol and (gap <= floor or closing * closing >= 2.0 * B2 * gap):
+    # a closing speed at round-off level is no impact (the departure rule handles it)
+    if closing > ROUNDOFF * (1.0 + abs(v) + abs(vb)) and gap <= root_tol and (
+            gap <= floor or closing * closing >= 2.0 * B2 * gap):
         return wall, gap, closing
     return 0, gap, closing
 
