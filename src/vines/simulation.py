@@ -35,7 +35,7 @@ def _measures(p: ModelParams, st: SolverSettings, raw: RawRun) -> dict:
         regime, period = classify(walls_w, imp["t"][in_win], strobe, ts, raw.t_stuck_window,
                                   p.period)
     else:
-        regime, period = "chatter" if raw.status == "max_impacts" else "failed", 0
+        regime, period = ("chatter" if raw.status in ("max_impacts", "zeno") else "failed"), 0
     return dict(K_m=K_m, K_b=K_b, ke_ratio=ke_ratio, xmax=raw.xmax_window,
                 xmax_whole_run=raw.xmax_whole_run, n_impacts=raw.n_impacts,
                 n_impacts_window=n_win, impacts_per_period=n_win * p.period / t_win,
