@@ -221,9 +221,150 @@ def _jsonable(x):
     return str(x)
 
 
+# --------------------------------------------------------------------------- periodic
+
+def _add_periodic(subparsers) -> VinesArgumentParser:
+    p = subparsers.add_parser(
+        "periodic",
+        help="1:1 periodic orbits from the impact maps, with admissibility and stability",
+        description="Solve P2(P1(x_L)) = x_L + (0, 0, 0, T) for every 1:1 orbit reachable from "
+                    "the built-in seeds (symmetric closed form, flight-time scan, short "
+                    "simulation) and report admissibility and the eigenvalues of J_P2 J_P1.",
+    )
+    _add_model_args(p)
+    p.add_argument("--json", action="store_true",
+                   help="print one JSON object on stdout (key: solutions)")
+    p.set_defaults(handler=_cmd_periodic)
+    return p
+
+
+def _cmd_periodic(args: argparse.Namespace) -> int:
+    params = _model_params(args)
+    from .periodic import find_1to1
+
+    with contextlib.redirect_stdout(sys.stderr):
+        orbits = find_1to1(params.eta, params.omega, params.F, r=params.r, d=params.d)
+    keys = ("symmetric", "admissible", "stable", "lambda_max", "eigenvalues", "dw_L", "dw_R",
+            "phase_L", "phase_R", "flight_times")
+    sols = [{k: o.to_dict()[k] for k in keys} for o in orbits]
+    if args.json:
+        out = {"solutions": sols, "params": params.as_dict()}
+        sys.stdout.write(json.dumps(_jsonable(out), allow_nan=False) + "\n")
+    else:
+        lines = [f"eta = {params.eta:g}, omega = {params.omega:g}, F = {params.F:g}: "
+                 f"{len(sols)} 1:1 solution(s)"]
+        for s in sols:
+            kind = "symmetric" if s["symmetric"] else "asymmetric"
+            adm = "admissible" if s["admissible"] else "NOT admissible"
+            st = "stable" if s["stable"] else "unstable"
+            lines.append(f"  {kind:10s} {adm:14s} {st:8s} |lambda_max| = {s['lambda_max']:.6g}  "
+                         f"dw_L = {s['dw_L']:.6g}  dw_R = {s['dw_R']:.6g}  "
+                         f"phase_L = {s['phase_L']:.6g}  flights = "
+                         f"{s['flight_times'][0]:.6g}, {s['flight_times'][1]:.6g}")
+        sys.stdout.write("\n".join(lines) + "\n")
+    sys.stdout.flush()
+    return 0
+
+
+# --------------------------------------------------------------------------- continue
+
+_CONT_PARAMS = ("eta", "omega", "F")
+
+
+def _add_continue(subparsers) -> VinesArgumentParser:
+    p = subparsers.add_parser(
+        "continue",
+        help="continue a 1:1 orbit in eta, omega or F and report bifurcation events",
+        description="Natural-parameter continuation (secant predictor, Newton corrector) of "
+                    "the preferred 1:1 orbit at --start; events (fold, flip, neimark-sacker, "
+                    "admissibility-loss, symmetry-breaking) are located to 1e-6.",
+    )
+    p.add_argument("--param", choices=_CONT_PARAMS, required=True,
+                   help="the parameter to vary")
+    p.allowed_values["--param"] = "one of eta, omega, F"
+    for flag, allowed, help in (
+        ("--start", "a number in the parameter's range", "first parameter value"),
+        ("--stop", "a number in the parameter's range", "last parameter value"),
+    ):
+        p.allowed_values[flag] = allowed
+        p.add_argument(flag, metavar=flag.lstrip("-").upper(), required=True,
+                       help=f"{help} [{allowed}]")
+    p.allowed_values["--step"] = "a number > 0"
+    p.add_argument("--step", metavar="H", default=None,
+                   help="parameter step [> 0; default (stop - start)/100]")
+    grp = p.add_argument_group("model parameters (the two not continued are required)")
+    for flag, allowed, help in (
+        ("--eta", "a number > 0", "ball-to-LO mass ratio m/M"),
+        ("--omega", "a number > 0", "forcing frequency ratio W = w/w0"),
+        ("--F", "a number >= 0", "forcing amplitude A/L"),
+    ):
+        p.allowed_values[flag] = allowed
+        grp.add_argument(flag, metavar=flag.lstrip("-").upper(), default=None,
+                         help=f"{help} [{allowed}]")
+    p.allowed_values["--r"] = "a number in [0, 1]"
+    grp.add_argument("--r", metavar="R", default=R_DEFAULT,
+                     help=f"coefficient of restitution [0 <= r <= 1; default {R_DEFAULT:g}]")
+    p.allowed_values["--d"] = "a number >= 0"
+    grp.add_argument("--d", metavar="D", default=D_DEFAULT,
+                     help=f"LO damping c/(M w0) [>= 0; default {D_DEFAULT:.6f}]")
+    p.add_argument("--json", action="store_true",
+                   help="print one JSON object on stdout (keys: branch, events)")
+    p.set_defaults(handler=_cmd_continue, _parser=p)
+    return p
+
+
+def _cmd_continue(args: argparse.Namespace) -> int:
+    sub = args._parser
+    others = [q for q in _CONT_PARAMS if q != args.param]
+    missing = [f"--{q}" for q in others if getattr(args, q) is None]
+    if missing:
+        sub.error("missing required option " + ", ".join(
+            f"{m} ({sub.allowed_values[m]})" for m in missing) + f" when --param is {args.param}")
+    fixed = {q: getattr(args, q) for q in others}
+    values = {}
+    for name in ("start", "stop"):
+        raw = getattr(args, name)
+        kw = dict(fixed, **{args.param: raw})
+        try:
+            params = ModelParams(eta=kw["eta"], omega=kw["omega"], F=kw["F"], r=args.r,
+                                 d=args.d)
+        except ParameterError as err:
+            if err.name == args.param:
+                raise ParameterError(name, raw, f"{err.allowed} ({args.param})") from None
+            raise
+        values[name] = getattr(params, args.param)
+    step = None
+    if args.step is not None:
+        step = check_real("step", args.step, lo=0.0, lo_open=True)
+    fixed = {q: getattr(params, q) for q in others}
+    from .continuation import continue_branch
+
+    with contextlib.redirect_stdout(sys.stderr):
+        br = continue_branch(args.param, values["start"], values["stop"], step, fixed,
+                             r=params.r, d=params.d)
+    d = br.to_dict()
+    if args.json:
+        out = {"branch": d["branch"], "events": d["events"], "param": args.param,
+               "stopped": d["stopped"]}
+        sys.stdout.write(json.dumps(_jsonable(out), allow_nan=False) + "\n")
+    else:
+        lines = [f"continuation in {args.param} from {values['start']:g} to {values['stop']:g}: "
+                 f"{len(d['branch'])} points ({d['stopped']})"]
+        for pt in d["branch"]:
+            lines.append(f"  {args.param} = {pt[args.param]:.6g}  |lambda_max| = "
+                         f"{pt['lambda_max']:.6g}  stable = {pt['stable']}  symmetric = "
+                         f"{pt['symmetric']}  admissible = {pt['admissible']}  "
+                         f"dw_L = {pt['dw_L']:.6g}")
+        for ev in d["events"]:
+            lines.append(f"  event {ev['type']} at {args.param} = {ev['at']:.7g}")
+        sys.stdout.write("\n".join(lines) + "\n")
+    sys.stdout.flush()
+    return 0
+
+
 # --------------------------------------------------------------------------- main
 
-_COMMANDS = (_add_simulate,)
+_COMMANDS = (_add_simulate, _add_periodic, _add_continue)
 
 
 def _value_flags(subparsers_map: dict) -> set[str]:

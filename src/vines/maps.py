@@ -1,0 +1,281 @@
+"""Impact-to-impact maps P1 (L->R), P2 (R->L), P3 (L->L), P4 (R->R) and their Jacobians.
+
+State: the pre-impact state at a wall, x = (z_m', z_b', z_b, t); z_m = z_b + wall follows
+from the wall (L: w = z_m - z_b = +1, R: w = -1). One map applies the impact law at the
+starting wall, follows the closed-form flight (``vines.flow``, local time s = t_next - t)
+and stops when w(s) reaches the target wall. The impact time solves
+G(s) = w(s) - to_wall = 0 by a safeguarded Newton iteration on the closed form, i.e. on
+the analytic continuation of the flight: the root found need not be the first contact,
+so non-admissible roots (the ball would have hit a wall earlier, or the root is reached
+moving away from the wall) are found as well and are flagged by ``is_admissible``.
+
+Jacobian (4x4, columns d/d z_m', d/d z_b', d/d z_b, d/d t) by implicit differentiation
+of the closed form. With post-impact velocities (v_m+, v_b+) = I (z_m', z_b')
+(I the impact matrix), theta0 = W t + phi, and the flow
+    z_m(s) = z_p(s; theta0) + (z_m0 - z_p(0)) C(s) + (v_m+ - z_p'(0)) S(s),
+the derivatives at fixed s are dz/dz_m0 = C, dz/dv_m+ = S and
+dz/dtheta0 = flow(0, 0, cos theta0, -sin theta0)(s) (the flow is linear in (sin, cos)),
+dz/dt = W dz/dtheta0; the impact time moves by ds/dx = -(dG/dx)/(dG/ds) with
+dG/ds = w'(s), and every output is differentiated along (explicit + w.r.t. s * ds/dx).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from ._engine import first_contact
+from .exact import oscillators
+from .flow import I_RATE, flow
+from .params import ModelParams
+
+WALL_L, WALL_R = 1, -1
+ROOT_TOL = 1e-13
+ADMISSIBLE_TOL = 1e-8       # first contact and map root must agree to this (relative to 1+s)
+
+# status codes of the kernels
+OK, NO_ROOT = 0, 1
+
+
+@njit(cache=True, nogil=True)
+def impact_velocities(eta, r, vm, vb):
+    """Post-impact (v_m+, v_b+) from pre-impact (v_m-, v_b-) (paper Eq. 10)."""
+    one = 1.0 + eta
+    return ((1.0 - r * eta) * vm + eta * (1.0 + r) * vb) / one, \
+        ((1.0 + r) * vm + (eta - r) * vb) / one
+
+
+@njit(cache=True, nogil=True)
+def _gap(osc, zm0, vp, zb0, vbp, sth, cth, s, to_wall):
+    """(G, G', G'') with G = w(s) - to_wall."""
+    z, v, a, _, _ = flow(osc, zm0, vp, sth, cth, s)
+    return z - zb0 - vbp * s - to_wall, v - vbp, a
+
+
+@njit(cache=True, nogil=True)
+def _newton_s(osc, zm0, vp, zb0, vbp, sth, cth, to_wall, s):
+    """Safeguarded Newton on G(s) = 0 from s > 0; returns s (nan when it fails)."""
+    lim = 0.5 / osc[I_RATE]
+    for _ in range(80):
+        G, Gd, Gdd = _gap(osc, zm0, vp, zb0, vbp, sth, cth, s, to_wall)
+        if Gd == 0.0 or not math.isfinite(G):
+            return math.nan
+        ds = -G / Gd
+        # Halley correction when it is small (faster on curved stretches)
+        den = 1.0 - 0.5 * ds * Gdd / Gd
+        if abs(den - 1.0) < 0.5:
+            ds = ds / den
+        if ds > lim:
+            ds = lim
+        elif ds < -lim:
+            ds = -lim
+        s_new = s + ds
+        if s_new <= 0.0:
+            s_new = 0.5 * s
+        if abs(s_new - s) <= 1e-15 * (1.0 + abs(s)) + 1e-300:
+            return s_new
+        if abs(ds) <= 1e-12 * (1.0 + abs(s)):
+            s = s_new
+            G, Gd, Gdd = _gap(osc, zm0, vp, zb0, vbp, sth, cth, s, to_wall)
+            if Gd != 0.0:
+                s = s - G / Gd
+            return s
+        s = s_new
+    return math.nan
+
+
+@njit(cache=True, nogil=True)
+def _scan_s(osc, zm0, vp, zb0, vbp, sth, cth, to_wall, s_max):
+    """First s in (0, s_max] where w crosses the target wall moving towards it (sampling)."""
+    h = 0.05 / osc[I_RATE]
+    s_prev = 0.0
+    g_prev = 1.0
+    s = h
+    while s <= s_max:
+        G, Gd, _ = _gap(osc, zm0, vp, zb0, vbp, sth, cth, s, to_wall)
+        g = -to_wall * G            # distance to the target wall, > 0 inside
+        if g <= 0.0 and g_prev > 0.0 and s_prev > 0.0:
+            # bisection to a tight bracket, then Newton
+            a, b = s_prev, s
+            for _ in range(40):
+                m = 0.5 * (a + b)
+                Gm, _, _ = _gap(osc, zm0, vp, zb0, vbp, sth, cth, m, to_wall)
+                if -to_wall * Gm > 0.0:
+                    a = m
+                else:
+                    b = m
+                if b - a < 1e-6 * (1.0 + b):
+                    break
+            return _newton_s(osc, zm0, vp, zb0, vbp, sth, cth, to_wall, 0.5 * (a + b))
+        s_prev = s
+        g_prev = g
+        s += h
+    return math.nan
+
+
+@njit(cache=True, nogil=True)
+def map_kernel(osc, eta, r, W, phi, x, from_wall, to_wall, s_guess, y, J):
+    """Apply one map to x (pre-impact at from_wall); fill y (next pre-impact state) and J.
+
+    s_guess > 0 starts Newton there; otherwise the first contact (or, when the flight hits
+    the other wall first, the first crossing of the continued flight) seeds it.
+    Returns the flight time s (nan when no root was found).
+    """
+    vm, vb, zb, t = x[0], x[1], x[2], x[3]
+    zm0 = zb + from_wall
+    vp, vbp = impact_velocities(eta, r, vm, vb)
+    one = 1.0 + eta
+    a11, a12 = (1.0 - r * eta) / one, eta * (1.0 + r) / one
+    a21, a22 = (1.0 + r) / one, (eta - r) / one
+    th0 = W * t + phi
+    sth = math.sin(th0)
+    cth = math.cos(th0)
+    if s_guess > 0.0:
+        s = _newton_s(osc, zm0, vp, zb, vbp, sth, cth, to_wall, s_guess)
+    else:
+        s_max = 4.0 * 2.0 * math.pi / W + 20.0 / osc[I_RATE]
+        wall, sc, _, _ = first_contact(osc, zm0, vp, zb, vbp, sth, cth, s_max, ROOT_TOL)
+        if wall == to_wall and sc > 0.0:
+            s = _newton_s(osc, zm0, vp, zb, vbp, sth, cth, to_wall, sc)
+        else:
+            s = _scan_s(osc, zm0, vp, zb, vbp, sth, cth, to_wall, s_max)
+    if not (s > 0.0) or not math.isfinite(s):
+        for i in range(4):
+            y[i] = math.nan
+            for k in range(4):
+                J[i, k] = math.nan
+        return math.nan
+    z, v, acc, _, _ = flow(osc, zm0, vp, sth, cth, s)
+    # derivatives at fixed s
+    C = 0.0
+    dC = 0.0
+    S = 0.0
+    dS = 0.0
+    # C, S from the flow itself (linear in the initial state): C = z(1,0,0,0), S = z(0,1,0,0)
+    zc, vc, _, _, _ = flow(osc, 1.0, 0.0, 0.0, 0.0, s)
+    zs, vs, _, _, _ = flow(osc, 0.0, 1.0, 0.0, 0.0, s)
+    C, dC, S, dS = zc, vc, zs, vs
+    zt, vt, _, _, _ = flow(osc, 0.0, 0.0, cth, -sth, s)     # d/dtheta0
+    zt *= W
+    vt *= W
+    y[0] = v
+    y[1] = vbp
+    y[2] = zb + vbp * s
+    y[3] = t + s
+    # explicit partials of G = z - zb - vbp s - to_wall, of z', and of the outputs
+    dG = np.empty(4)
+    dG[0] = S * a11 - a21 * s
+    dG[1] = S * a12 - a22 * s
+    dG[2] = C - 1.0
+    dG[3] = zt
+    wd = v - vbp
+    ds = np.empty(4)
+    for k in range(4):
+        ds[k] = -dG[k] / wd
+    dv = np.empty(4)
+    dv[0] = dS * a11
+    dv[1] = dS * a12
+    dv[2] = dC
+    dv[3] = vt
+    for k in range(4):
+        J[0, k] = dv[k] + acc * ds[k]
+    J[1, 0], J[1, 1], J[1, 2], J[1, 3] = a21, a22, 0.0, 0.0
+    J[2, 0] = a21 * s + vbp * ds[0]
+    J[2, 1] = a22 * s + vbp * ds[1]
+    J[2, 2] = 1.0 + vbp * ds[2]
+    J[2, 3] = vbp * ds[3]
+    for k in range(4):
+        J[3, k] = ds[k]
+    J[3, 3] += 1.0
+    return s
+
+
+@njit(cache=True, nogil=True)
+def admissible_kernel(osc, eta, r, W, phi, x, from_wall, to_wall, s):
+    """True when the flight of length s from x is a genuine impact-to-impact flight.
+
+    The state must approach its starting wall, the exact first-contact search of the
+    simulator (``_engine.first_contact``) on the post-impact state must return the target
+    wall at the same time, and the arrival must approach the target wall.
+    """
+    vm, vb, zb, t = x[0], x[1], x[2], x[3]
+    if not ((vm - vb) * from_wall > 0.0) or not (s > 0.0):
+        return False
+    zm0 = zb + from_wall
+    vp, vbp = impact_velocities(eta, r, vm, vb)
+    th0 = W * t + phi
+    sth = math.sin(th0)
+    cth = math.cos(th0)
+    tol = ADMISSIBLE_TOL * (1.0 + s)
+    wall, sc, _, _ = first_contact(osc, zm0, vp, zb, vbp, sth, cth, s + 10.0 * tol, ROOT_TOL)
+    if wall != to_wall or abs(sc - s) > tol:
+        return False
+    _, wd, _ = _gap(osc, zm0, vp, zb, vbp, sth, cth, s, to_wall)
+    return wd * to_wall > 0.0
+
+
+# --------------------------------------------------------------------------- Python API
+
+def _osc(params: ModelParams):
+    return oscillators(params)[0]
+
+
+def _walls(from_wall, to_wall):
+    for name, w in (("from_wall", from_wall), ("to_wall", to_wall)):
+        if w not in (WALL_L, WALL_R):
+            raise ValueError(f"{name} must be +1 (L) or -1 (R), got {w!r}")
+    return int(from_wall), int(to_wall)
+
+
+def _s_guess(x, t_guess):
+    return -1.0 if t_guess is None else float(t_guess) - float(x[3])
+
+
+def map_with_jacobian(params: ModelParams, x, from_wall: int, to_wall: int, t_guess=None):
+    """(y, s, J): next pre-impact state, flight time and the 4x4 Jacobian dy/dx.
+
+    y and J are nan (and s nan) when no impact time was found.
+    """
+    from_wall, to_wall = _walls(from_wall, to_wall)
+    x = np.ascontiguousarray(x, dtype=float)
+    y = np.empty(4)
+    J = np.empty((4, 4))
+    s = map_kernel(_osc(params), params.eta, params.r, params.omega, params.phi, x,
+                   from_wall, to_wall, _s_guess(x, t_guess), y, J)
+    return y, float(s), J
+
+
+def apply_map(params: ModelParams, x, from_wall: int, to_wall: int, t_guess=None):
+    """Next pre-impact state y = (z_m', z_b', z_b, t) and the flight time s.
+
+    ``t_guess``: optional guess of the absolute time of the next impact (Newton starts
+    there, which can select a non-admissible root); by default the first contact of the
+    flight seeds it.
+    """
+    y, s, _ = map_with_jacobian(params, x, from_wall, to_wall, t_guess)
+    return y, s
+
+
+def map_jacobian(params: ModelParams, x, from_wall: int, to_wall: int, t_guess=None):
+    """4x4 Jacobian of the map at x (columns d/d z_m', d/d z_b', d/d z_b, d/d t)."""
+    return map_with_jacobian(params, x, from_wall, to_wall, t_guess)[2]
+
+
+def is_admissible(params: ModelParams, x, from_wall: int, to_wall: int, t_guess=None,
+                  s=None) -> bool:
+    """True when the map's flight from x has no earlier wall contact and approaches its wall."""
+    from_wall, to_wall = _walls(from_wall, to_wall)
+    x = np.ascontiguousarray(x, dtype=float)
+    if s is None:
+        _, s = apply_map(params, x, from_wall, to_wall, t_guess)
+    if not math.isfinite(s):
+        return False
+    return bool(admissible_kernel(_osc(params), params.eta, params.r, params.omega,
+                                  params.phi, x, from_wall, to_wall, float(s)))
+
+
+def mirror(x, T: float):
+    """Symmetry of the model: (z, velocities) -> -(z, velocities), t -> t + T/2."""
+    x = np.asarray(x, dtype=float)
+    return np.array([-x[0], -x[1], -x[2], x[3] + 0.5 * T])

@@ -1,0 +1,440 @@
+"""1:1 periodic orbits: fixed points of P2∘P1 with the time shifted by T = 2 pi / W.
+
+Unknowns x_L = (z_m', z_b', z_b, t_L), the pre-impact state at wall L. The orbit solves
+P2(P1(x_L)) = x_L + (0, 0, 0, T); Newton uses the exact Jacobian J_P2(x_R) J_P1(x_L) - I.
+
+Seeds (every seed is polished by that Newton iteration on the true maps, then deduplicated):
+
+* symmetric ansatz: P1(x_L) = mirror(x_L) + (0, 0, 0, T/2), mirror flipping the signs of
+  positions and velocities (the model is invariant under z -> -z, t -> t + T/2). With the
+  flight time fixed at T/2 every condition is affine in (z_m', z_b', z_b, sin theta_L,
+  cos theta_L) (the flow is linear in the initial state and in the forcing phase's sine and
+  cosine), so the symmetric orbits are the intersections of a line with the unit circle:
+  zero or two per parameter point, in closed form. This replaces a scan of t_L over [0, T).
+* asymmetric scan: with the L->R flight time s1 fixed (R->L flight T - s1) the five
+  conditions (arrival at R, arrival at L, periodicity of z_m', z_b', z_b) are again affine in
+  those five unknowns; the orbit exists where the solution has sin^2 + cos^2 = 1. s1 is
+  scanned over (0, T) and sign changes of sin^2 + cos^2 - 1 are refined by bisection.
+* a short simulation (t_end ~ 600) from rest: its last L impact followed by R and L.
+* caller-supplied seeds (continuation): x_L arrays, optionally with flight times.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from numba import njit
+
+from .exact import oscillators
+from .flow import flow
+from .maps import WALL_L, WALL_R, admissible_kernel, impact_velocities, map_kernel
+from .params import D_DEFAULT, R_DEFAULT, ModelParams
+
+SYM_TOL = 1e-6          # flight times equal to this: symmetric
+DEDUP_TOL = 1e-8
+N_SCAN = 96             # s1 samples of the asymmetric scan
+
+
+# --------------------------------------------------------------------------- linear algebra
+
+@njit(cache=True, nogil=True)
+def _solve(A, b, out):
+    """Gaussian elimination with partial pivoting; False when (numerically) singular."""
+    n = A.shape[0]
+    M = A.copy()
+    v = b.copy()
+    scale = 0.0
+    for i in range(n):
+        for j in range(n):
+            scale = max(scale, abs(M[i, j]))
+    if scale == 0.0 or not math.isfinite(scale):
+        return False
+    for k in range(n):
+        p = k
+        for i in range(k + 1, n):
+            if abs(M[i, k]) > abs(M[p, k]):
+                p = i
+        if abs(M[p, k]) <= 1e-14 * scale:
+            return False
+        if p != k:
+            for j in range(n):
+                M[k, j], M[p, j] = M[p, j], M[k, j]
+            v[k], v[p] = v[p], v[k]
+        for i in range(k + 1, n):
+            f = M[i, k] / M[k, k]
+            for j in range(k, n):
+                M[i, j] -= f * M[k, j]
+            v[i] -= f * v[k]
+    for k in range(n - 1, -1, -1):
+        acc = v[k]
+        for j in range(k + 1, n):
+            acc -= M[k, j] * out[j]
+        out[k] = acc / M[k, k]
+    return True
+
+
+# --------------------------------------------------------------------------- Newton
+
+@njit(cache=True, nogil=True)
+def newton_1to1(osc, eta, r, W, phi, x0, s1, s2, x, xR, J1, J2, fl):
+    """Newton on P2(P1(x)) - x - (0,0,0,T) from x0 (flight-time guesses s1, s2).
+
+    Fills x (fixed point), xR = P1(x), the Jacobians J1 = J_P1(x), J2 = J_P2(xR) and
+    fl = (s1, s2). Returns the final residual norm (inf on failure).
+    """
+    T = 2.0 * math.pi / W
+    for i in range(4):
+        x[i] = x0[i]
+    y2 = np.empty(4)
+    R = np.empty(4)
+    M = np.empty((4, 4))
+    dx = np.empty(4)
+    res = math.inf
+    for it in range(40):
+        s1n = map_kernel(osc, eta, r, W, phi, x, WALL_L, WALL_R, s1, xR, J1)
+        if not math.isfinite(s1n):
+            return math.inf
+        s2n = map_kernel(osc, eta, r, W, phi, xR, WALL_R, WALL_L, s2, y2, J2)
+        if not math.isfinite(s2n):
+            return math.inf
+        s1, s2 = s1n, s2n
+        fl[0], fl[1] = s1, s2
+        res = 0.0
+        xs = 1.0
+        for i in range(4):
+            R[i] = y2[i] - x[i]
+            xs = max(xs, abs(x[i]))
+        R[3] -= T
+        for i in range(4):
+            res = max(res, abs(R[i]))
+        if res <= 1e-13 * xs:
+            return res
+        for i in range(4):
+            for k in range(4):
+                acc = 0.0
+                for m in range(4):
+                    acc += J2[i, m] * J1[m, k]
+                M[i, k] = acc - (1.0 if i == k else 0.0)
+        for i in range(4):
+            R[i] = -R[i]
+        if not _solve(M, R, dx):
+            return math.inf
+        # damping: keep steps moderate (time by at most T/8, velocities by 1)
+        fac = 1.0
+        big = max(abs(dx[0]), abs(dx[1]), abs(dx[2]))
+        if big > 1.0:
+            fac = 1.0 / big
+        if abs(dx[3]) * fac > 0.125 * T:
+            fac = 0.125 * T / abs(dx[3])
+        for i in range(4):
+            x[i] += fac * dx[i]
+        if it > 6 and res < 1e-9 * xs and fac == 1.0:
+            # slow final convergence (near a fold): accept when the step is negligible
+            if max(abs(dx[0]), abs(dx[1]), abs(dx[2]), abs(dx[3])) <= 1e-13 * xs:
+                return res
+    return res if res <= 1e-10 else math.inf
+
+
+# --------------------------------------------------------------------------- affine seeds
+
+@njit(cache=True, nogil=True)
+def _two_flights(osc, eta, r, W, u, s1, s2, E, sym):
+    """Residuals of the 1:1 conditions for u = (vm, vb, zb, sth, cth) (affine in u).
+
+    sym: 4 conditions of the symmetric ansatz with s1 = T/2; else 5 conditions for flights
+    s1 (L->R) and s2 (R->L).
+    """
+    vm, vb, zb, sth, cth = u[0], u[1], u[2], u[3], u[4]
+    vp, vbp = impact_velocities(eta, r, vm, vb)
+    z1, v1, _, _, _ = flow(osc, zb + 1.0, vp, sth, cth, s1)
+    zb1 = zb + vbp * s1
+    E[0] = z1 - zb1 + 1.0                       # arrival at R
+    if sym:
+        E[1] = v1 + vm
+        E[2] = vbp + vb
+        E[3] = zb1 + zb
+        return
+    c = math.cos(W * s1)
+    sn = math.sin(W * s1)
+    sth1 = sth * c + cth * sn
+    cth1 = cth * c - sth * sn
+    vp2, vbp2 = impact_velocities(eta, r, v1, vbp)
+    z2, v2, _, _, _ = flow(osc, z1, vp2, sth1, cth1, s2)
+    zb2 = zb1 + vbp2 * s2
+    E[1] = z2 - zb2 - 1.0                       # arrival at L
+    E[2] = v2 - vm
+    E[3] = vbp2 - vb
+    E[4] = zb2 - zb
+
+
+@njit(cache=True, nogil=True)
+def _affine(osc, eta, r, W, s1, s2, sym, A, b):
+    """E(u) = A u + b for the conditions of ``_two_flights``."""
+    n = A.shape[0]
+    u = np.zeros(5)
+    E = np.empty(5)
+    _two_flights(osc, eta, r, W, u, s1, s2, E, sym)
+    for i in range(n):
+        b[i] = E[i]
+    for k in range(5):
+        u[:] = 0.0
+        u[k] = 1.0
+        _two_flights(osc, eta, r, W, u, s1, s2, E, sym)
+        for i in range(n):
+            A[i, k] = E[i] - b[i]
+
+
+@njit(cache=True, nogil=True)
+def _circle_residual(osc, eta, r, W, s1, T, u):
+    """sin^2 + cos^2 - 1 of the affine solution at L->R flight time s1 (nan if singular)."""
+    A = np.empty((5, 5))
+    b = np.empty(5)
+    _affine(osc, eta, r, W, s1, T - s1, False, A, b)
+    if not _solve(A, -b, u):
+        return math.nan
+    return u[3] * u[3] + u[4] * u[4] - 1.0
+
+
+@njit(cache=True, nogil=True)
+def asymmetric_seeds(osc, eta, r, W, n_scan, out):
+    """Seeds (vm, vb, zb, theta_L, s1) from the scan of s1; returns how many (<= len(out))."""
+    T = 2.0 * math.pi / W
+    u = np.empty(5)
+    n = 0
+    h_prev = math.nan
+    s_prev = 0.0
+    for k in range(n_scan):
+        s = T * (k + 0.5) / n_scan
+        h = _circle_residual(osc, eta, r, W, s, T, u)
+        if math.isfinite(h) and math.isfinite(h_prev) and (h > 0.0) != (h_prev > 0.0) \
+                and n < out.shape[0]:
+            a, fa, bb = s_prev, h_prev, s
+            for _ in range(50):
+                m = 0.5 * (a + bb)
+                fm = _circle_residual(osc, eta, r, W, m, T, u)
+                if not math.isfinite(fm):
+                    break
+                if (fm > 0.0) == (fa > 0.0):
+                    a, fa = m, fm
+                else:
+                    bb = m
+                if bb - a < 1e-13 * T:
+                    break
+            m = 0.5 * (a + bb)
+            fm = _circle_residual(osc, eta, r, W, m, T, u)
+            # a sign change through a pole is no root
+            if math.isfinite(fm) and abs(fm) < 1e-3:
+                out[n, 0], out[n, 1], out[n, 2] = u[0], u[1], u[2]
+                out[n, 3] = math.atan2(u[3], u[4])
+                out[n, 4] = m
+                n += 1
+        h_prev = h
+        s_prev = s
+    return n
+
+
+def symmetric_seeds(osc, eta, r, W) -> list:
+    """The (0 or 2) symmetric 1:1 candidates: list of (vm, vb, zb, theta_L)."""
+    T = 2.0 * math.pi / W
+    A = np.empty((4, 5))
+    b = np.empty(4)
+    _affine(osc, eta, r, W, 0.5 * T, 0.5 * T, True, A, b)
+    if not np.all(np.isfinite(A)) or not np.all(np.isfinite(b)):
+        return []
+    # general solution u = p + lam q of A u = -b
+    _, sv, Vt = np.linalg.svd(A)
+    if sv[-1] <= 1e-14 * sv[0]:
+        return []
+    q = Vt[-1]
+    p = np.linalg.lstsq(A, -b, rcond=None)[0]
+    # |(p3 + lam q3, p4 + lam q4)|^2 = 1
+    a2 = q[3] ** 2 + q[4] ** 2
+    a1 = 2.0 * (p[3] * q[3] + p[4] * q[4])
+    a0 = p[3] ** 2 + p[4] ** 2 - 1.0
+    disc = a1 * a1 - 4.0 * a2 * a0
+    if a2 == 0.0 or disc < 0.0:
+        return []
+    sq = math.sqrt(disc)
+    out = []
+    for lam in ((-a1 - sq) / (2.0 * a2), (-a1 + sq) / (2.0 * a2)):
+        u = p + lam * q
+        out.append((u[0], u[1], u[2], math.atan2(u[3], u[4])))
+    return out
+
+
+# --------------------------------------------------------------------------- orbits
+
+@dataclass
+class PeriodicOrbit:
+    """One 1:1 orbit (fixed point of P2∘P1) and its stability.
+
+    x_L, x_R        pre-impact states (z_m', z_b', z_b, t) at L and at R (t_L in [0, T))
+    flight_times    [L->R, R->L]
+    eigenvalues     of J_P2(x_R) J_P1(x_L); lambda_max = max |eigenvalue|
+    stable          all |lambda| < 1 and admissible
+    dw_L, dw_R      relative velocity w' = z_m' - z_b' just before the L and R impacts
+    phase_L/_R      impact phases mod(W t + phi, 2 pi)
+    """
+
+    x_L: np.ndarray
+    x_R: np.ndarray
+    flight_times: list
+    symmetric: bool
+    admissible: bool
+    eigenvalues: np.ndarray
+    lambda_max: float
+    stable: bool
+    dw_L: float
+    dw_R: float
+    phase_L: float
+    phase_R: float
+    residual: float = 0.0
+    params: ModelParams | None = field(default=None, repr=False)
+
+    def to_dict(self) -> dict:
+        return {
+            "symmetric": bool(self.symmetric),
+            "admissible": bool(self.admissible),
+            "stable": bool(self.stable),
+            "lambda_max": float(self.lambda_max),
+            "eigenvalues": [[float(z.real), float(z.imag)] for z in self.eigenvalues],
+            "dw_L": float(self.dw_L),
+            "dw_R": float(self.dw_R),
+            "phase_L": float(self.phase_L),
+            "phase_R": float(self.phase_R),
+            "flight_times": [float(s) for s in self.flight_times],
+            "x_L": [float(v) for v in self.x_L],
+            "x_R": [float(v) for v in self.x_R],
+        }
+
+
+def _params(eta, omega, F, r, d, phi) -> ModelParams:
+    if isinstance(eta, ModelParams):
+        return eta
+    return ModelParams(eta=eta, omega=omega, F=F, r=r, d=d, phi=phi)
+
+
+def solve_orbit(p: ModelParams, x0, s1=-1.0, s2=-1.0, osc=None):
+    """Newton from x0 (flight-time guesses s1, s2, <= 0: first contact). PeriodicOrbit or None."""
+    if osc is None:
+        osc = oscillators(p)[0]
+    T = p.period
+    x = np.empty(4)
+    xR = np.empty(4)
+    J1 = np.empty((4, 4))
+    J2 = np.empty((4, 4))
+    fl = np.empty(2)
+    x0 = np.asarray(x0, dtype=float).copy()
+    res = newton_1to1(osc, p.eta, p.r, p.omega, p.phi, x0, float(s1), float(s2), x, xR, J1,
+                      J2, fl)
+    if not math.isfinite(res) or not np.all(np.isfinite(x)):
+        return None
+    if not (fl[0] > 0.0 and fl[1] > 0.0) or abs(fl[0] + fl[1] - T) > 1e-8 * (1.0 + T):
+        return None
+    # t_L into [0, T) (the maps commute with t -> t + T)
+    k = math.floor(x[3] / T)
+    if k != 0:
+        x[3] -= k * T
+        xR[3] -= k * T
+    return _orbit(p, osc, x, xR, J1, J2, fl, res)
+
+
+def _orbit(p, osc, x, xR, J1, J2, fl, res) -> PeriodicOrbit:
+    adm = bool(admissible_kernel(osc, p.eta, p.r, p.omega, p.phi, x, WALL_L, WALL_R, fl[0])
+               and admissible_kernel(osc, p.eta, p.r, p.omega, p.phi, xR, WALL_R, WALL_L,
+                                     fl[1]))
+    ev = np.linalg.eigvals(J2 @ J1)
+    ev = ev[np.argsort(-np.abs(ev))]
+    lam = float(np.abs(ev).max())
+    two_pi = 2.0 * math.pi
+    return PeriodicOrbit(
+        x_L=x.copy(), x_R=xR.copy(), flight_times=[float(fl[0]), float(fl[1])],
+        symmetric=bool(abs(fl[0] - fl[1]) <= SYM_TOL), admissible=adm, eigenvalues=ev,
+        lambda_max=lam, stable=bool(adm and lam < 1.0), dw_L=float(x[0] - x[1]),
+        dw_R=float(xR[0] - xR[1]), phase_L=float(np.mod(p.omega * x[3] + p.phi, two_pi)),
+        phase_R=float(np.mod(p.omega * xR[3] + p.phi, two_pi)), residual=float(res), params=p)
+
+
+def _same(a: PeriodicOrbit, b: PeriodicOrbit, T: float) -> bool:
+    dt = abs(a.x_L[3] - b.x_L[3]) % T
+    dt = min(dt, T - dt)
+    return dt <= DEDUP_TOL * (1.0 + T) and np.all(np.abs(a.x_L[:3] - b.x_L[:3])
+                                                    <= DEDUP_TOL * (1.0 + np.abs(a.x_L[:3])))
+
+
+def _dedup(orbits, T):
+    out = []
+    for o in orbits:
+        if o is not None and not any(_same(o, q, T) for q in out):
+            out.append(o)
+    return out
+
+
+def _theta_to_t(theta, p: ModelParams) -> float:
+    return float(np.mod((theta - p.phi) / p.omega, p.period))
+
+
+def seed_orbits(p: ModelParams, osc=None, simulation=True, scan=True) -> list:
+    """Every distinct 1:1 orbit reachable from the built-in seeds (not yet sorted)."""
+    if osc is None:
+        osc = oscillators(p)[0]
+    T = p.period
+    if p.F == 0.0:
+        return []
+    found = []
+    for vm, vb, zb, th in symmetric_seeds(osc, p.eta, p.r, p.omega):
+        found.append(solve_orbit(p, [vm, vb, zb, _theta_to_t(th, p)], 0.5 * T, 0.5 * T, osc))
+    if scan:
+        buf = np.empty((16, 5))
+        n = asymmetric_seeds(osc, p.eta, p.r, p.omega, N_SCAN, buf)
+        for vm, vb, zb, th, s1 in buf[:n]:
+            found.append(solve_orbit(p, [vm, vb, zb, _theta_to_t(th, p)], s1, T - s1, osc))
+    if simulation:
+        found.extend(_simulation_seed(p, osc))
+    return _dedup(found, T)
+
+
+def _simulation_seed(p: ModelParams, osc, t_end=600.0) -> list:
+    from .simulation import simulate
+    try:
+        res = simulate(p.eta, p.omega, p.F, r=p.r, d=p.d, phi=p.phi, t_end=t_end,
+                       t_transient=0.5 * t_end, max_impacts=200_000)
+    except Exception:                        # pragma: no cover - a seed is optional
+        return []
+    imp = res.impacts
+    w = imp["wall"]
+    idx = np.nonzero((w[:-2] == WALL_L) & (w[1:-1] == WALL_R) & (w[2:] == WALL_L))[0]
+    if idx.size == 0:
+        return []
+    k = idx[-1]
+    x0 = [imp["v_m"][k], imp["v_b"][k], imp["z_b"][k], imp["t"][k]]
+    return [solve_orbit(p, x0, imp["t"][k + 1] - imp["t"][k], imp["t"][k + 2] - imp["t"][k + 1],
+                        osc)]
+
+
+def _sort_key(o: PeriodicOrbit):
+    return (not o.admissible, not o.stable, not o.symmetric, o.lambda_max)
+
+
+def find_1to1(eta, omega, F, r=R_DEFAULT, d=D_DEFAULT, phi=0.0, seeds=None,
+              simulation=True) -> list[PeriodicOrbit]:
+    """Every distinct 1:1 orbit found (admissible or not), stable admissible ones first.
+
+    ``seeds``: extra starting points, each an x_L = (z_m', z_b', z_b, t_L) or a pair
+    (x_L, (s1, s2)) with flight-time guesses; ``simulation=False`` skips the short
+    simulation seed.
+    """
+    p = _params(eta, omega, F, r, d, phi)
+    osc = oscillators(p)[0]
+    found = seed_orbits(p, osc, simulation=simulation)
+    for sd in seeds or ():
+        if isinstance(sd, PeriodicOrbit):
+            found.append(solve_orbit(p, sd.x_L, *sd.flight_times, osc=osc))
+        elif len(sd) == 2:
+            found.append(solve_orbit(p, sd[0], sd[1][0], sd[1][1], osc))
+        else:
+            found.append(solve_orbit(p, sd, osc=osc))
+    out = _dedup(found, p.period)
+    out.sort(key=_sort_key)
+    return out

@@ -1,0 +1,197 @@
+"""1:1 orbits from the maps: fixed-point property, agreement with long simulations and the
+paper's qualitative statements (Sec. 3, Figs. 6, 15)."""
+import math
+
+import numpy as np
+import pytest
+
+import vines
+from vines.maps import WALL_L, WALL_R, apply_map, mirror
+from vines.params import ModelParams
+from vines.periodic import PeriodicOrbit, find_1to1
+
+
+@pytest.mark.parametrize("eta, W, F", [(0.05, 1.0, 0.05), (0.035, 1.0, 0.05),
+                                       (0.6, 0.9, 0.3077), (0.3, 1.1, 0.3077)])
+def test_orbit_is_fixed_point_of_P2_P1(eta, W, F):
+    p = ModelParams(eta, W, F)
+    orbits = find_1to1(eta, W, F, simulation=False)
+    assert orbits
+    for o in orbits:
+        y1, s1 = apply_map(p, o.x_L, WALL_L, WALL_R, t_guess=o.x_L[3] + o.flight_times[0])
+        y2, s2 = apply_map(p, y1, WALL_R, WALL_L, t_guess=y1[3] + o.flight_times[1])
+        target = o.x_L + np.array([0.0, 0.0, 0.0, p.period])
+        assert np.abs(y2 - target).max() <= 1e-10
+        assert s1 + s2 == pytest.approx(p.period, rel=1e-12)
+        assert o.symmetric == (abs(s1 - s2) <= 1e-6)
+        assert 0.0 <= o.x_L[3] < p.period
+        assert o.stable == (o.admissible and o.lambda_max < 1.0)
+        assert o.lambda_max == pytest.approx(np.abs(o.eigenvalues).max())
+        if o.symmetric:   # x_R is the mirror image of x_L half a period later
+            np.testing.assert_allclose(o.x_R, mirror(o.x_L, p.period), atol=1e-9)
+        d = o.to_dict()
+        assert {"symmetric", "admissible", "stable", "lambda_max", "eigenvalues", "dw_L",
+                "dw_R", "phase_L", "phase_R", "flight_times"} <= set(d)
+        assert len(d["eigenvalues"]) == 4 and all(len(e) == 2 for e in d["eigenvalues"])
+
+
+def test_asymmetric_orbits_come_in_mirror_pairs():
+    p = ModelParams(0.035, 1.0, 0.05)
+    asym = [o for o in find_1to1(0.035, 1.0, 0.05, simulation=False) if not o.symmetric]
+    assert len(asym) == 2
+    a, b = asym
+    assert a.flight_times[0] == pytest.approx(b.flight_times[1], rel=1e-9)
+    assert a.lambda_max == pytest.approx(b.lambda_max, rel=1e-8)
+    np.testing.assert_allclose(mirror(a.x_L, p.period)[:3], b.x_R[:3], atol=1e-9)
+
+
+@pytest.mark.parametrize("eta, W, F", [(0.05, 1.0, 0.05), (0.55, 1.0, 0.4), (0.45, 1.1, 0.4)])
+def test_stable_orbit_is_the_simulated_attractor(eta, W, F):
+    res = vines.simulate(eta, W, F)            # default t_end = 7000
+    assert res.regime == "1:1"
+    orbits = [o for o in find_1to1(eta, W, F, simulation=False) if o.stable]
+    assert len(orbits) == 1
+    o = orbits[0]
+    walls = res.impacts["wall"]
+    dw = res.impact_dw
+    ph = res.impact_phase
+    kL = np.nonzero(walls == WALL_L)[0][-1]
+    kR = np.nonzero(walls == WALL_R)[0][-1]
+
+    def close_phase(a, b):
+        d = abs(a - b) % (2 * math.pi)
+        return min(d, 2 * math.pi - d)
+
+    assert abs(abs(dw[kL]) - abs(o.dw_L)) <= 1e-8
+    assert abs(abs(dw[kR]) - abs(o.dw_R)) <= 1e-8
+    assert close_phase(ph[kL], o.phase_L) <= 1e-8
+    assert close_phase(ph[kR], o.phase_R) <= 1e-8
+
+
+def test_simulation_seed_finds_the_same_orbit():
+    with_sim = find_1to1(0.05, 1.0, 0.05)
+    without = find_1to1(0.05, 1.0, 0.05, simulation=False)
+    assert len(with_sim) == len(without)
+    assert with_sim[0].stable
+    np.testing.assert_allclose(with_sim[0].x_L, without[0].x_L, atol=1e-10)
+
+
+def test_user_seeds_are_polished():
+    o = find_1to1(0.55, 1.0, 0.4, simulation=False)[0]
+    x0 = o.x_L + np.array([1e-3, -1e-3, 1e-3, 1e-2])
+    again = find_1to1(0.55, 1.0, 0.4, simulation=False, seeds=[x0, (x0, o.flight_times), o])
+    assert len(again) == len(find_1to1(0.55, 1.0, 0.4, simulation=False))
+
+
+def test_paper_window_at_resonance_small_forcing():
+    # Fig. 6: at W = 1, F = 0.05 the symmetric 1:1 branch is stable only in a window near
+    # eta = 0.04-0.06, where an eigenvalue stays close to the unit circle.
+    etas = np.round(np.arange(0.01, 0.2001, 0.005), 4)
+    stable_sym = []
+    for eta in etas:
+        for o in find_1to1(eta, 1.0, 0.05, simulation=False):
+            if o.symmetric and o.stable:
+                stable_sym.append((eta, o.lambda_max))
+    assert stable_sym
+    for eta, lam in stable_sym:
+        assert 0.03 <= eta <= 0.07
+    assert any(0.04 <= e <= 0.06 for e, _ in stable_sym)
+    # eigenvalue close to 1 in the window (at the paper's point eta = 0.05 and below)
+    assert all(lam > 0.9 for e, lam in stable_sym if e <= 0.05)
+
+
+@pytest.mark.parametrize("W", [0.9, 1.1])
+def test_paper_strongly_stable_orbits_at_F_03077(W):
+    lams = []
+    for eta in np.arange(0.05, 1.0, 0.05):
+        lams += [o.lambda_max for o in find_1to1(eta, W, 0.3077, simulation=False)
+                 if o.stable]
+    assert lams and min(lams) < 0.9
+
+
+def test_no_forcing_no_orbit_and_bad_input():
+    assert find_1to1(0.1, 1.0, 0.0, simulation=False) == []
+    with pytest.raises(vines.ParameterError):
+        find_1to1(-0.1, 1.0, 0.1)
+    assert isinstance(find_1to1(0.3, 1.1, 0.3077, simulation=False)[0], PeriodicOrbit)
+
+
+# --------------------------------------------------------------------------- continuation
+
+from vines.continuation import continue_branch  # noqa: E402
+from vines.stability_map import stability_map  # noqa: E402
+
+
+def _preferred(eta, W, F):
+    return find_1to1(eta, W, F, simulation=False)[0]
+
+
+def test_continuation_events_are_located_and_consistent():
+    br = continue_branch("eta", 0.05, 0.08, 0.0025, {"omega": 1.0, "F": 0.05})
+    assert br.values[0] == pytest.approx(0.05) and br.values[-1] == pytest.approx(0.08)
+    assert np.all(br.symmetric) and br.stable[0] and not br.stable[-1]
+    ns = [e for e in br.events if e["type"] == "neimark-sacker"]
+    assert len(ns) == 1
+    at = ns[0]["at"]
+    # stability really changes within 1e-5 of the located point, through a complex pair
+    below = _preferred(at - 1e-5, 1.0, 0.05)
+    above = _preferred(at + 1e-5, 1.0, 0.05)
+    assert below.stable and not above.stable
+    lam = above.eigenvalues[0]
+    assert abs(lam.imag) > 1e-3 and abs(abs(lam) - 1.0) < 1e-2
+    # branch points agree with independent solves
+    for i in (0, len(br) // 2, len(br) - 1):
+        o = _preferred(br.values[i], 1.0, 0.05)
+        assert br.lambda_max[i] == pytest.approx(o.lambda_max, rel=1e-8)
+        assert br.dw_L[i] == pytest.approx(o.dw_L, rel=1e-9)
+    d = br.to_dict()
+    assert {"branch", "events"} <= set(d)
+    assert {"eta", "omega", "F", "lambda_max", "stable", "symmetric", "admissible",
+            "dw_L"} <= set(d["branch"][0])
+    assert br.abs_eigenvalues.shape == (len(br), 4)
+
+
+def test_continuation_detects_symmetry_breaking():
+    br = continue_branch("eta", 0.05, 0.025, 0.005, {"omega": 1.0, "F": 0.05})
+    sb = [e for e in br.events if e["type"] == "symmetry-breaking"]
+    assert len(sb) == 1
+    at = sb[0]["at"]
+    # below the pitchfork a pair of asymmetric orbits exists, above it does not
+    asym_below = [o for o in find_1to1(at - 1e-4, 1.0, 0.05, simulation=False)
+                  if not o.symmetric]
+    asym_above = [o for o in find_1to1(at + 1e-4, 1.0, 0.05, simulation=False)
+                  if not o.symmetric]
+    assert len(asym_below) == 2 and not asym_above
+
+
+def test_continuation_in_omega_and_F_end_on_the_same_orbits():
+    br = continue_branch("omega", 1.1, 1.15, 0.01, {"eta": 0.3, "F": 0.3077})
+    o = _preferred(0.3, 1.15, 0.3077)
+    assert br.dw_L[-1] == pytest.approx(o.dw_L, rel=1e-9)
+    br = continue_branch("F", 0.3077, 0.35, 0.01, {"eta": 0.3, "omega": 1.1})
+    o = _preferred(0.3, 1.1, 0.35)
+    assert br.dw_L[-1] == pytest.approx(o.dw_L, rel=1e-9)
+    with pytest.raises(vines.ParameterError):
+        continue_branch("xi", 0.1, 0.2, 0.01, {"omega": 1.0, "F": 0.1})
+    with pytest.raises(vines.ParameterError):
+        continue_branch("eta", 0.1, 0.2, 0.01, {"omega": 1.0})
+
+
+def test_stability_map_threads_and_classes():
+    eta = np.linspace(0.02, 0.9, 9)
+    omega = np.linspace(0.85, 1.15, 7)
+    m1 = stability_map(eta, omega, 0.3077, n_threads=1)
+    m2 = stability_map(eta, omega, 0.3077, n_threads=2)
+    for k in ("lambda_max", "cls", "dw_L", "symmetric"):
+        assert m1[k].shape == (9, 7)
+        np.testing.assert_array_equal(m1[k], m2[k])
+    cls, lam = m1["cls"], m1["lambda_max"]
+    assert set(np.unique(cls)) <= {0, 1, 2, 3}
+    assert np.all(np.isnan(lam[cls == 0])) and np.all(np.isfinite(lam[cls > 0]))
+    assert np.all(lam[(cls == 1) | (cls == 2)] < 1.0) and np.all(lam[cls == 3] >= 1.0)
+    assert np.all(m1["symmetric"][cls == 1]) and not np.any(m1["symmetric"][cls == 2])
+    # every stable point agrees with a direct solve
+    for i, j in zip(*np.nonzero((cls == 1) | (cls == 2))):
+        direct = [o for o in find_1to1(eta[i], omega[j], 0.3077, simulation=False) if o.stable]
+        assert any(abs(o.lambda_max - lam[i, j]) < 1e-8 for o in direct)
+    assert (cls == 1).any()
