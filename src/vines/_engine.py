@@ -47,8 +47,8 @@ STATUS_TEXT = {RC_DONE: "ok", RC_MAX_IMPACTS: "max_impacts", RC_STALLED: "stalle
 A_INT_VM2, A_INT_VB2, A_XMAX_WIN, A_XMAX_ALL, A_TSTUCK_WIN, A_TSTUCK_ALL, A_NSTICK, A_NEVAL = range(8)
 N_ACC = 8
 # Counter slots.
-C_NIMP_TOTAL, C_NIMP_REC, C_NSEG_REC = range(3)
-N_CNT = 3
+C_NIMP_TOTAL, C_NIMP_REC, C_NSEG_REC, C_NZERO = range(4)
+N_CNT = 4
 
 MAX_STEPS_PER_SEGMENT = 200_000
 ROUNDOFF = 8.0 * 2.220446049250313e-16   # a few ulps: contact/release at this gap is exact
@@ -143,11 +143,13 @@ def _interval_max(osc, x0, v0, sth0, cth0, sa, za, va, sb, zb, vb, B2, m):
 
 
 @njit(cache=True, nogil=True)
-def free_step(osc, s, z, v, a, j, b1, zb0, vb0, h_cap, B2, root_tol):
+def free_step(osc, s, z, v, a, j, b1, zb0, vb0, h_cap, B2, root_tol, released):
     """Step that provably reaches neither wall in free flight (module docstring).
 
     Returns (h, pressed): pressed = +1/-1 when the ball rests on that wall with no relative
     velocity while the relative acceleration presses it on (sticking), else 0.
+    ``released`` is True at the first step after a release from sticking, where the
+    acceleration is zero by construction and only the sign of the jerk decides.
     """
     w = z - (zb0 + vb0 * s)
     wd = v - vb0
@@ -165,7 +167,7 @@ def free_step(osc, s, z, v, a, j, b1, zb0, vb0, h_cap, B2, root_tol):
         h0 = 0.0
         if acc_away > 0.0:
             h0 = acc_away / deriv_bound(osc, b1, 3, s + h_cap)
-        if jerk_away > 0.0 and acc_away >= -ROUNDOFF * (1.0 + abs(z) + abs(v)):
+        if jerk_away > 0.0 and (released or acc_away >= -ROUNDOFF * (1.0 + abs(z) + abs(v))):
             h0 = max(h0, jerk_away / deriv_bound(osc, b1, 4, s + h_cap))
         if h0 == 0.0 and -sw * wd <= ROUNDOFF * (1.0 + abs(v) + abs(vb0)):
             return 0.0, int(sw)
@@ -210,7 +212,7 @@ def first_contact(osc, zm0, vm0, zb0, vb0, sth0, cth0, s_max, root_tol):
     z, v, a, j, b1 = flow(osc, zm0, vm0, sth0, cth0, 0.0)
     for _ in range(MAX_STEPS_PER_SEGMENT):
         B2 = deriv_bound(osc, b1, 2, s + h_cap)
-        h, pressed = free_step(osc, s, z, v, a, j, b1, zb0, vb0, h_cap, B2, root_tol)
+        h, pressed = free_step(osc, s, z, v, a, j, b1, zb0, vb0, h_cap, B2, root_tol, False)
         if pressed != 0:
             return 2 * pressed, s, z, v
         h = min(h, h_cap)
@@ -232,7 +234,7 @@ def first_contact(osc, zm0, vm0, zb0, vb0, sth0, cth0, s_max, root_tol):
 @njit(cache=True, nogil=True)
 def run_kernel(osc_f, osc_s, eta, r, W, phi, t_end, t_tr, v_stick, root_tol, max_impacts,
                record_from, cur, acc, cnt, imp, seg):
-    """Advance the trajectory in ``cur`` = [t, z_m, z_m', z_b, z_b', mode] to t_end.
+    """Advance the trajectory in ``cur`` = [t, z_m, z_m', z_b, z_b', mode, released] to t_end.
 
     osc_f, osc_s   packed oscillators (``flow.make_osc``) of the free LO and the stuck body
     imp            (cap, 6) buffer of impacts: t, z_m, z_m', z_b, z_b' (pre-impact), wall
@@ -242,10 +244,9 @@ def run_kernel(osc_f, osc_s, eta, r, W, phi, t_end, t_tr, v_stick, root_tol, max
     larger buffers. Returns one of RC_DONE, RC_BUFFER_FULL, RC_MAX_IMPACTS, RC_STALLED.
     """
     one_eta = 1.0 + eta
-    n_zero = 0              # consecutive segments that did not advance time
     while True:
         t0 = cur[0]
-        if n_zero > 1000:
+        if cnt[C_NZERO] > 1000:
             return RC_STALLED
         if t0 >= t_end:
             return RC_DONE
@@ -253,6 +254,8 @@ def run_kernel(osc_f, osc_s, eta, r, W, phi, t_end, t_tr, v_stick, root_tol, max
             return RC_BUFFER_FULL
         zm0, vm0, zb0, vb0 = cur[1], cur[2], cur[3], cur[4]
         mode = int(cur[5])
+        released = cur[6] != 0.0       # this free segment starts at a release from sticking
+        cur[6] = 0.0
         if t0 >= record_from:
             k = cnt[C_NSEG_REC]
             seg[k, 0], seg[k, 1], seg[k, 2], seg[k, 3], seg[k, 4] = t0, zm0, vm0, zb0, vb0
@@ -280,7 +283,8 @@ def run_kernel(osc_f, osc_s, eta, r, W, phi, t_end, t_tr, v_stick, root_tol, max
                 return RC_STALLED
             B2 = deriv_bound(osc, b1, 2, s + h_cap)
             if mode == 0:
-                h, pressed = free_step(osc, s, z, v, a, j, b1, zb0, vb0, h_cap, B2, root_tol)
+                h, pressed = free_step(osc, s, z, v, a, j, b1, zb0, vb0, h_cap, B2, root_tol,
+                                       released and steps == 1)
                 if pressed != 0:
                     event = 4
                     wall = pressed
@@ -345,6 +349,16 @@ def run_kernel(osc_f, osc_s, eta, r, W, phi, t_end, t_tr, v_stick, root_tol, max
                     if abs(z1) > acc[A_XMAX_ALL]:
                         acc[A_XMAX_ALL] = abs(z1)
                 s, z, v, a, j, b1 = s_new, z1, v1, a1, j1, b11
+            if event == 3:
+                # the release must leave the contact force at zero or pulling away, else the
+                # free flight would find the ball pressed again (a stick-release loop)
+                delta = ROUNDOFF * (1.0 + t0 + s)
+                for _ in range(64):
+                    if mode * a <= 0.0 or s + delta > t_end - t0:
+                        break
+                    s = s + delta
+                    z, v, a, j, b1 = flow(osc, zm0, vm0, sth0, cth0, s)
+                    delta *= 2.0
         # window integrals and time stuck over this segment [t0, t0 + s]
         if mode == 0:
             vb_end = vb0
@@ -363,7 +377,8 @@ def run_kernel(osc_f, osc_s, eta, r, W, phi, t_end, t_tr, v_stick, root_tol, max
         if mode != 0:
             acc[A_TSTUCK_ALL] += s
         t_new = t0 + s
-        n_zero = n_zero + 1 if s <= 0.0 else 0
+        # segments that do not advance the (absolute) time: a guard against event loops
+        cnt[C_NZERO] = cnt[C_NZERO] + 1 if t_new <= t0 else 0
         if event == 1:
             cur[0], cur[1], cur[2], cur[3], cur[4], cur[5] = t_new, z, v, zb_end, vb_end, mode
             if t_new >= t_end:
@@ -373,6 +388,7 @@ def run_kernel(osc_f, osc_s, eta, r, W, phi, t_end, t_tr, v_stick, root_tol, max
         if event == 3:
             # release: free flight from the wall with zero relative velocity
             cur[0], cur[1], cur[2], cur[3], cur[4], cur[5] = t_new, z, v, z - mode, v, 0.0
+            cur[6] = 1.0
             continue
         if event == 4:
             vc = (v + eta * vb_end) / one_eta

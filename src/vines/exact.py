@@ -48,7 +48,7 @@ def run_exact(params: ModelParams, settings: SolverSettings, record_from: float 
     p, st = params, settings
     osc_f, osc_s = oscillators(p)
     s0 = st.state0 if state0 is None else state0
-    cur = np.array([t0, s0[0], s0[1], s0[2], s0[3], 0.0])
+    cur = np.array([t0, s0[0], s0[1], s0[2], s0[3], 0.0, 0.0])
     acc = np.zeros(eng.N_ACC)
     acc[eng.A_XMAX_ALL] = abs(s0[0])
     acc[eng.A_XMAX_WIN] = abs(s0[0]) if t0 >= st.t_transient else 0.0
@@ -62,6 +62,9 @@ def run_exact(params: ModelParams, settings: SolverSettings, record_from: float 
                             st.v_stick, st.root_tol, st.max_impacts, record_from, cur, acc, cnt,
                             imp, seg)
         if rc != eng.RC_BUFFER_FULL:
+            break
+        if seg.shape[0] > 4 * st.max_impacts + 100_000:
+            rc = eng.RC_STALLED          # segments without impacts: never grow without bound
             break
         if cnt[eng.C_NIMP_REC] >= imp.shape[0]:
             imp = np.concatenate([imp, np.empty_like(imp)])
