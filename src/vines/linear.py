@@ -1,0 +1,31 @@
+"""The stuck linear system (paper Eq. 28): ball and LO moving together as one body.
+
+    (1 + eta) z'' + d z' + z = F sin(W t) + d W F cos(W t)
+
+Its steady-state amplitude is the reference curve of Fig. 11 (x_max of the VINES against
+the response of the LO with the ball stuck to a wall, natural frequency 1/sqrt(1 + eta)).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .params import D_DEFAULT
+
+
+def stuck_amplitude(eta, omega, F, d=D_DEFAULT):
+    """Steady-state amplitude of z (units of L) of Eq. 28; broadcasts over its arguments.
+
+    The forcing F (sin + d W cos) has amplitude F sqrt(1 + (d W)^2), the receptance is
+    1 / |1 - (1 + eta) W^2 + i d W|, so
+
+        |z| = F sqrt(1 + (d W)^2) / sqrt((1 - (1 + eta) W^2)^2 + (d W)^2).
+
+    Infinite at resonance W = 1/sqrt(1 + eta) when d = 0.
+    """
+    eta, omega, F, d = (np.asarray(x, dtype=float) for x in (eta, omega, F, d))
+    dw = d * omega
+    den = np.hypot(1.0 - (1.0 + eta) * omega ** 2, dw)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        amp = F * np.sqrt(1.0 + dw ** 2) / den
+    amp = np.where((den == 0) & (F == 0), 0.0, amp)
+    return amp[()] if amp.ndim == 0 else amp

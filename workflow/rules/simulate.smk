@@ -1,0 +1,21 @@
+# simulate-grid: one job per chunk (a sub-grid of at most chunk_size points), named by the
+# sha256 of its parameter values: extending a grid reuses the chunks already computed.
+# Only the chunk's own values and the settings are params, so editing another grid, or
+# another part of this one, does not rerun it. No time series are stored.
+
+
+rule simulate_grid:
+    output:
+        f"{RES}/grid/{{grid}}/chunk_{{key}}.nc",
+    params:
+        points=lambda w: CHUNKS[w.grid][w.key],
+        model=MODEL,
+        simulation=SIMULATION,
+        code=CODE,
+    threads: config["threads"]
+    conda:
+        "../envs/vines.yaml"
+    log:
+        f"{RES}/logs/simulate_grid/{{grid}}/{{key}}.log",
+    script:
+        "../scripts/simulate_grid.py"

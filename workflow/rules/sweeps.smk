@@ -1,0 +1,19 @@
+# bifurcation-sweep: continuation sweeps (last state -> next initial condition), up and
+# down in the swept parameter, for every outer value; impacts of the last n_record periods
+# stored as a CF contiguous ragged array.
+
+
+rule bifurcation_sweep:
+    output:
+        f"{RES}/sweeps/{{sweep}}.nc",
+    params:
+        spec=lambda w: SWEEPS[w.sweep],
+        model=MODEL,
+        code=CODE,
+    threads: config["threads"]
+    conda:
+        "../envs/vines.yaml"
+    log:
+        f"{RES}/logs/bifurcation_sweep/{{sweep}}.log",
+    script:
+        "../scripts/bifurcation_sweep.py"

@@ -1,0 +1,18 @@
+# timehistory: single runs at the points a figure shows (Figs 4, 5, 9, 10, 11c-e); only the
+# last periods are stored, densely sampled from the exact trajectory, with their impacts.
+
+
+rule timehistory:
+    output:
+        f"{RES}/timehistories/{{th}}.nc",
+    params:
+        spec=lambda w: THIST[w.th],
+        model=MODEL,
+        simulation=SIMULATION,
+        code=CODE,
+    conda:
+        "../envs/vines.yaml"
+    log:
+        f"{RES}/logs/timehistory/{{th}}.log",
+    script:
+        "../scripts/timehistory.py"
