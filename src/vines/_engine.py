@@ -179,6 +179,34 @@ def free_step(osc, s, z, v, a, j, b1, zb0, vb0, h_cap, B2, root_tol, released):
 
 
 @njit(cache=True, nogil=True)
+def free_step_local(osc, s, z, v, a, j, b1, zb0, vb0, h_cap, root_tol, released):
+    """``free_step`` with the tightest of several valid bounds on |w''| = |z_m''|.
+
+    Besides the global bound B2 (valid for all later times), on [s, s + H]
+    |z''| <= |z''(s)| + |z'''(s)| H + B4 H^2 / 2 (B4 the global bound on |z''''|), which is
+    far tighter near resonance where the homogeneous and forced parts nearly cancel.
+    Tries H = h_cap, h_cap/4, h_cap/16 and keeps the longest step. Returns (h, pressed, B2)
+    with B2 valid on [s, s + h].
+    """
+    B2g = deriv_bound(osc, b1, 2, s + h_cap)
+    B4 = deriv_bound(osc, b1, 4, s + h_cap)
+    h_best = -1.0
+    B_best = B2g
+    H = h_cap
+    for _ in range(3):
+        B = min(B2g, abs(a) + abs(j) * H + 0.5 * B4 * H * H)
+        h, pressed = free_step(osc, s, z, v, a, j, b1, zb0, vb0, h_cap, B, root_tol, released)
+        if pressed != 0:
+            return 0.0, pressed, B2g
+        h = min(h, H)
+        if h > h_best:
+            h_best = h
+            B_best = B
+        H *= 0.25
+    return h_best, 0, B_best
+
+
+@njit(cache=True, nogil=True)
 def free_contact(z, v, zb, vb, B2, root_tol):
     """(wall, gap, closing speed) when contact is accepted at this point, else wall = 0."""
     w = z - zb
@@ -211,8 +239,8 @@ def first_contact(osc, zm0, vm0, zb0, vb0, sth0, cth0, s_max, root_tol):
     s = 0.0
     z, v, a, j, b1 = flow(osc, zm0, vm0, sth0, cth0, 0.0)
     for _ in range(MAX_STEPS_PER_SEGMENT):
-        B2 = deriv_bound(osc, b1, 2, s + h_cap)
-        h, pressed = free_step(osc, s, z, v, a, j, b1, zb0, vb0, h_cap, B2, root_tol, False)
+        h, pressed, B2 = free_step_local(osc, s, z, v, a, j, b1, zb0, vb0, h_cap, root_tol,
+                                         False)
         if pressed != 0:
             return 2 * pressed, s, z, v
         h = min(h, h_cap)
@@ -281,15 +309,15 @@ def run_kernel(osc_f, osc_s, eta, r, W, phi, t_end, t_tr, v_stick, root_tol, max
             if steps > MAX_STEPS_PER_SEGMENT:
                 cur[0] = t0
                 return RC_STALLED
-            B2 = deriv_bound(osc, b1, 2, s + h_cap)
             if mode == 0:
-                h, pressed = free_step(osc, s, z, v, a, j, b1, zb0, vb0, h_cap, B2, root_tol,
-                                       released and steps == 1)
+                h, pressed, B2 = free_step_local(osc, s, z, v, a, j, b1, zb0, vb0, h_cap,
+                                                 root_tol, released and steps == 1)
                 if pressed != 0:
                     event = 4
                     wall = pressed
                     break
             else:
+                B2 = deriv_bound(osc, b1, 2, s + h_cap)
                 gap = mode * a           # contact force ~ z'' of the stuck body, > 0 while stuck
                 closing = -mode * j
                 B4s = deriv_bound(osc, b1, 4, s + h_cap)
