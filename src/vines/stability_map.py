@@ -7,16 +7,13 @@ previous points are available). Among the admissible candidates a stable one is 
 then a symmetric one, then the smallest |lambda_max|.
 
 Columns (one omega each) are independent and processed in order of increasing eta index,
-so the result does not depend on how the columns are spread over workers. The per-point
-driver is Python (it holds the GIL), so several workers are separate processes (spawned;
-they load numba's cached machine code), each computing an interleaved set of columns.
+so the result does not depend on how the columns are spread over threads.
 """
 from __future__ import annotations
 
 import math
 import os
-import multiprocessing
-from concurrent.futures import ProcessPoolExecutor, as_completed
+from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
@@ -88,18 +85,6 @@ def _close(a, b, T):
     return dt <= 1e-8 * (1.0 + T) and np.all(np.abs(a.x_L[:3] - b.x_L[:3]) <= 1e-8)
 
 
-def _columns(etas, omegas, F, r, d, progress=None) -> dict:
-    """The map restricted to the given omega columns (one worker's share)."""
-    shape = (etas.size, omegas.size)
-    out = {"lambda_max": np.full(shape, math.nan), "cls": np.zeros(shape, np.int8),
-           "dw_L": np.full(shape, math.nan), "symmetric": np.zeros(shape, bool)}
-    for j, w in enumerate(omegas):
-        _column(etas, float(w), F, r, d, out, j)
-        if progress:
-            progress(j + 1, omegas.size)
-    return out
-
-
 def stability_map(eta, omega, F, r=R_DEFAULT, d=D_DEFAULT, n_threads=None,
                   progress=None) -> dict:
     """2-D arrays of shape (len(eta), len(omega)).
@@ -108,8 +93,7 @@ def stability_map(eta, omega, F, r=R_DEFAULT, d=D_DEFAULT, n_threads=None,
     cls         int8: 0 no admissible 1:1, 1 symmetric stable, 2 asymmetric stable, 3 unstable
     dw_L        relative velocity before the L impact of the chosen orbit
     symmetric   bool
-    Also returns the axes ``eta``, ``omega`` and ``F``. ``n_threads`` workers (processes)
-    share the columns; the numbers do not depend on it.
+    Also returns the axes ``eta``, ``omega`` and ``F``.
     """
     etas = np.atleast_1d(np.asarray(eta, dtype=float))
     omegas = np.atleast_1d(np.asarray(omega, dtype=float))
@@ -126,26 +110,19 @@ def stability_map(eta, omega, F, r=R_DEFAULT, d=D_DEFAULT, n_threads=None,
     out = {"lambda_max": np.full(shape, math.nan), "cls": np.zeros(shape, np.int8),
            "dw_L": np.full(shape, math.nan), "symmetric": np.zeros(shape, bool)}
 
-    n_workers = min(n_threads, omegas.size)
-    blocks = [np.arange(k, omegas.size, n_workers) for k in range(n_workers)]
-    if n_workers <= 1:
-        blocks = [np.arange(omegas.size)]
-        results = [(blocks[0], _columns(etas, omegas, float(F), r, d,
-                                        progress=progress))]
+    def work(j):
+        _column(etas, float(omegas[j]), float(F), r, d, out, j)
+        return j
+
+    if n_threads == 1 or omegas.size <= 1:
+        for done, j in enumerate(range(omegas.size), 1):
+            work(j)
+            if progress:
+                progress(done, omegas.size)
     else:
-        results = []
-        ctx = multiprocessing.get_context("spawn")
-        with ProcessPoolExecutor(max_workers=n_workers, mp_context=ctx) as ex:
-            futs = {ex.submit(_columns, etas, omegas[b], float(F), r, d): b for b in blocks}
-            done = 0
-            for fut in as_completed(futs):
-                b = futs[fut]
-                results.append((b, fut.result()))
-                done += b.size
+        with ThreadPoolExecutor(max_workers=n_threads) as ex:
+            for done, _ in enumerate(ex.map(work, range(omegas.size)), 1):
                 if progress:
                     progress(done, omegas.size)
-    for b, res in results:
-        for k in out:
-            out[k][:, b] = res[k]
     out.update(eta=etas, omega=omegas, F=float(F))
     return out
