@@ -19,7 +19,8 @@ import numpy as np
 DIMS = ("eta", "omega", "F")
 
 #: sources that do not affect any computed number (CLI, reference RK solver, file layout)
-NON_COMPUTE_SOURCES = ("__main__.py", "cli.py", "reference.py", "io.py", "pipeline.py")
+NON_COMPUTE_SOURCES = ("__main__.py", "cli.py", "reference.py", "io.py", "pipeline.py",
+                       "plotting.py")
 
 
 class ConfigError(ValueError):

@@ -1,0 +1,71 @@
+# Figure inputs and targets (functions only: FIG_INPUTS, FIGURES, fig_out, all_figures,
+# all_targets). A figure takes its datasets by name from the config sections: grids, sweeps,
+# branches, stability maps and time histories named `figN` or `figN_<anything>` (see
+# docs/figures.md). A figure whose datasets are not all configured (e.g. a test config) is
+# not requested. Included by workflow/rules/figures.smk.
+
+
+def _named(section, prefix, folder):
+    return [f"{RES}/{folder}/{n}.nc" for n in sorted(section)
+            if n == prefix or n.startswith(f"{prefix}_")]
+
+
+def _measures(p):
+    return _named(GRIDS, p, "measures")
+
+
+def _sweeps(p):
+    return _named(SWEEPS, p, "sweeps")
+
+
+def _branches(p):
+    return _named(BRANCHES, p, "branches") if HAVE_CONTINUATION else []
+
+
+def _smaps(p):
+    return _named(SMAPS, p, "stability") if HAVE_STABILITY_MAP else []
+
+
+def _th(p):
+    return _named(THIST, p, "timehistories")
+
+
+# figure -> named inputs (lists of dataset files); every list must be non-empty
+FIG_INPUTS = {
+    "fig2": {"measures": _measures("fig2")},
+    "fig3": {"sweep": _sweeps("fig3")},
+    "fig4": {"th": _th("fig4")},
+    "fig5": {"th": _th("fig5")},
+    "fig6": {"sweep": _sweeps("fig3"), "branches": _branches("fig6")},
+    "fig7": {"measures": _measures("fig7")},
+    "fig8": {"measures": _measures("fig7")},
+    "fig9": {"th": _th("fig9")},
+    "fig10": {"th": _th("fig10")},
+    "fig11": {"measures": _measures("fig11"), "th": _th("fig11")},
+    "fig12": {"measures": _measures("fig12"), "stability": _smaps("fig16")},
+    "fig13": {"measures": _measures("fig12")},
+    "fig14": {"sweeps": _sweeps("fig14")},
+    "fig15": {"sweep": _sweeps("fig15"), "branches": _branches("fig15")},
+    "fig16": {"stability": _smaps("fig16")},
+}
+FIGURES = [f for f, ins in FIG_INPUTS.items() if all(ins.values())]
+_missing = [f for f in FIG_INPUTS if f not in FIGURES]
+if _missing and FIGURES:
+    print(f"vines pipeline: warning: figures {', '.join(_missing)} are not requested "
+          "(their datasets are not configured)", file=sys.stderr)
+
+
+def fig_out(name):
+    return {
+        "pdf": f"{RES}/figures/{name}.pdf",
+        "png": report(f"{RES}/figures/{name}.png", caption=f"../report/{name}.rst",
+                      category="Figures", labels={"figure": name}),
+    }
+
+
+def all_figures():
+    return [f"{RES}/figures/{f}.{ext}" for f in FIGURES for ext in ("pdf", "png")]
+
+
+def all_targets():
+    return all_datasets() + all_figures()

@@ -1,0 +1,14 @@
+"""Fig 10: time histories of the cavity ends z_m +- 1 (blue) and the ball z_b (red), phase
+portraits beside them, one row per point of timehistories.fig10."""
+import _common
+
+from vines import plotting as P
+
+
+def main(sm):
+    ds = P.timehistory(sm.input.th[0])
+    fig = P.time_history_figure(ds)
+    P.save(fig, sm.output.pdf, sm.output.png)
+
+
+_common.run(snakemake, main)  # noqa: F821  (injected by Snakemake)

@@ -1,0 +1,17 @@
+"""Fig 15: zoomed bifurcation diagrams (black dots, sweep fig15) with the analytic 1:1
+branch (red, solid stable, dotted unstable) and |lambda| vs eta with the |lambda| = 1 line;
+one row per branch fig15_* (F = 0.3077, W = 0.9 and 1.1)."""
+import _common
+
+from vines import plotting as P
+
+
+def main(sm):
+    sw = P.sweep(sm.input.sweep[0])
+    brs = sorted((P.branch(p) for p in sm.input.branches),
+                 key=lambda b: float(b["omega"][0]))
+    fig = P.zoom_figure(sw, brs, outer_dim=sw.attrs.get("outer_parameter", "omega"))
+    P.save(fig, sm.output.pdf, sm.output.png, dpi=200)
+
+
+_common.run(snakemake, main)  # noqa: F821  (injected by Snakemake)

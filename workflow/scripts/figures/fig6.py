@@ -1,0 +1,16 @@
+"""Fig 6: zoom of Fig 3 (numerical impacts, black dots) with the analytic 1:1 branch (red,
+solid stable, dotted unstable) and |lambda| of J_P2 J_P1 vs eta with the |lambda| = 1 line;
+one row per branch fig6_* (F = 0.05, 0.1 at W = 1)."""
+import _common
+
+from vines import plotting as P
+
+
+def main(sm):
+    sw = P.sweep(sm.input.sweep[0])
+    brs = sorted((P.branch(p) for p in sm.input.branches), key=lambda b: float(b["F"][0]))
+    fig = P.zoom_figure(sw, brs, outer_dim=sw.attrs.get("outer_parameter", "F"))
+    P.save(fig, sm.output.pdf, sm.output.png, dpi=200)
+
+
+_common.run(snakemake, main)  # noqa: F821  (injected by Snakemake)
