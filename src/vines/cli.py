@@ -69,18 +69,25 @@ def _add_value(parser: VinesArgumentParser, flag: str, allowed: str, help: str, 
     parser.add_argument(flag, metavar=metavar, help=f"{help} [{allowed}]", **kwargs)
 
 
-def _add_model_args(parser: VinesArgumentParser, *, phi: bool = False):
-    """The model parameters eta, omega, F (required) and r, d (and phi) (optional)."""
-    req = parser.add_argument_group("model parameters (required)")
+def _add_model_args(parser: VinesArgumentParser, *, phi: bool = False,
+                    optional_group: str | None = None):
+    """The model parameters eta, omega, F (required) and r, d (and phi) (optional).
+
+    With ``optional_group`` (a group title) eta, omega and F default to None and are listed
+    with r and d in that group; the command then checks which ones it needs.
+    """
+    required = optional_group is None
+    req = parser.add_argument_group(optional_group or "model parameters (required)")
     for flag, allowed, help in (
         ("--eta", "a number > 0", "ball-to-LO mass ratio m/M"),
         ("--omega", "a number > 0", "forcing frequency ratio W = w/w0"),
         ("--F", "a number >= 0", "forcing amplitude A/L"),
     ):
         parser.allowed_values[flag] = allowed
-        req.add_argument(flag, metavar=flag.lstrip("-").upper(), required=True,
-                         help=f"{help} [{allowed}]")
-    opt = parser.add_argument_group("model parameters (optional)")
+        kw = {"required": True} if required else {"default": None}
+        req.add_argument(flag, metavar=flag.lstrip("-").upper(), help=f"{help} [{allowed}]",
+                         **kw)
+    opt = parser.add_argument_group("model parameters (optional)") if required else req
     parser.allowed_values["--r"] = "a number in [0, 1]"
     opt.add_argument("--r", metavar="R", default=R_DEFAULT,
                      help=f"coefficient of restitution [0 <= r <= 1; default {R_DEFAULT:g}]")
@@ -292,21 +299,7 @@ def _add_continue(subparsers) -> VinesArgumentParser:
     p.allowed_values["--step"] = "a number > 0"
     p.add_argument("--step", metavar="H", default=None,
                    help="parameter step [> 0; default (stop - start)/100]")
-    grp = p.add_argument_group("model parameters (the two not continued are required)")
-    for flag, allowed, help in (
-        ("--eta", "a number > 0", "ball-to-LO mass ratio m/M"),
-        ("--omega", "a number > 0", "forcing frequency ratio W = w/w0"),
-        ("--F", "a number >= 0", "forcing amplitude A/L"),
-    ):
-        p.allowed_values[flag] = allowed
-        grp.add_argument(flag, metavar=flag.lstrip("-").upper(), default=None,
-                         help=f"{help} [{allowed}]")
-    p.allowed_values["--r"] = "a number in [0, 1]"
-    grp.add_argument("--r", metavar="R", default=R_DEFAULT,
-                     help=f"coefficient of restitution [0 <= r <= 1; default {R_DEFAULT:g}]")
-    p.allowed_values["--d"] = "a number >= 0"
-    grp.add_argument("--d", metavar="D", default=D_DEFAULT,
-                     help=f"LO damping c/(M w0) [>= 0; default {D_DEFAULT:.6f}]")
+    _add_model_args(p, optional_group="model parameters (the two not continued are required)")
     p.add_argument("--json", action="store_true",
                    help="print one JSON object on stdout (keys: branch, events)")
     p.set_defaults(handler=_cmd_continue, _parser=p)
