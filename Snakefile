@@ -15,6 +15,7 @@ include: "workflow/rules/measures.smk"
 include: "workflow/rules/sweeps.smk"
 include: "workflow/rules/maps.smk"
 include: "workflow/rules/timehistory.smk"
+include: "workflow/rules/workprecision.smk"
 include: "workflow/rules/figures.smk"
 
 

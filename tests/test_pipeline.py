@@ -66,6 +66,10 @@ def test_config_files_validate_and_fill_defaults():
                       "sections": {"eta": [0.15]}}}}, "grids.g.sections.eta"),
     ({"simulation": {"t_end": 100.0, "t_transient": 200.0}}, "simulation.t_transient"),
     ({"unknown_key": 1}, "<top level>"),
+    ({"work_precision": {"cases": {"c": {"eta": 0.1, "omega": 1.0, "F": 0.1, "t_end": 50.0,
+                                         "t_transient": 60.0}}}},
+     "work_precision.cases.c.t_transient"),
+    ({"work_precision": {"rk_methods": ["Euler"]}}, "work_precision.rk_methods.0"),
 ])
 def test_config_error_names_the_key(patch, key):
     with pytest.raises(ConfigError) as ei:

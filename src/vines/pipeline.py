@@ -21,6 +21,9 @@ DIMS = ("eta", "omega", "F")
 #: sources that do not affect any computed number (CLI, reference RK solver, file layout)
 NON_COMPUTE_SOURCES = ("__main__.py", "cli.py", "reference.py", "io.py", "pipeline.py",
                        "plotting.py")
+#: sources used only by the solver studies (work-precision, convergence): their code version
+#: also covers reference.py, and the study stages' own changes rerun nothing else
+STUDY_SOURCES = ("hiprec.py", "workprecision.py", "convergence.py")
 
 
 class ConfigError(ValueError):
@@ -89,6 +92,10 @@ def validate_config(config: dict, schema: dict) -> dict:
         need = set(DIMS) - {br["param"]}
         if set(br["fixed"]) != need:
             raise ConfigError(f"branches.{name}.fixed", f"must give exactly {sorted(need)}")
+    for name, case in config["work_precision"]["cases"].items():
+        if case["t_transient"] >= case["t_end"]:
+            raise ConfigError(f"work_precision.cases.{name}.t_transient",
+                              f"{case['t_transient']} must be < t_end = {case['t_end']}")
     for name, sm in config["stability_maps"].items():
         axis_values(sm["eta"], key=f"stability_maps.{name}.eta")
         axis_values(sm["omega"], key=f"stability_maps.{name}.omega")

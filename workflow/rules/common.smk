@@ -12,8 +12,8 @@ if os.path.isdir(os.path.join(_SRC, "vines")):
     sys.path.insert(0, _SRC)
 
 from vines.params import D_DEFAULT
-from vines.pipeline import (ConfigError, chunk_map, code_version, grid_axes, load_schema,
-                            validate_config)
+from vines.pipeline import (NON_COMPUTE_SOURCES, STUDY_SOURCES, ConfigError, chunk_map,
+                            code_version, grid_axes, load_schema, validate_config)
 
 try:
     validate_config(config, load_schema(workflow.source_path("../schemas/config.schema.yaml")))
@@ -28,7 +28,9 @@ MODEL = {"r": config["model"]["r"],
 SIMULATION = dict(config["simulation"])
 # sha256 of the vines sources used by the computations: a param of every compute rule, so
 # a change of the numerics reruns them (Snakemake does not track imported modules).
-CODE = code_version()
+CODE = code_version(exclude=NON_COMPUTE_SOURCES + STUDY_SOURCES)
+# the solver studies (work-precision, convergence) also use the RK reference and hiprec
+CODE_STUDY = code_version(exclude=tuple(set(NON_COMPUTE_SOURCES) - {"reference.py"}))
 
 GRIDS = config["grids"]
 AXES = {name: grid_axes(g, key=f"grids.{name}") for name, g in GRIDS.items()}
@@ -37,6 +39,8 @@ SWEEPS = config["sweeps"]
 BRANCHES = config["branches"]
 SMAPS = config["stability_maps"]
 THIST = config["timehistories"]
+WPREC = config["work_precision"]
+WPREC_SETTINGS = {k: v for k, v in WPREC.items() if k != "cases"}
 
 
 def _have(module):
@@ -79,4 +83,5 @@ def all_datasets():
     if HAVE_STABILITY_MAP:
         out += [f"{RES}/stability/{m}.nc" for m in SMAPS]
     out += [f"{RES}/timehistories/{t}.nc" for t in THIST]
+    out += [f"{RES}/workprecision/{c}.nc" for c in WPREC["cases"]]
     return out

@@ -47,6 +47,8 @@ FIG_INPUTS = {
     "fig14": {"sweeps": _sweeps("fig14")},
     "fig15": {"sweep": _sweeps("fig15"), "branches": _branches("fig15")},
     "fig16": {"stability": _smaps("fig16")},
+    # beyond the paper: the solver studies
+    "workprecision": {"cases": [f"{RES}/workprecision/{c}.nc" for c in WPREC["cases"]]},
 }
 FIGURES = [f for f, ins in FIG_INPUTS.items() if all(ins.values())]
 _missing = [f for f in FIG_INPUTS if f not in FIGURES]

@@ -208,3 +208,16 @@ rule fig16:
         "../envs/vines.yaml"
     script:
         "../scripts/figures/fig16.py"
+
+
+rule fig_workprecision:
+    input:
+        **FIG_INPUTS["workprecision"],
+    output:
+        **fig_out("workprecision"),
+    log:
+        f"{RES}/logs/figures/workprecision.log",
+    conda:
+        "../envs/vines.yaml"
+    script:
+        "../scripts/figures/workprecision.py"

@@ -1,0 +1,159 @@
+"""Work-precision study: error against cost of the exact solver and of the RK solvers.
+
+Every run of one case (a parameter point and a horizon [0, t_end], window
+[t_transient, t_end]) is compared with the high-precision reference of ``vines.hiprec``:
+
+* impact-time error: max |t_i - t_i_ref| over the *visible* impacts (pre-impact relative
+  speed |w'-| >= v_visible, default 1e-3), which must come in the same order on the same
+  walls (``sequence_ok``); the micro-bounces of a chatter cascade are left out because how
+  many of them a run resolves is set by v_stick, not by the solver's accuracy;
+* KE-ratio error and x_max error: absolute differences of the window measures;
+* cost: wall-clock seconds per run (best of several timed rounds, each long enough to
+  measure) and impacts per second.
+
+Knobs: the exact solver's ``root_tol`` (at the case's v_stick) and ``v_stick`` (the chatter
+threshold, a model knob: these runs are compared with a reference at ``v_stick_reference``,
+the accumulation limit), the RK solvers' ``rtol`` (atol = rtol * 1e-2) for each method.
+"""
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+import xarray as xr
+
+from .hiprec import DPS_DEFAULT, H_SAMPLE_DEFAULT, V_STICK_REFERENCE, reference_run
+from .params import (D_DEFAULT, R_DEFAULT, ROOT_TOL_DEFAULT, V_STICK_DEFAULT, ModelParams,
+                     ParameterError, SolverSettings)
+from .simulation import RK_METHODS, simulate
+
+V_VISIBLE_DEFAULT = 1e-3
+
+
+def timed(fn, min_time: float = 0.05, rounds: int = 3, max_calls: int = 10_000):
+    """Best wall-clock seconds per call of ``fn()`` and its (last) result.
+
+    A call slower than ``min_time`` is timed once; faster ones are repeated in ``rounds``
+    rounds of about ``min_time`` seconds each and the best round's mean is returned (the one
+    least disturbed by other load on the machine).
+    """
+    t0 = time.perf_counter()
+    out = fn()
+    best = time.perf_counter() - t0
+    if best >= min_time:
+        return best, out
+    n = max(1, min(max_calls, math.ceil(min_time / max(best, 1e-9))))
+    for _ in range(rounds):
+        t0 = time.perf_counter()
+        for _ in range(n):
+            out = fn()
+        best = min(best, (time.perf_counter() - t0) / n)
+    return best, out
+
+
+def visible(impacts: np.ndarray, v_visible: float) -> np.ndarray:
+    """Impacts whose pre-impact relative speed |w'-| is at least v_visible."""
+    return impacts[np.abs(impacts["v_m"] - impacts["v_b"]) >= v_visible]
+
+
+def errors(res, ref, v_visible: float = V_VISIBLE_DEFAULT) -> dict:
+    """Errors of a SimulationResult against a hiprec.Reference (see module docstring)."""
+    a, b = visible(res.impacts, v_visible), visible(ref.impacts, v_visible)
+    ok = (res.status == "ok" and a.size == b.size
+          and bool(np.array_equal(a["wall"], b["wall"])))
+    t_err = float(np.max(np.abs(a["t"] - b["t"]))) if ok and a.size else math.nan
+    finite = res.status == "ok"
+    return dict(t_error=t_err, sequence_ok=ok, n_visible=int(a.size),
+                ke_error=abs(res.ke_ratio - ref.ke_ratio) if finite else math.nan,
+                xmax_error=abs(res.xmax - ref.xmax) if finite else math.nan)
+
+
+RUN_FIELDS = {
+    # name: (long_name, units)
+    "solver": ("solver", ""),
+    "method": ("method (exact: closed-form event kernel; else scipy solve_ivp)", ""),
+    "knob": ("accuracy setting varied in this run", ""),
+    "tolerance": ("value of the varied setting (root_tol, v_stick or rtol)", "1"),
+    "v_stick": ("sticking threshold of the run", "1"),
+    "t_error": ("max |impact time - reference| over visible impacts (NaN: sequence differs)", "1"),
+    "ke_error": ("|KE ratio - reference|", "1"),
+    "xmax_error": ("|x_max - reference| (dimensionless, units of L)", "1"),
+    "seconds": ("wall-clock time per run", "s"),
+    "impacts_per_second": ("impacts simulated per second of wall-clock time", "s-1"),
+    "n_impacts": ("impacts in the run", "1"),
+    "n_visible": ("visible impacts compared (|w'-| >= v_visible)", "1"),
+    "sequence_ok": ("visible impacts in the reference's order on the same walls", "1"),
+    "status": ("solver status", ""),
+}
+
+
+def work_precision(eta, omega, F, *, t_end, t_transient, r=R_DEFAULT, d=D_DEFAULT,
+                   v_stick=V_STICK_DEFAULT, root_tols=(ROOT_TOL_DEFAULT,), v_sticks=(),
+                   rk_methods=("RK45", "DOP853", "LSODA"), rtols=(1e-4, 1e-6, 1e-8, 1e-10, 1e-12),
+                   v_stick_reference=V_STICK_REFERENCE, dps=DPS_DEFAULT,
+                   h_sample=H_SAMPLE_DEFAULT, v_visible=V_VISIBLE_DEFAULT, min_time=0.05,
+                   max_impacts=200_000, progress=None) -> xr.Dataset:
+    """Error and cost of every solver setting on one case; a Dataset over dimension ``run``.
+
+    Times are dimensionless (t = w0 t_dim), the run starts from rest at t = 0. ``progress``
+    (a callable taking a line of text) reports each run as it finishes.
+    """
+    p = ModelParams(eta=eta, omega=omega, F=F, r=r, d=d)
+    st = SolverSettings(t_end=t_end, t_transient=t_transient, v_stick=v_stick,
+                        max_impacts=max_impacts)
+    for m in rk_methods:
+        if m not in RK_METHODS:
+            raise ParameterError("rk_methods", m, f"must be among {', '.join(RK_METHODS)}")
+    say = progress or (lambda line: None)
+    simulate(eta, omega, F, t_end=1.0, t_transient=0.0)   # load the compiled kernel first
+    t0 = time.perf_counter()
+    ref = reference_run(p, st, dps=dps, h_sample=h_sample)
+    say(f"reference (v_stick {v_stick:g}): {ref.impacts.size} impacts, "
+        f"{time.perf_counter() - t0:.1f} s")
+    ref_limit = None
+    if len(v_sticks):
+        t0 = time.perf_counter()
+        ref_limit = reference_run(p, st, dps=dps, h_sample=h_sample, v_stick=v_stick_reference)
+        say(f"reference (v_stick {v_stick_reference:g}): {ref_limit.impacts.size} impacts, "
+            f"{time.perf_counter() - t0:.1f} s")
+
+    base = dict(eta=eta, omega=omega, F=F, r=r, d=d, t_end=t_end, t_transient=t_transient,
+                max_impacts=max_impacts)
+    plan = [("exact", "exact", "root_tol", tol, v_stick, ref,
+             dict(root_tol=tol, v_stick=v_stick)) for tol in root_tols]
+    plan += [("exact", "exact", "v_stick", vs, vs, ref_limit, dict(v_stick=vs))
+             for vs in v_sticks]
+    plan += [("rk", m, "rtol", tol, v_stick, ref,
+              dict(solver="rk", method=m, rtol=tol, v_stick=v_stick))
+             for m in rk_methods for tol in rtols]
+    rows = []
+    for solver, method, knob, tol, vs, reference, kw in plan:
+        sec, res = timed(lambda: simulate(**base, **kw), min_time=min_time)
+        e = errors(res, reference, v_visible)
+        rows.append(dict(solver=solver, method=method, knob=knob, tolerance=float(tol),
+                         v_stick=float(vs), seconds=sec,
+                         impacts_per_second=res.n_impacts / sec, n_impacts=res.n_impacts,
+                         status=res.status, **e))
+        say(f"{method:7s} {knob}={tol:.0e}: t_error {e['t_error']:.2e}, "
+            f"ke_error {e['ke_error']:.2e}, {sec:.3g} s, status {res.status}")
+    data = {k: ("run", [row[k] for row in rows],
+                {"long_name": ln, "units": u}) for k, (ln, u) in RUN_FIELDS.items()}
+    data["sequence_ok"] = ("run", np.array([row["sequence_ok"] for row in rows], dtype=np.int8),
+                           {"long_name": RUN_FIELDS["sequence_ok"][0], "units": "1",
+                            "flag_values": [0, 1], "flag_meanings": "differs same"})
+    attrs = {
+        "case_eta": eta, "case_omega": omega, "case_F": F, "case_r": r, "case_d": d,
+        "t_end": t_end, "t_transient": t_transient, "v_visible": v_visible,
+        "reference": f"vines.hiprec at {dps} digits, sampling step {h_sample}",
+        "reference_v_stick": v_stick, "reference_n_impacts": int(ref.impacts.size),
+        "reference_ke_ratio": ref.ke_ratio, "reference_xmax": ref.xmax,
+        "reference_n_sticks": len(ref.sticks),
+        "comment": "seconds are wall-clock measurements: they vary from run to run",
+    }
+    if ref_limit is not None:
+        attrs.update(reference_limit_v_stick=v_stick_reference,
+                     reference_limit_n_impacts=int(ref_limit.impacts.size),
+                     reference_limit_ke_ratio=ref_limit.ke_ratio,
+                     reference_limit_xmax=ref_limit.xmax)
+    return xr.Dataset(data, attrs=attrs)

@@ -1,0 +1,79 @@
+"""Work-precision: error against cost per run for the exact solver and the RK solvers, one
+row per case (workprecision/<case>.nc), columns impact times, KE ratio, x_max."""
+import _common
+import numpy as np
+
+from vines import plotting as P
+
+FLOOR = 1e-16          # errors below (exact agreement in double precision) drawn here
+STYLE = {"exact": dict(color="k", marker="o"), "RK45": dict(color="tab:blue", marker="s"),
+         "DOP853": dict(color="tab:red", marker="^"), "LSODA": dict(color="tab:green", marker="v"),
+         "Radau": dict(color="tab:purple", marker="x")}
+COLUMNS = (("t_error", "max error of impact times"), ("ke_error", "error of KE ratio"),
+           ("xmax_error", r"error of $x_m^{\max}$ (units of $L$)"))
+VARS = ("method", "knob", "tolerance", "seconds", "sequence_ok", "t_error", "ke_error",
+        "xmax_error", "impacts_per_second")
+
+
+def _series(ds):
+    """(label, style, rows) per method and knob, rows sorted by tolerance (loose first)."""
+    out = []
+    for method in dict.fromkeys(ds["method"].values.tolist()):
+        for knob in dict.fromkeys(ds["knob"].values[ds["method"].values == method].tolist()):
+            idx = np.nonzero((ds["method"].values == method) & (ds["knob"].values == knob))[0]
+            idx = idx[np.argsort(-ds["tolerance"].values[idx])]
+            style = dict(STYLE.get(method, dict(color="0.4", marker=".")))
+            label = f"{method} ({knob})"
+            if knob == "v_stick":
+                style.update(color="0.55", marker="D")
+            out.append((label, style, idx))
+    return out
+
+
+def _summary(ds):
+    m, sec, te = ds["method"].values, ds["seconds"].values, ds["t_error"].values
+    ex = (m == "exact") & (ds["knob"].values == "root_tol") & np.isfinite(te)
+    dop = (m == "DOP853") & np.isfinite(te)
+    if not ex.any() or not dop.any():
+        return ""
+    i = np.nonzero(ex)[0][np.argmin(te[ex])]
+    j = np.nonzero(dop)[0][np.argmin(te[dop])]
+    return (f"exact: {te[i]:.1e} in {sec[i] * 1e3:.2g} ms; DOP853 best: {te[j]:.1e} in "
+            f"{sec[j] * 1e3:.3g} ms ({sec[j] / sec[i]:.0f}x the cost)")
+
+
+def main(sm):
+    cases = [P.load(p) for p in sm.input.cases]
+    for ds in cases:
+        P.require(ds, variables=VARS, finite=("seconds",))
+    fig, axes = P.figure(len(cases), 3, width=13.5, height=3.4 * len(cases))
+    for row, ds in enumerate(cases):
+        ok = ds["sequence_ok"].values.astype(bool)
+        sec = ds["seconds"].values
+        for col, (var, ylabel) in enumerate(COLUMNS):
+            ax = axes[row, col]
+            err = np.maximum(np.nan_to_num(ds[var].values, nan=np.inf), FLOOR)
+            top = 10.0 ** np.ceil(np.log10(max(np.max(err[np.isfinite(err)], initial=FLOOR), 1e-3)))
+            for label, style, idx in _series(ds):
+                y = np.where(np.isfinite(err[idx]), err[idx], top)
+                ax.plot(sec[idx], y, "-", lw=0.9, color=style["color"], label=label,
+                        marker=style["marker"], ms=4)
+                bad = idx[~ok[idx]] if var == "t_error" else idx[~np.isfinite(err[idx])]
+                if bad.size:
+                    ax.plot(sec[bad], np.full(bad.size, top), style["marker"], ms=7,
+                            mfc="none", color=style["color"])
+            ax.set_xscale("log")
+            ax.set_yscale("log")
+            ax.set_xlabel("wall-clock time per run (s)")
+            ax.set_ylabel(ylabel)
+            ax.grid(True, which="major", lw=0.3, color="0.85")
+            a = ds.attrs
+            title = (rf"$\eta$ = {P.fmt(a['case_eta'])}, $\Omega$ = {P.fmt(a['case_omega'])}, "
+                     rf"$F$ = {P.fmt(a['case_F'])}, $t \in$ [0, {P.fmt(a['t_end'])}]")
+            P.panel_label(ax, row * 3 + col, title if col == 0 else None)
+        axes[row, 1].set_title(_summary(ds), loc="right", fontsize=6.5)
+    axes[0, 2].legend(fontsize=6.5, loc="upper right")
+    P.save(fig, sm.output.pdf, sm.output.png)
+
+
+_common.run(snakemake, main)  # noqa: F821  (injected by Snakemake)
