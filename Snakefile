@@ -16,6 +16,7 @@ include: "workflow/rules/sweeps.smk"
 include: "workflow/rules/maps.smk"
 include: "workflow/rules/timehistory.smk"
 include: "workflow/rules/workprecision.smk"
+include: "workflow/rules/convergence.smk"
 include: "workflow/rules/figures.smk"
 
 

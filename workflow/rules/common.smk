@@ -41,6 +41,7 @@ SMAPS = config["stability_maps"]
 THIST = config["timehistories"]
 WPREC = config["work_precision"]
 WPREC_SETTINGS = {k: v for k, v in WPREC.items() if k != "cases"}
+CONV = config["convergence"]
 
 
 def _have(module):
@@ -84,4 +85,5 @@ def all_datasets():
         out += [f"{RES}/stability/{m}.nc" for m in SMAPS]
     out += [f"{RES}/timehistories/{t}.nc" for t in THIST]
     out += [f"{RES}/workprecision/{c}.nc" for c in WPREC["cases"]]
+    out += [f"{RES}/convergence/{s}.nc" for s in CONV]
     return out

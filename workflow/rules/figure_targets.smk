@@ -49,6 +49,8 @@ FIG_INPUTS = {
     "fig16": {"stability": _smaps("fig16")},
     # beyond the paper: the solver studies
     "workprecision": {"cases": [f"{RES}/workprecision/{c}.nc" for c in WPREC["cases"]]},
+    "convergence": {s: f"{RES}/convergence/{s}.nc" if s in CONV else ""
+                    for s in ("window", "vstick", "grid")},
 }
 FIGURES = [f for f, ins in FIG_INPUTS.items() if all(ins.values())]
 _missing = [f for f in FIG_INPUTS if f not in FIGURES]

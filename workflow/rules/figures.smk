@@ -221,3 +221,16 @@ rule fig_workprecision:
         "../envs/vines.yaml"
     script:
         "../scripts/figures/workprecision.py"
+
+
+rule fig_convergence:
+    input:
+        **FIG_INPUTS["convergence"],
+    output:
+        **fig_out("convergence"),
+    log:
+        f"{RES}/logs/figures/convergence.log",
+    conda:
+        "../envs/vines.yaml"
+    script:
+        "../scripts/figures/convergence.py"

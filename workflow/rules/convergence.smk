@@ -1,0 +1,22 @@
+# convergence: measures against run length and window, against v_stick, and a KE-ratio
+# contour against grid resolution (vines.convergence), one job per study of the
+# `convergence` section; the setting under test is the `simulation` section.
+
+
+rule convergence:
+    output:
+        f"{RES}/convergence/{{study}}.nc",
+    wildcard_constraints:
+        study="window|vstick|grid",
+    params:
+        spec=lambda w: CONV[w.study],
+        model=MODEL,
+        simulation=SIMULATION,
+        code=CODE_STUDY,
+    threads: config["threads"]
+    conda:
+        "../envs/vines.yaml"
+    log:
+        f"{RES}/logs/convergence/{{study}}.log",
+    script:
+        "../scripts/convergence.py"
