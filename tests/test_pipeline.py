@@ -184,8 +184,11 @@ def test_dataset_round_trip_cf_attrs_and_byte_identical_rewrite(tmp_path):
     assert enc.get("zlib") and enc.get("chunksizes")
     for k in BATCH_FIELDS:
         np.testing.assert_array_equal(back[k].values, ds[k].values)
-    # no temp file left behind
+    # no temp file left behind; permissions of an ordinary new file (umask), not mkstemp's 0600
     assert sorted(p.name for p in tmp_path.iterdir()) == ["a.nc", "c.nc", "sub"]
+    mask = os.umask(0)
+    os.umask(mask)
+    assert p1.stat().st_mode & 0o777 == 0o666 & ~mask
 
 
 def test_write_refuses_variables_without_units(tmp_path):

@@ -153,6 +153,13 @@ def default_encoding(ds: xr.Dataset, complevel: int = 4) -> dict:
     return enc
 
 
+def new_file_mode() -> int:
+    """Permission bits of a newly created file under the current umask (mkstemp uses 0600)."""
+    mask = os.umask(0)
+    os.umask(mask)
+    return 0o666 & ~mask
+
+
 def write_dataset(ds: xr.Dataset, path, encoding: dict | None = None) -> Path:
     """Write ``ds`` to NetCDF-4 at ``path`` atomically (temp file + os.replace, same dir)."""
     path = Path(path)
@@ -165,6 +172,7 @@ def write_dataset(ds: xr.Dataset, path, encoding: dict | None = None) -> Path:
         enc.setdefault(k, {}).update(v)
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
     os.close(fd)
+    os.chmod(tmp, new_file_mode())
     try:
         ds.to_netcdf(tmp, format="NETCDF4", engine="netcdf4", encoding=enc)
         os.replace(tmp, path)

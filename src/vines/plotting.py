@@ -20,6 +20,7 @@ import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
 from matplotlib.ticker import MaxNLocator  # noqa: E402
 
+from .io import new_file_mode  # noqa: E402
 from .params import L_HALF_M  # noqa: E402
 
 #: axis labels (symbols and units)
@@ -384,6 +385,7 @@ def save(fig, pdf, png, dpi=150):
         fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=path.suffix,
                                    dir=path.parent)
         os.close(fd)
+        os.chmod(tmp, new_file_mode())
         try:
             fig.savefig(tmp, format=path.suffix.lstrip("."), **kw)
             os.replace(tmp, path)
