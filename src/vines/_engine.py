@@ -10,21 +10,31 @@ First-contact rule (cannot miss a crossing, grazing included). Between impacts
 w = z_m - z_b has w'' = z_m'', and |z_m''| <= B2 on [s, s + h_cap] by the energy bound of
 ``vines.flow``. From a point with gap g = 1 - w (wall L) or 1 + w (wall R) >= 0 and closing
 speed c toward that wall, the wall cannot be reached before
-        h = 2 g / (c + sqrt(c^2 + 2 B2 g))      (root of c h + B2 h^2 / 2 = g),
+        h = 2 g / (c + sqrt(c^2 + 2 B2 g))      (root of c h + B2 h^2 / 2 = g;
+                                                 (sqrt(...) - c)/B2 when c <= 0),
 so each step goes to the smaller of the two walls' h (and at most h_cap = 1/rate). The
 iteration approaches a transversal contact quadratically and a grazing one geometrically,
-and can never step over a wall. Contact is declared when c > 0 and g <= root_tol, and either
-g is at round-off level or the crossing is transversal (c^2 >= 2 B2 g); one Newton step
-s += g/c then places the impact (error <= g/4). Near-grazing approaches keep stepping
-conservatively (geometric convergence) instead of taking a long, unsafe Newton step.
+and can never step over a wall. Contact is declared when c > 0 and g <= max(root_tol, floor),
+and either g <= floor or the crossing is transversal (c^2 >= 2 B2 g); one Newton step
+s += g/c then places the impact (error <= g/4). ``floor`` is the resolution of the computed
+gap: a few ulps of |z_m|, |z_b| and of the parts of the closed form (homogeneous and
+particular amplitudes, which can be far larger than z_m itself: F = 20 at resonance), plus
+the change of the gap over a few ulps of the local time (c ulp(s)). Without it a root_tol
+below the round-off of w could never be met and the step would shrink below ulp(s) (a
+"stalled" run). Near-grazing approaches keep stepping conservatively (geometric
+convergence) instead of taking a long, unsafe Newton step.
 After an impact the ball sticks when |w'+| <= max(v_stick, v_floor), where v_floor is the
-speed of a bounce only a few round-off units high (such bounces cannot be resolved), and
+speed of a bounce only a few round-off units high (apex at least 4 x the floor above and
+16 ROUNDOFF (1 + |z_m| + |z_b|): such bounces cannot be resolved; v_floor is ~2e-7 at
+(eta, W, F) = (0.05, 1, 0.05), ~3e-6 in the chatter at (0.2, 0.9, 0.4) and ~1e-4 for F = 20
+at resonance, where |z_m| ~ 400 and the closed form's parts ~ 1700), and
 the relative acceleration presses the ball onto the wall. Leaving a wall with zero
 relative velocity (after sticking, or with r = 0) uses the first non-zero derivative of w
-(second or third) and a bound on the next one to take a first step that provably moves away.
+(second or third) and a bound on the next one to take a first step that provably moves away
+(not applied while approaching the wall faster than round-off: that is a contact).
 
 Release from sticking uses the same rule on the contact force, proportional to z_m'' of the
-stuck body (mass 1 + eta), with a bound on z_m''''.
+stuck body (mass 1 + eta), with a bound on z_m'''' (and the same kind of floor for z_m'').
 
 Maximum of |z_m|: on each step interval [a, b] the value cannot exceed
 max(|z(a)|, |z(b)|) + B2 (b - a)^2 / 8; only intervals where this beats the running
@@ -55,15 +65,31 @@ ROUNDOFF = 8.0 * 2.220446049250313e-16   # a few ulps: contact/release at this g
 
 
 @njit(cache=True, nogil=True)
+def _floor(osc, b1, n, s, x, rate):
+    """Resolution of a computed z^(n) of size |x| that changes at ``rate`` per unit time.
+
+    A few ulps of |x| and of the magnitudes of its homogeneous and particular parts
+    (``deriv_bound``), plus the change over a few ulps of the local time s.
+    """
+    return ROUNDOFF * (1.0 + abs(x) + deriv_bound(osc, b1, n, s) + abs(rate) * (1.0 + s))
+
+
+@njit(cache=True, nogil=True)
 def _safe_step(gap, closing, B):
-    """Largest h with gap - closing h - B h^2/2 >= 0 for all [0, h] (B > 0)."""
+    """Largest h with gap - closing h - B h^2/2 >= 0 for all [0, h] (B >= 0).
+
+    The root is taken in the form without cancellation: 2 g/(c + D) when closing (c > 0),
+    (D - c)/B when moving away (c <= 0), D = sqrt(c^2 + 2 B g). (2 g/(c + D) with c < 0
+    cancels when 2 B g << c^2: a gap of one ulp after an impact then gave a step up to 10%
+    too long, over the return to the same wall.)
+    """
     if gap < 0.0:
         gap = 0.0
-    den = closing + math.sqrt(closing * closing + 2.0 * B * gap)
-    if den > 0.0:
-        return 2.0 * gap / den
+    disc = math.sqrt(closing * closing + 2.0 * B * gap)
+    if closing > 0.0:
+        return 2.0 * gap / (closing + disc)
     if B > 0.0:
-        return -2.0 * closing / B
+        return (disc - closing) / B
     return math.inf if gap > 0.0 or closing < 0.0 else 0.0
 
 
@@ -143,8 +169,11 @@ def _interval_max(osc, x0, v0, sth0, cth0, sa, za, va, sb, zb, vb, B2, m):
 
 
 @njit(cache=True, nogil=True)
-def free_step(osc, s, z, v, a, j, b1, zb0, vb0, h_cap, B2, root_tol, released):
+def free_step(osc, s, z, v, a, j, b1, zb0, vb0, h_cap, B2, tol_z, floor_v, floor_a, released):
     """Step that provably reaches neither wall in free flight (module docstring).
+
+    tol_z is the contact tolerance on the gap, floor_v and floor_a the resolution of the
+    computed relative velocity and acceleration (``_floor``).
 
     Returns (h, pressed): pressed = +1/-1 when the ball rests on that wall with no relative
     velocity while the relative acceleration presses it on (sticking), else 0.
@@ -157,9 +186,10 @@ def free_step(osc, s, z, v, a, j, b1, zb0, vb0, h_cap, B2, root_tol, released):
     gR = 1.0 + w
     hL = _safe_step(gL, wd, B2)
     hR = _safe_step(gR, -wd, B2)
-    # departure from a wall with (almost) zero relative velocity
-    if gL <= root_tol or gR <= root_tol:
-        sw = 1.0 if gL <= gR else -1.0
+    # departure from a wall with (almost) zero relative velocity; an approach faster than
+    # round-off is left to the contact test (it must neither be stepped over nor stick)
+    sw = 1.0 if gL <= gR else -1.0
+    if min(gL, gR) <= tol_z and sw * wd <= floor_v:
         acc_away = -sw * a
         jerk_away = -sw * j
         # -w' stays > 0 on (0, h0] by a Taylor bound of order 2 (acceleration away) or 3
@@ -167,9 +197,9 @@ def free_step(osc, s, z, v, a, j, b1, zb0, vb0, h_cap, B2, root_tol, released):
         h0 = 0.0
         if acc_away > 0.0:
             h0 = acc_away / deriv_bound(osc, b1, 3, s + h_cap)
-        if jerk_away > 0.0 and (released or acc_away >= -ROUNDOFF * (1.0 + abs(z) + abs(v))):
+        if jerk_away > 0.0 and (released or acc_away >= -floor_a):
             h0 = max(h0, jerk_away / deriv_bound(osc, b1, 4, s + h_cap))
-        if h0 == 0.0 and -sw * wd <= ROUNDOFF * (1.0 + abs(v) + abs(vb0)):
+        if h0 == 0.0 and sw * wd >= -floor_v:
             return 0.0, int(sw)
         if sw > 0.0:
             hL = max(hL, h0)
@@ -190,12 +220,17 @@ def free_step_local(osc, s, z, v, a, j, b1, zb0, vb0, h_cap, root_tol, released)
     """
     B2g = deriv_bound(osc, b1, 2, s + h_cap)
     B4 = deriv_bound(osc, b1, 4, s + h_cap)
+    zb = zb0 + vb0 * s
+    tol_z = max(root_tol, _floor(osc, b1, 0, s, abs(z) + abs(zb), v - vb0))
+    floor_v = _floor(osc, b1, 1, s, abs(v) + abs(vb0), a)
+    floor_a = _floor(osc, b1, 2, s, a, j)
     h_best = -1.0
     B_best = B2g
     H = h_cap
     for _ in range(3):
         B = min(B2g, abs(a) + abs(j) * H + 0.5 * B4 * H * H)
-        h, pressed = free_step(osc, s, z, v, a, j, b1, zb0, vb0, h_cap, B, root_tol, released)
+        h, pressed = free_step(osc, s, z, v, a, j, b1, zb0, vb0, h_cap, B, tol_z, floor_v,
+                               floor_a, released)
         if pressed != 0:
             return 0.0, pressed, B2g
         h = min(h, H)
@@ -207,11 +242,10 @@ def free_step_local(osc, s, z, v, a, j, b1, zb0, vb0, h_cap, root_tol, released)
 
 
 @njit(cache=True, nogil=True)
-def free_contact(z, v, zb, vb, B2, root_tol):
-    """(wall, gap, closing speed) when contact is accepted at this point, else wall = 0."""
+def free_contact(osc, s, z, v, b1, zb, vb, B2, root_tol):
+    """(wall, gap, closing speed) when contact is accepted at local time s, else wall = 0."""
     w = z - zb
     wd = v - vb
-    floor = ROUNDOFF * (1.0 + abs(z) + abs(zb))
     if wd > 0.0:
         gap = max(1.0 - w, 0.0)
         closing = wd
@@ -220,9 +254,10 @@ def free_contact(z, v, zb, vb, B2, root_tol):
         gap = max(1.0 + w, 0.0)
         closing = -wd
         wall = -1
+    floor = _floor(osc, b1, 0, s, abs(z) + abs(zb), closing)
     # a closing speed at round-off level is no impact (the departure rule handles it)
-    if closing > ROUNDOFF * (1.0 + abs(v) + abs(vb)) and gap <= root_tol and (
-            gap <= floor or closing * closing >= 2.0 * B2 * gap):
+    if closing > _floor(osc, b1, 1, s, abs(v) + abs(vb), 0.0) and gap <= max(root_tol, floor) \
+            and (gap <= floor or closing * closing >= 2.0 * B2 * gap):
         return wall, gap, closing
     return 0, gap, closing
 
@@ -251,7 +286,7 @@ def first_contact(osc, zm0, vm0, zb0, vb0, sth0, cth0, s_max, root_tol):
             break
         s = s + h
         z, v, a, j, b1 = flow(osc, zm0, vm0, sth0, cth0, s)
-        wall, gap, closing = free_contact(z, v, zb0 + vb0 * s, vb0, B2, root_tol)
+        wall, gap, closing = free_contact(osc, s, z, v, b1, zb0 + vb0 * s, vb0, B2, root_tol)
         if wall != 0:
             s = s + gap / closing
             z, v, a, j, b1 = flow(osc, zm0, vm0, sth0, cth0, s)
@@ -346,15 +381,16 @@ def run_kernel(osc_f, osc_s, eta, r, W, phi, t_end, t_tr, v_stick, root_tol, max
             s, z, v, a, j, b1 = s_new, z1, v1, a1, j1, b11
             acc[A_NEVAL] += 1.0
             if mode == 0:
-                wall, gap, closing = free_contact(z, v, zb0 + vb0 * s, vb0, B2, root_tol)
+                wall, gap, closing = free_contact(osc, s, z, v, b1, zb0 + vb0 * s, vb0, B2,
+                                                  root_tol)
                 if wall != 0:
                     event = 2
                     break
             else:
                 gap = mode * a
                 closing = -mode * j
-                floor = ROUNDOFF * (1.0 + abs(a))
-                if closing > 0.0 and gap <= root_tol and (
+                floor = _floor(osc, b1, 2, s, a, closing)
+                if closing > 0.0 and gap <= max(root_tol, floor) and (
                         gap <= floor or closing * closing >= 2.0 * B4s * gap):
                     event = 3
                     gap = max(gap, 0.0)
@@ -436,8 +472,14 @@ def run_kernel(osc_f, osc_s, eta, r, W, phi, t_end, t_tr, v_stick, root_tol, max
         mode_new = 0
         vc = (v + eta * vb_end) / one_eta
         g = forcing(osc_f, sth0, cth0, s) - osc_f[I_D] * vc - z    # free LO acceleration
-        # bounces lower than a few round-off units cannot be resolved: they count as sticking
-        v_floor = math.sqrt(32.0 * abs(g) * ROUNDOFF * (1.0 + abs(z) + abs(zb_imp)))
+        # bounces lower than a few round-off units of w cannot be resolved: they count as
+        # sticking. Apex v^2/(2|g|) >= 16 ulps-scale of |z|, |z_b| and >= 4 contact floors,
+        # whose round-off includes the parts of the closed form of the next flight (b1
+        # changes by at most |v_m+ - v_m-| at the impact).
+        zscale = 1.0 + abs(z) + abs(zb_imp)
+        zparts = deriv_bound(osc_f, b1 + abs(vm_p - v), 0, 0.0)
+        v_floor = math.sqrt(2.0 * abs(g) * ROUNDOFF * max(16.0 * zscale,
+                                                          4.0 * (zscale + zparts)))
         if abs(vm_p - vb_p) <= max(v_stick, v_floor):
             if wall * g > 0.0:
                 mode_new = wall

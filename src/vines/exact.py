@@ -7,12 +7,17 @@ import numpy as np
 
 from . import _engine as eng
 from .flow import make_osc
-from .params import ModelParams, SolverSettings
+from .params import ModelParams, SolverSettings, check_conditioning
 from .result import IMPACT_DTYPE, RawRun
 
 
 def oscillators(p: ModelParams) -> tuple[np.ndarray, np.ndarray]:
-    """Packed oscillators of the free LO (mass 1) and the stuck body (mass 1 + eta)."""
+    """Packed oscillators of the free LO (mass 1) and the stuck body (mass 1 + eta).
+
+    Raises ParameterError for near-resonant points the closed form cannot resolve
+    (``params.check_conditioning``).
+    """
+    check_conditioning(p.eta, p.omega, p.F, p.d)
     return make_osc(1.0, p.d, p.omega, p.F), make_osc(1.0 + p.eta, p.d, p.omega, p.F)
 
 

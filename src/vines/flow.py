@@ -12,13 +12,21 @@ The solution is z(s) = z_p(s) + x_h C(s) + v_h S(s) with the fundamental solutio
 the homogeneous equation (C(0)=1, C'(0)=0, S(0)=0, S'(0)=1) and x_h, v_h the initial
 homogeneous parts. Every damping regime is covered by one expression (kappa = 1/m - sigma^2,
 sigma = d/(2m)): underdamped (kappa > 0), critically damped (kappa = 0) and overdamped
-(kappa < 0), and the undamped resonance d = 0, m W^2 = 1 with its secular particular solution
-z_p = A s cos(theta), A = -F/(2 m W).
+(kappa < 0), and the undamped resonance d = 0, m W^2 = 1 (to within RESONANCE_SNAP) with its
+secular particular solution z_p = A s cos(theta), A = -F/(2 m W).
 
 Bounds used by the event search: the homogeneous energy E_h = (z_h'^2 + z_h^2/m)/2 never
 increases (d >= 0), so for every later time |z_h'| <= b1 = sqrt(2 E_h), |z_h| <= b1/omega and
 |z_h^(n)| <= b_n with b_n = 2 sigma b_(n-1) + omega^2 b_(n-2); the particular part adds
 P W^n (P its amplitude), or the secular growth in the resonant case.
+
+Undamped and near resonance (d = 0, 1 < |1 - m W^2|/RESONANCE_SNAP, gain 1/|1 - m W^2| >
+NRES_GAIN) z_p and z_h are both ~F/|1 - m W^2| and cancel: there the flow is written instead
+as z = x0 C + v0 S + R(s) with the zero-initial-condition response
+    R(s) = K [2 sin(th0) sin(Sg s/2) Q(s) + cos(th0) (sin(om s)/om - 2 cos(Sg s/2) Q(s))],
+K = F/(m Sg), Sg = om + W, Dl = om - W, Q(s) = sin(Dl s/2)/Dl (-> s/2 as Dl -> 0), which has
+no cancellation (it tends to the secular solution); the bounds then use the energy of the
+whole state and |R^(n)| <= bounds growing like K Sg s (see ``deriv_bound``).
 
 The oscillator constants are packed in a float64 array (``make_osc``) so that numba kernels
 can take them as plain arguments.
@@ -30,16 +38,29 @@ import math
 import numpy as np
 from numba import njit
 
+from .params import RESONANCE_SNAP
+
 # Indices into the packed oscillator array.
 I_SIGMA, I_OM2, I_OM, I_KAPPA, I_SQ, I_KIND, I_W, I_PS, I_PC, I_RES, I_ARES, I_PAMP, I_M, \
-    I_RATE, I_D, I_F = range(16)
-N_OSC = 16
+    I_RATE, I_D, I_F, I_NRES, I_SUM, I_DIFF, I_K = range(20)
+N_OSC = 20
 
 KIND_UNDER, KIND_CRIT, KIND_OVER = 1.0, 0.0, -1.0
 
+# d = 0 and |1 - m W^2| <= RESONANCE_SNAP: exact resonance (secular particular solution).
+# W cannot be typed more exactly (W = 1/sqrt(1 + eta) rounds to |1 - m W^2| ~ 2e-16), and
+# the non-resonant form would have a particular amplitude F/|1 - m W^2| ~ 1e15 F.
+# d = 0 and gain 1/|1 - m W^2| above NRES_GAIN: the cancellation-free near-resonant form.
+NRES_GAIN = 1e3
+
 
 def make_osc(m: float, d: float, W: float, F: float) -> np.ndarray:
-    """Pack the constants of m z'' + d z' + z = F sin(th) + d W F cos(th), th = th0 + W s."""
+    """Pack the constants of m z'' + d z' + z = F sin(th) + d W F cos(th), th = th0 + W s.
+
+    Weakly damped near-resonant parameters (d > 0, gain 1/|1 - m W^2 + i d W| above
+    ``params.MAX_GAIN``) are refused by ``exact.oscillators`` (``check_conditioning``);
+    undamped ones use the exact resonance or the near-resonant form (module docstring).
+    """
     osc = np.zeros(N_OSC)
     sigma = d / (2.0 * m)
     om2 = 1.0 / m
@@ -50,9 +71,15 @@ def make_osc(m: float, d: float, W: float, F: float) -> np.ndarray:
     osc[I_W], osc[I_M], osc[I_D], osc[I_F] = W, m, d, F
     det = 1.0 - m * W * W
     den = det * det + (d * W) ** 2
-    if den == 0.0:                       # d = 0 and m W^2 = 1: exact resonance
+    if d == 0.0 and abs(det) <= RESONANCE_SNAP:     # exact resonance (to round-off)
         osc[I_RES] = 1.0
         osc[I_ARES] = -F / (2.0 * m * W)
+    elif d == 0.0 and abs(det) * NRES_GAIN < 1.0:     # undamped, near resonance
+        om = osc[I_OM]
+        osc[I_NRES] = 1.0
+        osc[I_SUM] = om + W
+        osc[I_DIFF] = det / (m * (om + W))            # om - W without cancellation
+        osc[I_K] = F / (m * (om + W))
     else:                                # H = (1 + i d W)/(1 - m W^2 + i d W), z_p = F Im(H e^{i th})
         osc[I_PS] = F * (det + (d * W) ** 2) / den
         osc[I_PC] = -F * m * d * W ** 3 / den
@@ -132,11 +159,46 @@ def particular0(osc, sth0, cth0):
 
 
 @njit(cache=True, nogil=True)
+def _flow_nres(osc, x0, v0, sth0, cth0, s):
+    """``flow`` of the undamped near-resonant oscillator (module docstring)."""
+    om = osc[I_OM]
+    om2 = osc[I_OM2]
+    W = osc[I_W]
+    sg = osc[I_SUM]
+    dl = osc[I_DIFF]
+    K = osc[I_K]
+    F = osc[I_F]
+    so = math.sin(om * s)
+    co = math.cos(om * s)
+    hs = 0.5 * sg * s
+    sh = math.sin(hs)
+    ch = math.cos(hs)
+    q = 0.5 * dl * s
+    Q = math.sin(q) / dl if dl != 0.0 else 0.5 * s
+    cq = math.cos(q)
+    R = K * (2.0 * sth0 * sh * Q + cth0 * (so / om - 2.0 * ch * Q))
+    R1 = K * (sth0 * (sg * ch * Q + sh * cq) + cth0 * (sg * sh * Q - ch * cq + co))
+    z = x0 * co + v0 * so / om + R
+    z1 = -x0 * om * so + v0 * co + R1
+    sw = math.sin(W * s)
+    cw = math.cos(W * s)
+    sth = sth0 * cw + cth0 * sw
+    cth = cth0 * cw - sth0 * sw
+    z2 = om2 * (F * sth - z)
+    z3 = om2 * (F * W * cth - z1)
+    b1 = math.sqrt(z1 * z1 + om2 * z * z)
+    return z, z1, z2, z3, b1
+
+
+@njit(cache=True, nogil=True)
 def flow(osc, x0, v0, sth0, cth0, s):
     """State at local time s from (x0, v0) at s = 0.
 
-    Returns (z, z', z'', z''', b1) where b1 = sqrt(2 E_h(s)) bounds |z_h'| from s on.
+    Returns (z, z', z'', z''', b1) where b1 = sqrt(2 E_h(s)) bounds |z_h'| from s on (for
+    the near-resonant undamped form: the energy of the whole state at s).
     """
+    if osc[I_NRES] > 0.5:
+        return _flow_nres(osc, x0, v0, sth0, cth0, s)
     zp0, zp10 = particular0(osc, sth0, cth0)
     xh = x0 - zp0
     vh = v0 - zp10
@@ -171,6 +233,24 @@ def deriv_bound(osc, b1, n, s_hi):
             bm2 = bm1
             bm1 = bh
     W = osc[I_W]
+    if osc[I_NRES] > 0.5:
+        # z(s + t) = free motion from the state at s (energy b1) + R_s(t), t <= s_hi, with
+        # |R| <= K (2 t + 1/om), |R'| <= K (Sg t + 3), R^(n+2) = om2 (F W^n sin|cos - R^(n))
+        K = osc[I_K]
+        F = osc[I_F]
+        r0 = K * (2.0 * s_hi + 1.0 / om)
+        r1 = K * (osc[I_SUM] * s_hi + 3.0)
+        if n == 0:
+            bp = r0
+        elif n == 1:
+            bp = r1
+        elif n == 2:
+            bp = om2 * (F + r0)
+        elif n == 3:
+            bp = om2 * (F * W + r1)
+        else:
+            bp = om2 * (F * W * W + om2 * (F + r0))
+        return bh + bp
     if osc[I_RES] > 0.5:
         # z_p^(n) = A W^(n-1) (n * trig + W s * trig): bounded by |A| W^(n-1) (n + W s_hi)
         A = abs(osc[I_ARES])
@@ -215,7 +295,7 @@ _GL_X, _GL_W = np.polynomial.legendre.leggauss(8)
 def _v2_gauss(osc, x0, v0, sth0, cth0, L, gx, gw):
     rate = osc[I_RATE]
     npan = int(math.ceil(L * rate)) if L * rate > 1.0 else 1
-    if osc[I_RES] > 0.5:                 # secular growth: finer panels on long segments
+    if osc[I_RES] > 0.5 or osc[I_NRES] > 0.5:     # secular growth: finer panels
         npan = max(npan, int(math.ceil(L * osc[I_W] * (1.0 + 0.05 * L))))
     h = L / npan
     acc = 0.0
@@ -243,7 +323,7 @@ def v2_integral(osc, x0, v0, sth0, cth0, L):
     sigma = osc[I_SIGMA]
     om2 = osc[I_OM2]
     kappa = osc[I_KAPPA]
-    if osc[I_KIND] < 0.5 or osc[I_RES] > 0.5 or kappa < 0.01 * om2:
+    if osc[I_KIND] < 0.5 or osc[I_RES] > 0.5 or osc[I_NRES] > 0.5 or kappa < 0.01 * om2:
         return _v2_gauss(osc, x0, v0, sth0, cth0, L, _GL_X, _GL_W)
     alpha = osc[I_SQ]
     W = osc[I_W]

@@ -31,6 +31,10 @@ V_STICK_DEFAULT = 1e-6
 MAX_IMPACTS_DEFAULT = 2_000_000
 ROOT_TOL_DEFAULT = 1e-13
 
+# Conditioning of the exact solver's closed form (see ``check_conditioning``).
+RESONANCE_SNAP = 16.0 * 2.220446049250313e-16   # d = 0, |1 - m W^2| <= this: exact resonance
+MAX_GAIN = 1e4                                   # largest 1/|1 - m W^2 + i d W| for d > 0
+
 
 class ParameterError(ValueError):
     """A user-supplied value is outside its allowed range.
@@ -85,6 +89,34 @@ def check_int(name, value, *, lo=None) -> int:
     if lo is not None and x < lo:
         raise ParameterError(name, value, f"must be an integer >= {lo}")
     return x
+
+
+def check_conditioning(eta: float, omega: float, F: float, d: float) -> None:
+    """Refuse weakly damped near-resonant points that the exact solver cannot resolve.
+
+    The closed form writes the motion of the free LO (mass m = 1) and of the stuck body
+    (m = 1 + eta) as homogeneous + particular parts whose amplitudes reach F * gain,
+    gain = 1/|1 - m W^2 + i d W|, while the motion itself stays of order F or the cavity
+    size; the round-off of the sum grows like 1e-16 F gain. Undamped points (d = 0) are
+    always accepted: exact resonance (|1 - m W^2| <= RESONANCE_SNAP) has the secular
+    solution and near resonance a cancellation-free form (``vines.flow``). With d > 0,
+    points with gain > MAX_GAIN (only possible for d < 1e-4 within 1e-4 of a natural
+    frequency 1/sqrt(m)) raise ParameterError on omega. F = 0 is always accepted. The RK
+    reference solver does not need this check.
+    """
+    if F == 0.0 or d == 0.0:
+        return
+    for m, body in ((1.0, "free LO"), (1.0 + eta, "stuck body (mass 1 + eta)")):
+        det = 1.0 - m * omega * omega
+        gain = 1.0 / math.hypot(det, d * omega)
+        if gain > MAX_GAIN:
+            wn = 1.0 / math.sqrt(m)
+            raise ParameterError(
+                "omega", omega,
+                f"too close to the natural frequency {wn!r} of the {body} for d = {d:g} "
+                f"(gain 1/|1 - m W^2 + i d W| = {gain:.3g} > {MAX_GAIN:g}: the exact solver's "
+                f"closed form would lose too many digits); detune omega, use d >= "
+                f"{1.0 / (MAX_GAIN * omega):.3g} or d = 0; the rk solver is not affected")
 
 
 @dataclass(frozen=True)
@@ -157,10 +189,13 @@ class SolverSettings:
 
     t_end        end of the run (dimensionless time)
     t_transient  start of the measurement window [t_transient, t_end]
-    v_stick      chatter threshold: after an impact with |w'+| < v_stick while the
+    v_stick      chatter threshold: after an impact with |w'+| <= v_stick while the
                  relative acceleration presses the ball on the wall, ball and LO stick
+                 (the exact solver also sticks below the speed of a bounce only a few
+                 round-off units high, see ``vines._engine``)
     max_impacts  guard: the run stops with status "max_impacts" after this many impacts
-    root_tol     distance to the wall (in units of L) at which contact is declared
+    root_tol     distance to the wall (in units of L) at which contact is declared (or
+                 the round-off level of w when larger)
     state0       initial (z_m, z_m', z_b, z_b') at t = 0, |z_m - z_b| <= 1
     """
 

@@ -15,12 +15,13 @@ Wall L is w = +1, wall R is w = -1; an impact happens only when approaching the 
     v_m+ = ((1 - r eta) v_m- + eta (1 + r) v_b-)/(1 + eta)
     v_b+ = ((1 + r) v_m- + (eta - r) v_b-)/(1 + eta).
 
-Sticking. After an impact at wall ``s`` (+1 for L, -1 for R), if |w'+| < v_stick and the free
+Sticking. After an impact at wall ``s`` (+1 for L, -1 for R), if |w'+| <= v_stick and the free
 relative acceleration g = f(t) - d v - z_m presses the ball on that wall (s g > 0, evaluated
 with the common velocity v = (v_m+ + eta v_b+)/(1 + eta) the stuck phase starts from), ball
 and LO move as one body ``(1 + eta) z'' + d z' + z = f(t)`` with z_b = z_m - s. The stuck
 phase ends when g (evaluated on the stuck state) changes sign (from + to - at L, from - to +
-at R); free flight resumes from w = s, w' = 0. With v_stick = 0 there is no sticking.
+at R); free flight resumes from w = s, w' = 0. With v_stick = 0 only a plastic impact
+(w'+ = 0 exactly, r = 0) sticks, and so does a start on a wall with w' = 0 while pressed.
 
 Restart rule (why an event never re-triggers at the point it restarts from)
 ----------------------------------------------------------------------------
@@ -50,9 +51,9 @@ monotone, and the segment is cut there. So no contact is lost between turning po
 Degenerate cases: a turning point found numerically on or beyond the departed wall (a chatter
 flight shorter than the integration accuracy) is put back on the wall with w' = 0 (common
 velocity); if g presses the ball on the wall it starts a stuck phase (v_stick > 0), otherwise
-the ball departs again. With v_stick = 0 a zero relative velocity pressed on the wall (after
-such a turning point, or after an impact with r = 0) stops the run with status "zeno" (an
-accumulation point of impacts that is not allowed to stick).
+the ball departs again. With v_stick = 0 such a turning point stops the run with status
+"zeno" (an accumulation point of impacts that is not allowed to stick); a plastic impact
+(r = 0) is no accumulation: it sticks when pressed, like the exact solver.
 """
 from __future__ import annotations
 
@@ -232,11 +233,9 @@ def run_rk(params: ModelParams, settings: SolverSettings, *, method: str = "DOP8
         if dw * s > 0:
             pending_impact = s
         elif dw == 0.0 and gfree(t, zm, vm) * s > 0:
-            if v_stick > 0.0:
-                mode, stick_wall = "stuck", s
-                n_sticks += 1
-            else:
-                status = "zeno"
+            # resting on the wall and pressed on it: sticking (for any v_stick)
+            mode, stick_wall = "stuck", s
+            n_sticks += 1
         else:
             departed = s
 
@@ -263,13 +262,11 @@ def run_rk(params: ModelParams, settings: SolverSettings, *, method: str = "DOP8
             dw = vm - vb
             vc = (vm + eta * vb) * inv1e
             gc = gfree(t, zm, vc)
-            if v_stick > 0.0 and abs(dw) < v_stick and gc * s > 0:
+            if abs(dw) <= v_stick and gc * s > 0:
+                # (v_stick = 0: only a plastic impact, w'+ = 0 exactly, as with r = 0)
                 mode, stick_wall = "stuck", s
                 vm = vb = vc
                 n_sticks += 1
-            elif dw == 0.0 and gc * s > 0:
-                status = "zeno"
-                break
             else:
                 mode, departed = "free", s
             continue

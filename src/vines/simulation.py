@@ -10,7 +10,8 @@ import numpy as np
 from .exact import run_exact
 from .params import (D_DEFAULT, MAX_IMPACTS_DEFAULT, R_DEFAULT, ROOT_TOL_DEFAULT,
                      T_END_DEFAULT, T_TRANSIENT_DEFAULT, V_STICK_DEFAULT, ModelParams,
-                     ParameterError, SolverSettings, check_int, check_real)
+                     ParameterError, SolverSettings, check_conditioning, check_int,
+                     check_real)
 from .regime import classify, strobe_times
 from .result import RawRun, SimulationResult
 
@@ -127,7 +128,9 @@ def simulate_batch(eta, omega, F, *, r=R_DEFAULT, d=D_DEFAULT, phi=0.0, t_end=T_
             bad = ~np.isfinite(arr) | ((arr <= 0) if lo_open else (arr < 0))
             if bad.any():
                 ModelParams(**{"eta": 1.0, "omega": 1.0, "F": 0.0, name: arr[bad][0]})
-        ModelParams(eta=1.0, omega=1.0, F=0.0, r=r, d=d, phi=phi)
+        p0 = ModelParams(eta=1.0, omega=1.0, F=0.0, r=r, d=d, phi=phi)
+        for i in range(n):      # near-resonant points the closed form cannot resolve
+            check_conditioning(float(e[i]), float(w[i]), float(f[i]), p0.d)
     n_threads = check_int("n_threads", n_threads if n_threads is not None else (os.cpu_count() or 1), lo=1)
     out = {k: np.empty(n, dtype=dt) for k, (dt, _, _) in BATCH_FIELDS.items()}
 
