@@ -4,6 +4,10 @@ Dimensionless model (see docs/model.md): between impacts
     z_m'' + d z_m' + z_m = F sin(W t + phi) + d W F cos(W t + phi),   z_b'' = 0,
 walls at w = z_m - z_b = +1 (L) and -1 (R), Newtonian impact law with restitution r.
 """
+from ._numba_cache import refresh as _refresh_numba_cache
+
+_refresh_numba_cache()   # before any jitted function is loaded from the cache
+
 from .params import (D_DEFAULT, L_HALF_M, ModelParams, ParameterError, SolverSettings)
 from .result import IMPACT_DTYPE, SimulationResult
 from .simulation import simulate, simulate_batch

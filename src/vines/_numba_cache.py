@@ -1,0 +1,52 @@
+"""Invalidate vines' numba cache when any of its sources changes.
+
+numba keys a cached compiled function on the timestamp of that function's own file only:
+functions of maps.py that inline functions of flow.py or _engine.py would keep stale machine
+code after an edit (or a ``git pull``) of flow.py. At import, vines compares a hash of all
+its sources with the stamp stored in the package's ``__pycache__`` and deletes vines' numba
+cache files (``*.nbi``, ``*.nbc``) there when they differ; the next call recompiles (a few
+seconds once). Read-only installs are left alone.
+"""
+from __future__ import annotations
+
+import hashlib
+import os
+import tempfile
+from pathlib import Path
+
+STAMP = "numba-sources.sha256"
+
+
+def sources_hash(pkg_dir: Path) -> str:
+    h = hashlib.sha256()
+    for f in sorted(pkg_dir.glob("*.py")):
+        h.update(f.name.encode() + b"\0" + f.read_bytes() + b"\0")
+    return h.hexdigest()
+
+
+def refresh(pkg_dir=None) -> bool:
+    """Delete stale cache files of ``pkg_dir`` (default: this package); True if deleted."""
+    pkg_dir = Path(pkg_dir) if pkg_dir is not None else Path(__file__).resolve().parent
+    cache = pkg_dir / "__pycache__"
+    current = sources_hash(pkg_dir)
+    try:
+        if (cache / STAMP).read_text() == current:
+            return False
+    except OSError:
+        pass
+    removed = False
+    for f in list(cache.glob("*.nbi")) + list(cache.glob("*.nbc")):
+        try:
+            f.unlink()
+            removed = True
+        except OSError:
+            pass
+    try:
+        cache.mkdir(exist_ok=True)
+        fd, tmp = tempfile.mkstemp(dir=cache, prefix=f".{STAMP}.")
+        with os.fdopen(fd, "w") as fh:
+            fh.write(current)
+        os.replace(tmp, cache / STAMP)
+    except OSError:
+        pass
+    return removed
