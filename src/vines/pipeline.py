@@ -20,7 +20,7 @@ DIMS = ("eta", "omega", "F")
 
 #: sources that do not affect any computed number (CLI, reference RK solver, file layout)
 NON_COMPUTE_SOURCES = ("__main__.py", "cli.py", "reference.py", "io.py", "pipeline.py",
-                       "plotting.py")
+                       "plotting.py", "_numba_cache.py")
 #: sources used only by the solver studies (work-precision, convergence): their code version
 #: also covers reference.py, and the study stages' own changes rerun nothing else
 STUDY_SOURCES = ("hiprec.py", "workprecision.py", "convergence.py")
