@@ -181,9 +181,7 @@ def _run(p, st, h_sample, v_stick, max_events):
                 acc["n"] += 1
                 wb, dwb, zb_, vb_ = wfun(b_s)
                 # x_max: extrema of z_m inside (a, b)
-                if va * vb_ < 0:
-                    se = _illinois(lambda s: osc.state(s)[1], a_s, b_s, va, vb_, tol)
-                    _note_x(acc, t + se, osc.state(se)[0], t_tr, t_end)
+                _note_extremum(acc, osc, t, a_s, b_s, va, vb_, tol, t_tr, t_end)
                 # split (a, b) at an extremum of w
                 pieces = [(a_s, wa, b_s, wb)]
                 if dwa_sign * dwb < 0:
@@ -260,9 +258,7 @@ def _run(p, st, h_sample, v_stick, max_events):
                 acc["n"] += 1
                 gb, dgb = gfun(b_s), dgfun(b_s)
                 _, vb_, _ = osc.state(b_s)
-                if va * vb_ < 0:
-                    se = _illinois(lambda s: osc.state(s)[1], a_s, b_s, va, vb_, tol)
-                    _note_x(acc, t + se, osc.state(se)[0], t_tr, t_end)
+                _note_extremum(acc, osc, t, a_s, b_s, va, vb_, tol, t_tr, t_end)
                 pieces = [(a_s, ga, b_s, gb)]
                 if dga * dgb < 0:
                     se = _illinois(dgfun, a_s, b_s, dga, dgb, tol)
@@ -301,6 +297,13 @@ def _run(p, st, h_sample, v_stick, max_events):
     return Reference(impacts=imp, ke_ratio=float(K_b / tot) if tot > 0 else 0.0,
                      xmax=float(acc["xmax"]), K_m=float(K_m), K_b=float(K_b),
                      sticks=[(float(a), float(b)) for a, b in sticks], n_intervals=acc["n"])
+
+
+def _note_extremum(acc, osc, t, a, b, va, vb, tol, t_tr, t_end):
+    """Note |z_m| at an extremum of z_m inside local times (a, b) (z_m' changes sign)."""
+    if va * vb < 0:
+        se = _illinois(lambda s: osc.state(s)[1], a, b, va, vb, tol)
+        _note_x(acc, t + se, osc.state(se)[0], t_tr, t_end)
 
 
 def _note_x(acc, t, z, t_tr, t_end):

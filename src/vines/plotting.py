@@ -104,6 +104,17 @@ def require(ds: xr.Dataset, *, coords=(), variables=(), finite=(), allow_nan=Non
     return ds
 
 
+def marked_sections(grids, dim: str, prefix: str) -> np.ndarray:
+    """Values of ``dim`` marked by ``section_<dim>`` in every grid (must be the same, non-empty)."""
+    for ds in grids:
+        require(ds, variables=(f"section_{dim}",))
+    vals = [ds[dim].values[ds[f"section_{dim}"].values.astype(bool)] for ds in grids]
+    if not vals or vals[0].size == 0 or not all(np.array_equal(vals[0], v) for v in vals):
+        raise FigureInputError(f"the {prefix}_* grids must mark the same, non-empty {dim} "
+                               f"sections (section_{dim}), got {[v.tolist() for v in vals]}")
+    return vals[0]
+
+
 def fixed_value(ds: xr.Dataset, dim: str) -> float:
     """The single value of a length-1 grid coordinate (e.g. W of a Fig 7 grid)."""
     v = np.asarray(ds[dim].values, dtype=float)

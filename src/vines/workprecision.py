@@ -137,11 +137,11 @@ def work_precision(eta, omega, F, *, t_end, t_transient, r=R_DEFAULT, d=D_DEFAUL
                          status=res.status, **e))
         say(f"{method:7s} {knob}={tol:.0e}: t_error {e['t_error']:.2e}, "
             f"ke_error {e['ke_error']:.2e}, {sec:.3g} s, status {res.status}")
+    for row in rows:
+        row["sequence_ok"] = np.int8(row["sequence_ok"])
     data = {k: ("run", [row[k] for row in rows],
                 {"long_name": ln, "units": u}) for k, (ln, u) in RUN_FIELDS.items()}
-    data["sequence_ok"] = ("run", np.array([row["sequence_ok"] for row in rows], dtype=np.int8),
-                           {"long_name": RUN_FIELDS["sequence_ok"][0], "units": "1",
-                            "flag_values": [0, 1], "flag_meanings": "differs same"})
+    data["sequence_ok"][2].update(flag_values=[0, 1], flag_meanings="differs same")
     attrs = {
         "case_eta": eta, "case_omega": omega, "case_F": F, "case_r": r, "case_d": d,
         "t_end": t_end, "t_transient": t_transient, "v_visible": v_visible,
