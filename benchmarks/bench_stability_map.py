@@ -8,7 +8,7 @@ import time
 
 import numpy as np
 
-from vines.stability_map import stability_map
+from vines.orbits.stability_map import stability_map
 
 
 def main():

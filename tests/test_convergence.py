@@ -1,4 +1,4 @@
-"""vines.convergence: run length / window, v_stick and grid-resolution studies.
+"""vines.studies.convergence: run length / window, v_stick and grid-resolution studies.
 
 Small sizes (a few seconds in all). Physical facts used as oracles, not values from the code:
 * a stable periodic attractor reached well before t = 4000 (1:1 at eta 0.05, W 1, F 0.05)
@@ -18,8 +18,8 @@ import pytest
 import xarray as xr
 
 import vines
-from vines import convergence as C
-from vines.io import read_dataset, write_dataset
+from vines.studies import convergence as C
+from vines.data.netcdf import read_dataset, write_dataset
 
 ROOT = Path(__file__).resolve().parents[1]
 ONE_ONE = dict(eta=0.05, omega=1.0, F=0.05)          # stable 1:1 (Fig 4a)

@@ -6,7 +6,7 @@ import pytest
 from scipy.integrate import quad
 
 import vines
-from vines.params import D_DEFAULT
+from vines.core.params import D_DEFAULT
 
 
 def _energy(st, eta):
@@ -46,7 +46,7 @@ def test_impact_law_momentum_and_restitution(eta, omega, F):
     dw_pre = imp["v_m"] - imp["v_b"]
     dw_post = post[1] - post[3]
     stuck = np.abs(dw_post) < 1e-15         # plastic: the ball stuck at this impact
-    assert np.allclose(dw_post[~stuck], -vines.params.R_DEFAULT * dw_pre[~stuck], rtol=1e-12,
+    assert np.allclose(dw_post[~stuck], -vines.core.params.R_DEFAULT * dw_pre[~stuck], rtol=1e-12,
                        atol=1e-14)
     # approach: w' > 0 at L, w' < 0 at R
     assert np.all(dw_pre * imp["wall"] > 0)

@@ -23,9 +23,9 @@ import pytest
 from scipy.optimize import brentq
 
 import vines
-from vines import _engine
-from vines.linear import stuck_amplitude
-from vines.params import D_DEFAULT, R_DEFAULT
+from vines.core import kernel
+from vines.core.linear import stuck_amplitude
+from vines.core.params import D_DEFAULT, R_DEFAULT
 
 from test_cli import run_vines
 
@@ -395,11 +395,11 @@ def test_safe_step_has_no_cancellation_when_leaving_a_wall():
     """One ulp of gap after an impact, moving away at c: the step to the return on that wall
     is (c + sqrt(c^2 + 2 B g))/B, not 2 g/(-c + sqrt(...)) (cancellation, up to 10% long)."""
     g, c, B = 2.220446049250313e-16, -0.5112350948509006, 1.686921229453035
-    h = _engine._safe_step(g, c, B)
+    h = kernel._safe_step(g, c, B)
     exact = (-c + math.sqrt(c * c + 2.0 * B * g)) / B
     assert abs(h - exact) <= 1e-15 * exact
     # closing: the safe step never exceeds the time to reach the wall
-    assert _engine._safe_step(1e-3, 0.5, 2.0) <= 1e-3 / 0.5
+    assert kernel._safe_step(1e-3, 0.5, 2.0) <= 1e-3 / 0.5
 
 
 def test_heavy_ball_elastic_low_frequency_never_crosses_a_wall():

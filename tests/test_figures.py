@@ -1,4 +1,4 @@
-"""Figures: input checks of vines.plotting and the figure rules' rerun plans.
+"""Figures: input checks of vines.plotting.draw and the figure rules' rerun plans.
 
 Input checks run on tiny synthetic datasets. The dry-run test works on a copy of the
 workflow in tmp_path with a copy of the smoke run's datasets (results/smoke, made by
@@ -12,8 +12,8 @@ import pytest
 import xarray as xr
 
 from test_pipeline import ROOT, _copy_workflow, _planned, _smk, needs_snakemake
-from vines import plotting as P
-from vines.io import COORD_ATTRS
+from vines.plotting import draw as P
+from vines.data.netcdf import COORD_ATTRS
 
 SMOKE = ROOT / "results" / "smoke"
 

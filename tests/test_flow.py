@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 from scipy.integrate import quad, solve_ivp
 
-from vines import flow as fl
+from vines.core import flow as fl
 
 # (m, d, W, F): LO and stuck body, under-, critically, over-damped, undamped, resonance
 CASES = [

@@ -5,8 +5,8 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from vines.linear import stuck_amplitude
-from vines.params import D_DEFAULT
+from vines.core.linear import stuck_amplitude
+from vines.core.params import D_DEFAULT
 
 
 def _integrated_amplitude(eta, W, F, d, n_settle_periods, n_periods=5):

@@ -5,10 +5,10 @@ import numpy as np
 import pytest
 
 import vines
-from vines.maps import (WALL_L, WALL_R, apply_map, impact_velocities, is_admissible,
+from vines.orbits.maps import (WALL_L, WALL_R, apply_map, impact_velocities, is_admissible,
                         map_jacobian, map_with_jacobian, mirror)
-from vines.params import ModelParams
-from vines.periodic import find_1to1
+from vines.core.params import ModelParams
+from vines.orbits.periodic import find_1to1
 
 
 def test_impact_law_matches_spec():

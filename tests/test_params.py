@@ -4,7 +4,7 @@ import math
 
 import pytest
 
-from vines.params import (C_DAMP_NS_PER_M, D_DEFAULT, K_SPRING_N_PER_M, L_HALF_M, M_LO_KG,
+from vines.core.params import (C_DAMP_NS_PER_M, D_DEFAULT, K_SPRING_N_PER_M, L_HALF_M, M_LO_KG,
                           MAX_IMPACTS_DEFAULT, R_DEFAULT, T_END_DEFAULT, T_TRANSIENT_DEFAULT,
                           V_STICK_DEFAULT, W0_RAD_S, ModelParams, ParameterError,
                           SolverSettings)

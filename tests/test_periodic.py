@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 import vines
-from vines.maps import WALL_L, WALL_R, apply_map, mirror
-from vines.params import ModelParams
-from vines.periodic import PeriodicOrbit, find_1to1
+from vines.orbits.maps import WALL_L, WALL_R, apply_map, mirror
+from vines.core.params import ModelParams
+from vines.orbits.periodic import PeriodicOrbit, find_1to1
 
 
 @pytest.mark.parametrize("eta, W, F", [(0.05, 1.0, 0.05), (0.035, 1.0, 0.05),
@@ -118,8 +118,8 @@ def test_no_forcing_no_orbit_and_bad_input():
 
 # --------------------------------------------------------------------------- continuation
 
-from vines.continuation import continue_branch  # noqa: E402
-from vines.stability_map import stability_map  # noqa: E402
+from vines.orbits.continuation import continue_branch  # noqa: E402
+from vines.orbits.stability_map import stability_map  # noqa: E402
 
 
 def _preferred(eta, W, F):

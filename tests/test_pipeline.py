@@ -15,13 +15,13 @@ import pytest
 import xarray as xr
 import yaml
 
-from vines.io import (derive_measures, grid_dataset, merge_chunks, provenance_attrs,
+from vines.data.netcdf import (derive_measures, grid_dataset, merge_chunks, provenance_attrs,
                       ragged_dataset, ragged_rows, read_dataset, write_dataset)
-from vines.params import D_DEFAULT
-from vines.pipeline import (ConfigError, axis_values, chunk_key, chunk_map, code_version,
+from vines.core.params import D_DEFAULT
+from vines.pipeline.stages import (ConfigError, axis_values, chunk_key, chunk_map, code_version,
                             compute_chunk, compute_sweep, grid_axes, grid_chunks, load_schema,
                             validate_config)
-from vines.simulation import BATCH_FIELDS
+from vines.core.simulation import BATCH_FIELDS
 
 ROOT = Path(__file__).resolve().parents[1]
 SCHEMA = ROOT / "workflow" / "schemas" / "config.schema.yaml"

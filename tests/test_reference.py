@@ -5,8 +5,8 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from vines.params import ModelParams, SolverSettings
-from vines.reference import run_rk
+from vines.core.params import ModelParams, SolverSettings
+from vines.reference.rk import run_rk
 
 _trapezoid = getattr(np, "trapezoid", None) or np.trapz     # numpy < 2 has only trapz
 

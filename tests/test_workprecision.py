@@ -1,14 +1,14 @@
-"""High-precision reference (vines.hiprec) and the work-precision study."""
+"""High-precision reference (vines.reference.hiprec) and the work-precision study."""
 import math
 
 import numpy as np
 import pytest
 
 import vines
-from vines.hiprec import reference_run
-from vines.params import ModelParams, ParameterError, SolverSettings
-from vines.result import IMPACT_DTYPE
-from vines.workprecision import errors, timed, visible, work_precision
+from vines.reference.hiprec import reference_run
+from vines.core.params import ModelParams, ParameterError, SolverSettings
+from vines.core.result import IMPACT_DTYPE
+from vines.studies.workprecision import errors, timed, visible, work_precision
 
 PERIODIC = (0.05, 1.0, 0.05)          # stable 1:1 orbit, regular transient
 CHATTER = (0.2, 0.9, 0.8)             # chatter cascades and sticking from t ~ 43

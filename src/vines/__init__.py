@@ -8,9 +8,9 @@ from ._numba_cache import refresh as _refresh_numba_cache
 
 _refresh_numba_cache()   # before any jitted function is loaded from the cache
 
-from .params import (D_DEFAULT, L_HALF_M, ModelParams, ParameterError, SolverSettings)
-from .result import IMPACT_DTYPE, SimulationResult
-from .simulation import simulate, simulate_batch
+from .core.params import (D_DEFAULT, L_HALF_M, ModelParams, ParameterError, SolverSettings)
+from .core.result import IMPACT_DTYPE, SimulationResult
+from .core.simulation import simulate, simulate_batch
 
 __version__ = "0.1.0"
 

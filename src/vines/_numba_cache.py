@@ -3,8 +3,8 @@
 numba keys a cached compiled function on the timestamp of that function's own file only:
 functions of maps.py that inline functions of flow.py or _engine.py would keep stale machine
 code after an edit (or a ``git pull``) of flow.py. At import, vines compares a hash of all
-its sources with the stamp stored in the package's ``__pycache__`` and deletes vines' numba
-cache files (``*.nbi``, ``*.nbc``) there when they differ; the next call recompiles (a few
+its sources (all subpackages) with the stamp stored in the package's ``__pycache__`` and
+deletes vines' numba cache files (``*.nbi``, ``*.nbc``) in every ``__pycache__`` when they differ; the next call recompiles (a few
 seconds once). Read-only installs are left alone.
 """
 from __future__ import annotations
@@ -19,8 +19,8 @@ STAMP = "numba-sources.sha256"
 
 def sources_hash(pkg_dir: Path) -> str:
     h = hashlib.sha256()
-    for f in sorted(pkg_dir.glob("*.py")):
-        h.update(f.name.encode() + b"\0" + f.read_bytes() + b"\0")
+    for f in sorted(pkg_dir.rglob("*.py")):
+        h.update(f.relative_to(pkg_dir).as_posix().encode() + b"\0" + f.read_bytes() + b"\0")
     return h.hexdigest()
 
 
@@ -35,7 +35,7 @@ def refresh(pkg_dir=None) -> bool:
     except OSError:
         pass
     removed = False
-    for f in list(cache.glob("*.nbi")) + list(cache.glob("*.nbc")):
+    for f in list(pkg_dir.rglob("__pycache__/*.nbi")) + list(pkg_dir.rglob("__pycache__/*.nbc")):
         try:
             f.unlink()
             removed = True

@@ -26,7 +26,7 @@ import sys
 from typing import NoReturn, Sequence
 
 from . import __version__
-from .params import (D_DEFAULT, MAX_IMPACTS_DEFAULT, R_DEFAULT, T_END_DEFAULT,
+from .core.params import (D_DEFAULT, MAX_IMPACTS_DEFAULT, R_DEFAULT, T_END_DEFAULT,
                      T_TRANSIENT_DEFAULT, V_STICK_DEFAULT, ModelParams, ParameterError,
                      SolverSettings, check_real)
 
@@ -172,7 +172,7 @@ def _int_like(value):
 
 def _cmd_simulate(args: argparse.Namespace) -> int:
     kwargs = _simulate_inputs(args)
-    from . import simulation  # imported lazily: argument errors never pay for the solver
+    from .core import simulation  # imported lazily: argument errors never pay for the solver
 
     if args.json:
         # stdout carries the JSON object only; stray prints from the solver go to stderr.
@@ -247,7 +247,7 @@ def _add_periodic(subparsers) -> VinesArgumentParser:
 
 def _cmd_periodic(args: argparse.Namespace) -> int:
     params = _model_params(args)
-    from .periodic import find_1to1
+    from .orbits.periodic import find_1to1
 
     with contextlib.redirect_stdout(sys.stderr):
         orbits = find_1to1(params.eta, params.omega, params.F, r=params.r, d=params.d)
@@ -330,7 +330,7 @@ def _cmd_continue(args: argparse.Namespace) -> int:
     if args.step is not None:
         step = check_real("step", args.step, lo=0.0, lo_open=True)
     fixed = {q: getattr(params, q) for q in others}
-    from .continuation import continue_branch
+    from .orbits.continuation import continue_branch
 
     with contextlib.redirect_stdout(sys.stderr):
         br = continue_branch(args.param, values["start"], values["stop"], step, fixed,

@@ -1,5 +1,5 @@
 # Config validation (with defaults), grid chunks and code version, all at parse time so
-# the DAG is static. Helpers live in vines.pipeline (tested without snakemake).
+# the DAG is static. Helpers live in vines.pipeline.stages (tested without snakemake).
 import importlib.util
 import os
 import sys
@@ -11,8 +11,8 @@ _SRC = os.path.join(workflow.basedir, "src")
 if os.path.isdir(os.path.join(_SRC, "vines")):
     sys.path.insert(0, _SRC)
 
-from vines.params import D_DEFAULT
-from vines.pipeline import (NON_COMPUTE_SOURCES, STUDY_SOURCES, ConfigError, chunk_map,
+from vines.core.params import D_DEFAULT
+from vines.pipeline.stages import (NON_COMPUTE_SOURCES, STUDY_SOURCES, ConfigError, chunk_map,
                             code_version, grid_axes, load_schema, validate_config)
 
 try:
@@ -51,15 +51,15 @@ def _have(module):
         return False
 
 
-# map-solve / stability-map call vines.continuation / vines.stability_map; until those
+# map-solve / stability-map call vines.orbits.continuation / vines.orbits.stability_map; until those
 # modules exist their outputs are left out of `all` (with a warning), not faked.
-HAVE_CONTINUATION = _have("vines.continuation")
-HAVE_STABILITY_MAP = _have("vines.stability_map")
+HAVE_CONTINUATION = _have("vines.orbits.continuation")
+HAVE_STABILITY_MAP = _have("vines.orbits.stability_map")
 if BRANCHES and not HAVE_CONTINUATION:
-    print("vines pipeline: warning: vines.continuation not available, map-solve outputs "
+    print("vines pipeline: warning: vines.orbits.continuation not available, map-solve outputs "
           "are not requested", file=sys.stderr)
 if SMAPS and not HAVE_STABILITY_MAP:
-    print("vines pipeline: warning: vines.stability_map not available, stability-map "
+    print("vines pipeline: warning: vines.orbits.stability_map not available, stability-map "
           "outputs are not requested", file=sys.stderr)
 
 

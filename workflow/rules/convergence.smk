@@ -1,5 +1,5 @@
 # convergence: measures against run length and window, against v_stick, and a KE-ratio
-# contour against grid resolution (vines.convergence), one job per study of the
+# contour against grid resolution (vines.studies.convergence), one job per study of the
 # `convergence` section; the setting under test is the `simulation` section.
 
 

@@ -1,6 +1,6 @@
 # work-precision: error against cost of the exact and the RK solvers on the cases of
 # `work_precision.cases` (one job per case), measured against the high-precision reference
-# (vines.hiprec). The job takes all cores so that no other job disturbs its timings.
+# (vines.reference.hiprec). The job takes all cores so that no other job disturbs its timings.
 
 
 rule work_precision:

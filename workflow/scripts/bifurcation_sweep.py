@@ -2,8 +2,8 @@
 import _checkout  # noqa: F401  (this checkout's vines first)
 import sys
 
-from vines.io import COORD_ATTRS, provenance_attrs, ragged_dataset, write_dataset
-from vines.pipeline import compute_sweep
+from vines.data.netcdf import COORD_ATTRS, provenance_attrs, ragged_dataset, write_dataset
+from vines.pipeline.stages import compute_sweep
 
 sm = snakemake  # noqa: F821  (injected by Snakemake)
 with open(sm.log[0], "w") as log:

@@ -1,10 +1,10 @@
-"""convergence: one study of vines.convergence (window, vstick or grid) from its config."""
+"""convergence: one study of vines.studies.convergence (window, vstick or grid) from its config."""
 import _checkout  # noqa: F401  (this checkout's vines first)
 import sys
 import time
 
-from vines import convergence as C
-from vines.io import provenance_attrs, write_dataset
+from vines.studies import convergence as C
+from vines.data.netcdf import provenance_attrs, write_dataset
 
 STUDIES = {"window": C.window_convergence, "vstick": C.vstick_convergence,
            "grid": C.grid_convergence}

@@ -2,7 +2,7 @@
 import _checkout  # noqa: F401  (this checkout's vines first)
 import sys
 
-from vines.io import (derive_measures, grid_dataset, merge_chunks, provenance_attrs,
+from vines.data.netcdf import (derive_measures, grid_dataset, merge_chunks, provenance_attrs,
                       read_dataset, write_dataset)
 
 sm = snakemake  # noqa: F821  (injected by Snakemake)

@@ -5,8 +5,8 @@ import sys
 import numpy as np
 import xarray as xr
 
-from vines.continuation import continue_branch
-from vines.io import COORD_ATTRS, provenance_attrs, write_dataset
+from vines.orbits.continuation import continue_branch
+from vines.data.netcdf import COORD_ATTRS, provenance_attrs, write_dataset
 
 sm = snakemake  # noqa: F821  (injected by Snakemake)
 with open(sm.log[0], "w") as log:

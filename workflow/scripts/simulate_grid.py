@@ -2,8 +2,8 @@
 import _checkout  # noqa: F401  (this checkout's vines first)
 import sys
 
-from vines.io import grid_dataset, provenance_attrs, write_dataset
-from vines.pipeline import compute_chunk
+from vines.data.netcdf import grid_dataset, provenance_attrs, write_dataset
+from vines.pipeline.stages import compute_chunk
 
 sm = snakemake  # noqa: F821  (injected by Snakemake)
 with open(sm.log[0], "w") as log:

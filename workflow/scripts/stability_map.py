@@ -5,9 +5,9 @@ import sys
 import numpy as np
 import xarray as xr
 
-from vines.io import COORD_ATTRS, provenance_attrs, write_dataset
-from vines.pipeline import axis_values
-from vines.stability_map import stability_map
+from vines.data.netcdf import COORD_ATTRS, provenance_attrs, write_dataset
+from vines.pipeline.stages import axis_values
+from vines.orbits.stability_map import stability_map
 
 sm = snakemake  # noqa: F821  (injected by Snakemake)
 with open(sm.log[0], "w") as log:

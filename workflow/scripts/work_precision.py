@@ -1,9 +1,9 @@
-"""work-precision: error and cost of every solver setting on one case (see vines.workprecision)."""
+"""work-precision: error and cost of every solver setting on one case (see vines.studies.workprecision)."""
 import _checkout  # noqa: F401  (this checkout's vines first)
 import sys
 
-from vines.io import provenance_attrs, write_dataset
-from vines.workprecision import work_precision
+from vines.data.netcdf import provenance_attrs, write_dataset
+from vines.studies.workprecision import work_precision
 
 sm = snakemake  # noqa: F821  (injected by Snakemake)
 with open(sm.log[0], "w") as log:

@@ -8,7 +8,7 @@ SRC = Path(__file__).resolve().parents[3] / "src"
 if (SRC / "vines").is_dir() and str(SRC) not in sys.path:
     sys.path.insert(0, str(SRC))
 
-from vines.plotting import FigureInputError  # noqa: E402
+from vines.plotting.draw import FigureInputError  # noqa: E402
 
 
 def run(sm, main):

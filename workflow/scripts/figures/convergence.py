@@ -4,7 +4,7 @@ window a fraction of the run), (c) the same against the sticking threshold v_sti
 points (difference to the smallest v_stick), (d) the cost of those runs, (e) distance of the
 KE-ratio contour to the finest grid's against grid resolution, (f) the contours themselves.
 
-Inputs (datasets of ``vines.convergence``): ``snakemake.input.window``, ``.vstick``,
+Inputs (datasets of ``vines.studies.convergence``): ``snakemake.input.window``, ``.vstick``,
 ``.grid``; outputs ``snakemake.output.pdf`` / ``.png``; log ``snakemake.log[0]``.
 """
 import _common
@@ -12,7 +12,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.lines import Line2D
 
-from vines import plotting as P
+from vines.plotting import draw as P
 
 FLOOR = 1e-16       # |differences| below (round-off, exact zeros) are drawn at this value
 SYM = {"eta": r"\eta", "omega": r"\Omega", "F": "F"}

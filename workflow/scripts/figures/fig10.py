@@ -2,7 +2,7 @@
 portraits beside them, one row per point of timehistories.fig10."""
 import _common
 
-from vines import plotting as P
+from vines.plotting import draw as P
 
 
 def main(sm):

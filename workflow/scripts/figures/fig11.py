@@ -4,7 +4,7 @@ VINES (red) and the steady state of Eq. 28 (black) at the points of timehistorie
 import _common
 import numpy as np
 
-from vines import plotting as P
+from vines.plotting import draw as P
 
 
 def eq28_steady(t, eta, omega, F, d, phi=0.0):

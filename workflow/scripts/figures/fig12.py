@@ -4,7 +4,7 @@ hatched in white), one column per F (grids fig12_*, stability maps fig16_*)."""
 import _common
 import numpy as np
 
-from vines import plotting as P
+from vines.plotting import draw as P
 
 
 def main(sm):

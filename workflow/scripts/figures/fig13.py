@@ -3,7 +3,7 @@ key grids.fig12_*.sections): KE ratio (blue stars) and x_max (m, red circles) vs
 columns eta."""
 import _common
 
-from vines import plotting as P
+from vines.plotting import draw as P
 
 
 def main(sm):

@@ -3,7 +3,7 @@ W <= 1 (a, c, e) and W >= 1 (b, d, f)."""
 import _common
 import numpy as np
 
-from vines import plotting as P
+from vines.plotting import draw as P
 
 #: impacts drawn per swept point (the last ones recorded), keeps the 3-D scatter readable
 MAX_PER_POINT = 20

@@ -3,7 +3,7 @@ branch (red, solid stable, dotted unstable) and |lambda| vs eta with the |lambda
 one row per branch fig15_* (F = 0.3077, W = 0.9 and 1.1)."""
 import _common
 
-from vines import plotting as P
+from vines.plotting import draw as P
 
 
 def main(sm):

@@ -6,7 +6,7 @@ import numpy as np
 from matplotlib.colors import BoundaryNorm, ListedColormap
 from matplotlib.patches import Patch
 
-from vines import plotting as P
+from vines.plotting import draw as P
 
 
 def main(sm):

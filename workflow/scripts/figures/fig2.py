@@ -3,7 +3,7 @@ panel per F (grids fig2_*): the KE ratio peaks where x_max is smallest."""
 import _common
 import numpy as np
 
-from vines import plotting as P
+from vines.plotting import draw as P
 
 
 def main(sm):

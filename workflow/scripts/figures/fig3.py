@@ -3,7 +3,7 @@ panel per F (sweep fig3, both sweep directions)."""
 import _common
 import numpy as np
 
-from vines import plotting as P
+from vines.plotting import draw as P
 
 
 def main(sm):

@@ -3,7 +3,7 @@ solid stable, dotted unstable) and |lambda| of J_P2 J_P1 vs eta with the |lambda
 one row per branch fig6_* (F = 0.05, 0.1 at W = 1)."""
 import _common
 
-from vines import plotting as P
+from vines.plotting import draw as P
 
 
 def main(sm):

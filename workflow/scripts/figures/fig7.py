@@ -2,7 +2,7 @@
 column per W (grids fig7_*), each with its colour bar."""
 import _common
 
-from vines import plotting as P
+from vines.plotting import draw as P
 
 
 def main(sm):

@@ -3,7 +3,7 @@ grids.fig7_*.sections): KE ratio (blue stars) and x_max (m, red circles) vs eta;
 columns W."""
 import _common
 
-from vines import plotting as P
+from vines.plotting import draw as P
 
 
 def main(sm):

@@ -3,7 +3,7 @@ row per case (workprecision/<case>.nc), columns impact times, KE ratio, x_max.""
 import _common
 import numpy as np
 
-from vines import plotting as P
+from vines.plotting import draw as P
 
 FLOOR = 1e-16          # errors below (exact agreement in double precision) drawn here
 STYLE = {"exact": dict(color="k", marker="o"), "RK45": dict(color="tab:blue", marker="s"),

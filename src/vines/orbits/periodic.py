@@ -26,10 +26,10 @@ from dataclasses import dataclass, field
 import numpy as np
 from numba import njit
 
-from .exact import oscillators
-from .flow import flow
+from ..core.exact import oscillators
+from ..core.flow import flow
 from .maps import WALL_L, WALL_R, admissible_kernel, impact_velocities, map_kernel
-from .params import D_DEFAULT, R_DEFAULT, ModelParams
+from ..core.params import D_DEFAULT, R_DEFAULT, ModelParams
 
 SYM_TOL = 1e-6          # flight times equal to this: symmetric
 DEDUP_TOL = 1e-8
@@ -396,7 +396,7 @@ def seed_orbits(p: ModelParams, osc=None, simulation=True, scan=True) -> list:
 
 
 def _simulation_seed(p: ModelParams, osc, t_end=600.0) -> list:
-    from .simulation import simulate
+    from ..core.simulation import simulate
     try:
         res = simulate(p.eta, p.omega, p.F, r=p.r, d=p.d, phi=p.phi, t_end=t_end,
                        t_transient=0.5 * t_end, max_impacts=200_000)

@@ -23,10 +23,10 @@ import time
 import numpy as np
 import xarray as xr
 
-from .hiprec import DPS_DEFAULT, H_SAMPLE_DEFAULT, V_STICK_REFERENCE, reference_run
-from .params import (D_DEFAULT, R_DEFAULT, ROOT_TOL_DEFAULT, V_STICK_DEFAULT, ModelParams,
+from ..reference.hiprec import DPS_DEFAULT, H_SAMPLE_DEFAULT, V_STICK_REFERENCE, reference_run
+from ..core.params import (D_DEFAULT, R_DEFAULT, ROOT_TOL_DEFAULT, V_STICK_DEFAULT, ModelParams,
                      ParameterError, SolverSettings)
-from .simulation import RK_METHODS, simulate
+from ..core.simulation import RK_METHODS, simulate
 
 V_VISIBLE_DEFAULT = 1e-3
 

@@ -27,10 +27,10 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 import xarray as xr
 
-from .io import COORD_ATTRS, CONVENTIONS
-from .params import (D_DEFAULT, L_HALF_M, MAX_IMPACTS_DEFAULT, R_DEFAULT, ROOT_TOL_DEFAULT,
+from ..data.netcdf import COORD_ATTRS, CONVENTIONS
+from ..core.params import (D_DEFAULT, L_HALF_M, MAX_IMPACTS_DEFAULT, R_DEFAULT, ROOT_TOL_DEFAULT,
                      T_END_DEFAULT, T_TRANSIENT_DEFAULT, V_STICK_DEFAULT)
-from .simulation import BATCH_FIELDS, simulate_batch
+from ..core.simulation import BATCH_FIELDS, simulate_batch
 
 #: per-run measures kept in the window and v_stick datasets (names of BATCH_FIELDS)
 RUN_FIELDS = ("ke_ratio", "xmax", "regime", "status", "impacts_per_period", "n_impacts",

@@ -24,8 +24,8 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from .params import L_HALF_M
-from .simulation import BATCH_FIELDS
+from ..core.params import L_HALF_M
+from ..core.simulation import BATCH_FIELDS
 
 DIMS = ("eta", "omega", "F")
 CONVENTIONS = "CF-1.10"
@@ -86,7 +86,7 @@ def git_commit(path=None) -> str:
 def provenance_attrs(*, title: str, config_subset, settings: dict | None = None,
                      code_version: str = "", commit: str | None = None) -> dict:
     """Global attributes: CF conventions and provenance (deterministic: no timestamps)."""
-    from . import __version__
+    from .. import __version__
     attrs = {
         "Conventions": CONVENTIONS,
         "title": title,
@@ -238,7 +238,7 @@ def merge_chunks(datasets, axes: dict) -> dict:
 
 def derive_measures(ds: xr.Dataset, r: float, d: float, sections: dict | None = None) -> xr.Dataset:
     """Add metres, the stuck-linear reference amplitude, masks and section markers."""
-    from .linear import stuck_amplitude
+    from ..core.linear import stuck_amplitude
     ds = ds.copy()
     L = L_HALF_M
 

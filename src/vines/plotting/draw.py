@@ -20,8 +20,8 @@ import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
 from matplotlib.ticker import MaxNLocator  # noqa: E402
 
-from .io import new_file_mode  # noqa: E402
-from .params import L_HALF_M  # noqa: E402
+from ..data.netcdf import new_file_mode  # noqa: E402
+from ..core.params import L_HALF_M  # noqa: E402
 
 #: axis labels (symbols and units)
 LABELS = {

@@ -262,7 +262,7 @@ def _LineProgress(n_tasks, stream=None):
 
 
 def _batch_block(eta, omega, F, kw):
-    from .simulation import simulate_batch
+    from ..core.simulation import simulate_batch
     return simulate_batch(eta, omega, F, n_threads=1, **kw)
 
 
@@ -271,7 +271,7 @@ def compute_chunk(chunk: dict, *, model: dict, simulation: dict, n_workers: int 
                   progress: bool = False) -> dict:
     """BATCH_FIELDS arrays of shape (n_eta, n_omega, n_F) for one chunk (sub-grid)."""
     import dask
-    from .simulation import BATCH_FIELDS
+    from ..core.simulation import BATCH_FIELDS
     e, w, f = np.meshgrid(*(np.asarray(chunk[d], dtype=float) for d in DIMS), indexing="ij")
     shape = e.shape
     e, w, f = e.ravel(), w.ravel(), f.ravel()
@@ -291,7 +291,7 @@ def compute_chunk(chunk: dict, *, model: dict, simulation: dict, n_workers: int 
 
 
 def _sweep_line(param, values, fixed, kw):
-    from .sweep import bifurcation_sweep
+    from ..core.sweep import bifurcation_sweep
     return bifurcation_sweep(param, values, **fixed, **kw)
 
 
@@ -339,7 +339,7 @@ def compute_timehistory(points: list[dict], *, model: dict, simulation: dict,
                         n_periods: int, samples_per_period: int) -> dict:
     """Single runs at ``points``: the last ``n_periods`` densely sampled, their impacts,
     and the scalar measures of each run."""
-    from .simulation import simulate
+    from ..core.simulation import simulate
     n_s = int(n_periods) * int(samples_per_period) + 1
     P = len(points)
     out = {"t": np.empty((P, n_s)), "z_m": np.empty((P, n_s)), "v_m": np.empty((P, n_s)),

@@ -29,8 +29,8 @@ from dataclasses import dataclass, field
 import mpmath as mp
 import numpy as np
 
-from .params import ModelParams, SolverSettings
-from .result import IMPACT_DTYPE
+from ..core.params import ModelParams, SolverSettings
+from ..core.result import IMPACT_DTYPE
 
 DPS_DEFAULT = 40
 H_SAMPLE_DEFAULT = 0.05

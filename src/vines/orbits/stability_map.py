@@ -17,8 +17,8 @@ from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
-from .exact import oscillators
-from .params import D_DEFAULT, R_DEFAULT, ModelParams, ParameterError, check_int
+from ..core.exact import oscillators
+from ..core.params import D_DEFAULT, R_DEFAULT, ModelParams, ParameterError, check_int
 from .periodic import seed_orbits, solve_orbit
 
 CLS_NONE, CLS_SYM_STABLE, CLS_ASYM_STABLE, CLS_UNSTABLE = 0, 1, 2, 3

@@ -25,10 +25,10 @@ import math
 import numpy as np
 from numba import njit
 
-from ._engine import first_contact
-from .exact import oscillators
-from .flow import I_RATE, flow
-from .params import ModelParams
+from ..core.kernel import first_contact
+from ..core.exact import oscillators
+from ..core.flow import I_RATE, flow
+from ..core.params import ModelParams
 
 WALL_L, WALL_R = 1, -1
 ROOT_TOL = 1e-13

@@ -5,7 +5,7 @@ import math
 
 import numpy as np
 
-from . import _engine as eng
+from . import kernel as eng
 from .flow import make_osc
 from .params import ModelParams, SolverSettings, check_conditioning
 from .result import IMPACT_DTYPE, RawRun

@@ -63,8 +63,8 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
-from .params import ModelParams, SolverSettings
-from .result import IMPACT_DTYPE, RawRun
+from ..core.params import ModelParams, SolverSettings
+from ..core.result import IMPACT_DTYPE, RawRun
 
 METHODS = ("DOP853", "RK45", "LSODA", "Radau")
 

@@ -74,7 +74,7 @@ def simulate(eta, omega, F, r=R_DEFAULT, d=D_DEFAULT, phi=0.0, *, t_end=T_END_DE
         rtol = check_real("rtol", rtol, lo=1e-14, hi=1e-2)
         if atol is not None:
             atol = check_real("atol", atol, lo=0.0, lo_open=True)
-        from .reference import run_rk
+        from ..reference.rk import run_rk
         raw = run_rk(p, st, method=method, rtol=rtol, atol=atol)
         options = {"method": method, "rtol": rtol,
                    "atol": raw.solver_info.get("atol", atol)}

@@ -25,8 +25,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .exact import oscillators
-from .params import D_DEFAULT, R_DEFAULT, ModelParams, ParameterError, check_real
+from ..core.exact import oscillators
+from ..core.params import D_DEFAULT, R_DEFAULT, ModelParams, ParameterError, check_real
 from .periodic import PeriodicOrbit, find_1to1, solve_orbit
 
 PARAMS = ("eta", "omega", "F")
