@@ -10,12 +10,13 @@ if not workflow.config_settings.configfiles:
 
 
 include: "workflow/rules/common.smk"
-include: "workflow/rules/simulate.smk"
-include: "workflow/rules/measures.smk"
-include: "workflow/rules/sweeps.smk"
-include: "workflow/rules/maps.smk"
+include: "workflow/rules/simulate_grid.smk"
+include: "workflow/rules/extract_measures.smk"
+include: "workflow/rules/bifurcation_sweep.smk"
+include: "workflow/rules/map_solve.smk"
+include: "workflow/rules/stability_map.smk"
 include: "workflow/rules/timehistory.smk"
-include: "workflow/rules/workprecision.smk"
+include: "workflow/rules/work_precision.smk"
 include: "workflow/rules/convergence.smk"
 include: "workflow/rules/figures.smk"
 

@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 import vines
-from vines.orbits.maps import WALL_L, WALL_R, apply_map, mirror
+from vines.core.walls import WALL_L, WALL_R
+from vines.orbits.maps import apply_map, mirror
 from vines.core.params import ModelParams
 from vines.orbits.periodic import PeriodicOrbit, find_1to1
 

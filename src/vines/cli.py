@@ -26,13 +26,12 @@ import sys
 from typing import NoReturn, Sequence
 
 from . import __version__
-from .core.params import (D_DEFAULT, MAX_IMPACTS_DEFAULT, R_DEFAULT, T_END_DEFAULT,
+from .core.simulation import SOLVERS
+from .core.params import (PARAM_NAMES, RTOL_DEFAULT, D_DEFAULT, MAX_IMPACTS_DEFAULT, R_DEFAULT, T_END_DEFAULT,
                      T_TRANSIENT_DEFAULT, V_STICK_DEFAULT, ModelParams, ParameterError,
                      SolverSettings, check_real)
 
 PROG = "vines"
-RTOL_DEFAULT = 1e-12
-SOLVERS = ("exact", "rk")
 
 
 class VinesArgumentParser(argparse.ArgumentParser):
@@ -275,7 +274,7 @@ def _cmd_periodic(args: argparse.Namespace) -> int:
 
 # --------------------------------------------------------------------------- continue
 
-_CONT_PARAMS = ("eta", "omega", "F")
+_CONT_PARAMS = PARAM_NAMES
 
 
 def _add_continue(subparsers) -> VinesArgumentParser:

@@ -1,19 +1,20 @@
-# Config validation (with defaults), grid chunks and code version, all at parse time so
-# the DAG is static. Helpers live in vines.pipeline.stages (tested without snakemake).
-import importlib.util
+# Config validation (with defaults), grid chunks and code versions, all at parse time so
+# the DAG is static. Helpers live in vines.pipeline (tested without snakemake).
 import os
 import sys
 
-# Use the vines of this checkout (src layout) whatever copy happens to be installed, here
-# and in every job (workflow/scripts/_checkout.py): the code version below is the hash of
-# exactly the sources that run.
+# The vines of this checkout (src layout) runs, whatever copy is installed: first on
+# sys.path here and, through PYTHONPATH (ahead of site-packages), in every job, so the
+# code versions below are hashes of exactly the sources that run.
 _SRC = os.path.join(workflow.basedir, "src")
-if os.path.isdir(os.path.join(_SRC, "vines")):
-    sys.path.insert(0, _SRC)
+sys.path.insert(0, _SRC)
+os.environ["PYTHONPATH"] = os.pathsep.join(
+    [_SRC] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p and p != _SRC])
 
 from vines.core.params import D_DEFAULT
-from vines.pipeline.stages import (NON_COMPUTE_SOURCES, STUDY_SOURCES, ConfigError, chunk_map,
-                            code_version, grid_axes, load_schema, validate_config)
+from vines.pipeline.axes import chunk_map, grid_axes
+from vines.pipeline.codeversion import COMPUTE, FIGURES, STUDIES, code_version
+from vines.pipeline.config import ConfigError, load_schema, validate_config
 
 try:
     validate_config(config, load_schema(workflow.source_path("../schemas/config.schema.yaml")))
@@ -26,11 +27,12 @@ RES = f"results/{config['run']}"
 MODEL = {"r": config["model"]["r"],
          "d": D_DEFAULT if config["model"]["d"] is None else config["model"]["d"]}
 SIMULATION = dict(config["simulation"])
-# sha256 of the vines sources used by the computations: a param of every compute rule, so
-# a change of the numerics reruns them (Snakemake does not track imported modules).
-CODE = code_version(exclude=NON_COMPUTE_SOURCES + STUDY_SOURCES)
-# the solver studies (work-precision, convergence) also use the RK reference and hiprec
-CODE_STUDY = code_version(exclude=tuple(set(NON_COMPUTE_SOURCES) - {"reference.py"}))
+# Code versions (sha256 of the vines subpackages each kind of rule depends on) are params
+# of the rules, so editing a subpackage reruns exactly the rules that depend on it
+# (Snakemake does not track imported modules).
+CODE = code_version(COMPUTE)
+CODE_STUDY = code_version(STUDIES)
+CODE_FIGURES = code_version(FIGURES)
 
 GRIDS = config["grids"]
 AXES = {name: grid_axes(g, key=f"grids.{name}") for name, g in GRIDS.items()}
@@ -42,25 +44,6 @@ THIST = config["timehistories"]
 WPREC = config["work_precision"]
 WPREC_SETTINGS = {k: v for k, v in WPREC.items() if k != "cases"}
 CONV = config["convergence"]
-
-
-def _have(module):
-    try:
-        return importlib.util.find_spec(module) is not None
-    except ImportError:
-        return False
-
-
-# map-solve / stability-map call vines.orbits.continuation / vines.orbits.stability_map; until those
-# modules exist their outputs are left out of `all` (with a warning), not faked.
-HAVE_CONTINUATION = _have("vines.orbits.continuation")
-HAVE_STABILITY_MAP = _have("vines.orbits.stability_map")
-if BRANCHES and not HAVE_CONTINUATION:
-    print("vines pipeline: warning: vines.orbits.continuation not available, map-solve outputs "
-          "are not requested", file=sys.stderr)
-if SMAPS and not HAVE_STABILITY_MAP:
-    print("vines pipeline: warning: vines.orbits.stability_map not available, stability-map "
-          "outputs are not requested", file=sys.stderr)
 
 
 wildcard_constraints:
@@ -79,10 +62,8 @@ def chunk_files(wildcards):
 def all_datasets():
     out = [f"{RES}/measures/{g}.nc" for g in GRIDS]
     out += [f"{RES}/sweeps/{s}.nc" for s in SWEEPS]
-    if HAVE_CONTINUATION:
-        out += [f"{RES}/branches/{b}.nc" for b in BRANCHES]
-    if HAVE_STABILITY_MAP:
-        out += [f"{RES}/stability/{m}.nc" for m in SMAPS]
+    out += [f"{RES}/branches/{b}.nc" for b in BRANCHES]
+    out += [f"{RES}/stability/{m}.nc" for m in SMAPS]
     out += [f"{RES}/timehistories/{t}.nc" for t in THIST]
     out += [f"{RES}/workprecision/{c}.nc" for c in WPREC["cases"]]
     out += [f"{RES}/convergence/{s}.nc" for s in CONV]

@@ -15,6 +15,9 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass, field
 
+#: the parameters a study varies, in the order of grid dimensions
+PARAM_NAMES = ("eta", "omega", "F")
+
 # Table 1 of the paper (SI units).
 M_LO_KG = 3.807          # mass of the linear oscillator M [kg]
 L_HALF_M = 0.015         # half cavity length L [m] (2L = 0.03 m)
@@ -30,6 +33,7 @@ T_TRANSIENT_DEFAULT = 4000.0
 V_STICK_DEFAULT = 1e-6
 MAX_IMPACTS_DEFAULT = 2_000_000
 ROOT_TOL_DEFAULT = 1e-13
+RTOL_DEFAULT = 1e-12          # rtol of the RK reference solver
 
 # Conditioning of the exact solver's closed form (see ``check_conditioning``).
 RESONANCE_SNAP = 16.0 * 2.220446049250313e-16   # d = 0, |1 - m W^2| <= this: exact resonance

@@ -13,12 +13,11 @@ from typing import Callable
 import numpy as np
 
 from .params import L_HALF_M, ModelParams, SolverSettings
+from .walls import WALL_L, WALL_R  # noqa: F401  (re-exported)
 
 IMPACT_DTYPE = np.dtype([("t", "f8"), ("z_m", "f8"), ("v_m", "f8"),
                          ("z_b", "f8"), ("v_b", "f8"), ("wall", "i1")])
 
-WALL_L = 1
-WALL_R = -1
 
 
 @dataclass

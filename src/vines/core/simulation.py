@@ -8,15 +8,26 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 
 from .exact import run_exact
-from .params import (D_DEFAULT, MAX_IMPACTS_DEFAULT, R_DEFAULT, ROOT_TOL_DEFAULT,
+from .params import (RTOL_DEFAULT, D_DEFAULT, MAX_IMPACTS_DEFAULT, R_DEFAULT, ROOT_TOL_DEFAULT,
                      T_END_DEFAULT, T_TRANSIENT_DEFAULT, V_STICK_DEFAULT, ModelParams,
                      ParameterError, SolverSettings, check_conditioning, check_int,
                      check_real)
 from .regime import classify, strobe_times
 from .result import RawRun, SimulationResult
 
-SOLVERS = ("exact", "rk")
+#: scipy methods of the RK reference solver (``vines.reference.rk``)
 RK_METHODS = ("DOP853", "RK45", "LSODA", "Radau")
+
+
+def _run_rk(p: ModelParams, st: SolverSettings, *, method, rtol, atol) -> RawRun:
+    """The independent RK reference (imported on first use: scipy's event loop)."""
+    from ..reference.rk import run_rk
+    return run_rk(p, st, method=method, rtol=rtol, atol=atol)
+
+
+#: solver registry: name -> function(params, settings, **options) -> RawRun; the API,
+#: the CLI (--solver) and the work-precision study take their names from here
+SOLVERS = {"exact": run_exact, "rk": _run_rk}
 
 
 def _measures(p: ModelParams, st: SolverSettings, raw: RawRun) -> dict:
@@ -50,7 +61,7 @@ def _settings(t_end, t_transient, v_stick, max_impacts, root_tol, state0) -> Sol
 
 
 def simulate(eta, omega, F, r=R_DEFAULT, d=D_DEFAULT, phi=0.0, *, t_end=T_END_DEFAULT,
-             t_transient=T_TRANSIENT_DEFAULT, solver="exact", rtol=1e-12, atol=None,
+             t_transient=T_TRANSIENT_DEFAULT, solver="exact", rtol=RTOL_DEFAULT, atol=None,
              method="DOP853", v_stick=V_STICK_DEFAULT, max_impacts=MAX_IMPACTS_DEFAULT,
              root_tol=ROOT_TOL_DEFAULT, state0=(0.0, 0.0, 0.0, 0.0)) -> SimulationResult:
     """Simulate the VINES from ``state0`` at t = 0 to ``t_end`` (dimensionless time).
@@ -66,7 +77,7 @@ def simulate(eta, omega, F, r=R_DEFAULT, d=D_DEFAULT, phi=0.0, *, t_end=T_END_DE
     if solver not in SOLVERS:
         raise ParameterError("solver", solver, f"must be one of {', '.join(SOLVERS)}")
     if solver == "exact":
-        raw = run_exact(p, st)
+        raw = SOLVERS[solver](p, st)
         options = {"root_tol": st.root_tol}
     else:
         if method not in RK_METHODS:
@@ -74,8 +85,7 @@ def simulate(eta, omega, F, r=R_DEFAULT, d=D_DEFAULT, phi=0.0, *, t_end=T_END_DE
         rtol = check_real("rtol", rtol, lo=1e-14, hi=1e-2)
         if atol is not None:
             atol = check_real("atol", atol, lo=0.0, lo_open=True)
-        from ..reference.rk import run_rk
-        raw = run_rk(p, st, method=method, rtol=rtol, atol=atol)
+        raw = SOLVERS[solver](p, st, method=method, rtol=rtol, atol=atol)
         options = {"method": method, "rtol": rtol,
                    "atol": raw.solver_info.get("atol", atol)}
     m = _measures(p, st, raw)
@@ -84,17 +94,11 @@ def simulate(eta, omega, F, r=R_DEFAULT, d=D_DEFAULT, phi=0.0, *, t_end=T_END_DE
                             _state_at=raw.state_at, **m)
 
 
+#: fields of ``simulate_batch`` and their dtypes (CF attributes: ``vines.data.schema``)
 BATCH_FIELDS = {
-    # name: (dtype, long_name, units)
-    "ke_ratio": ("f8", "kinetic energy ratio K_b/(K_m+K_b)", "1"),
-    "xmax": ("f8", "max |z_m| over the window (dimensionless)", "1"),
-    "xmax_whole_run": ("f8", "max |z_m| over the whole run (dimensionless)", "1"),
-    "n_impacts": ("i8", "impacts in the whole run", "1"),
-    "impacts_per_period": ("f8", "impacts per forcing period in the window", "1"),
-    "t_stuck": ("f8", "time stuck in the window (dimensionless time)", "1"),
-    "period": ("i8", "period of the stroboscopic section in forcing periods (0: none)", "1"),
-    "regime": ("U16", "regime of the post-transient motion", ""),
-    "status": ("U16", "solver status", ""),
+    "ke_ratio": "f8", "xmax": "f8", "xmax_whole_run": "f8", "n_impacts": "i8",
+    "impacts_per_period": "f8", "t_stuck": "f8", "period": "i8", "regime": "U16",
+    "status": "U16",
 }
 
 
@@ -132,7 +136,7 @@ def simulate_batch(eta, omega, F, *, r=R_DEFAULT, d=D_DEFAULT, phi=0.0, t_end=T_
         for i in range(n):      # near-resonant points the closed form cannot resolve
             check_conditioning(float(e[i]), float(w[i]), float(f[i]), p0.d)
     n_threads = check_int("n_threads", n_threads if n_threads is not None else (os.cpu_count() or 1), lo=1)
-    out = {k: np.empty(n, dtype=dt) for k, (dt, _, _) in BATCH_FIELDS.items()}
+    out = {k: np.empty(n, dtype=dt) for k, dt in BATCH_FIELDS.items()}
 
     def work(i):
         vals = _batch_point(e[i], w[i], f[i], r, d, phi, st)

@@ -18,10 +18,10 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 
 from .exact import run_exact
-from .params import (D_DEFAULT, R_DEFAULT, V_STICK_DEFAULT, ModelParams, ParameterError,
+from .params import (PARAM_NAMES, D_DEFAULT, R_DEFAULT, V_STICK_DEFAULT, ModelParams, ParameterError,
                      SolverSettings, check_int, check_real)
 
-SWEEP_PARAMS = ("eta", "omega", "F")
+SWEEP_PARAMS = PARAM_NAMES
 
 
 def bifurcation_sweep(param, values, *, eta=None, omega=None, F=None, r=R_DEFAULT, d=D_DEFAULT,

@@ -26,10 +26,11 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..core.exact import oscillators
-from ..core.params import D_DEFAULT, R_DEFAULT, ModelParams, ParameterError, check_real
+from ..core.walls import WALL_L, WALL_R
+from ..core.params import PARAM_NAMES, D_DEFAULT, R_DEFAULT, ModelParams, ParameterError, check_real
 from .periodic import PeriodicOrbit, find_1to1, solve_orbit
 
-PARAMS = ("eta", "omega", "F")
+PARAMS = PARAM_NAMES
 EVENT_TYPES = ("fold", "flip", "neimark-sacker", "admissibility-loss", "symmetry-breaking")
 MIRROR = np.diag([-1.0, -1.0, -1.0, 1.0])
 
@@ -115,7 +116,7 @@ class _Continuer:
         return o
 
     def jac1(self, value, o):
-        from .maps import WALL_L, WALL_R, map_jacobian
+        from .maps import map_jacobian
         return map_jacobian(self.params(value), o.x_L, WALL_L, WALL_R,
                             t_guess=o.x_L[3] + o.flight_times[0])
 

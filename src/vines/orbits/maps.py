@@ -29,21 +29,13 @@ from ..core.kernel import first_contact
 from ..core.exact import oscillators
 from ..core.flow import I_RATE, flow
 from ..core.params import ModelParams
+from ..core.walls import WALL_L, WALL_R, impact_velocities
 
-WALL_L, WALL_R = 1, -1
 ROOT_TOL = 1e-13
 ADMISSIBLE_TOL = 1e-8       # first contact and map root must agree to this (relative to 1+s)
 
 # status codes of the kernels
 OK, NO_ROOT = 0, 1
-
-
-@njit(cache=True, nogil=True)
-def impact_velocities(eta, r, vm, vb):
-    """Post-impact (v_m+, v_b+) from pre-impact (v_m-, v_b-) (paper Eq. 10)."""
-    one = 1.0 + eta
-    return ((1.0 - r * eta) * vm + eta * (1.0 + r) * vb) / one, \
-        ((1.0 + r) * vm + (eta - r) * vb) / one
 
 
 @njit(cache=True, nogil=True)

@@ -28,7 +28,8 @@ from numba import njit
 
 from ..core.exact import oscillators
 from ..core.flow import flow
-from .maps import WALL_L, WALL_R, admissible_kernel, impact_velocities, map_kernel
+from ..core.walls import WALL_L, WALL_R, impact_velocities
+from .maps import admissible_kernel, map_kernel
 from ..core.params import D_DEFAULT, R_DEFAULT, ModelParams
 
 SYM_TOL = 1e-6          # flight times equal to this: symmetric

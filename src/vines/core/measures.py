@@ -1,0 +1,83 @@
+"""Measures derived from raw runs: metres, masks, the stuck linear reference, time histories.
+
+Plain arrays in, plain arrays out (datasets are built by ``vines.data``).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .linear import stuck_amplitude
+from .params import L_HALF_M
+from .simulation import simulate
+
+
+def derived_measures(fields: dict, eta, omega, F, d: float) -> dict:
+    """Grid measures in metres, the stuck-linear amplitude (Eq. 28) and regime masks.
+
+    ``fields``: ``simulate_batch`` arrays over the grid (eta, omega, F) given by the 1-D
+    axes ``eta``, ``omega``, ``F``. Returns arrays of the same shape (masks as int8).
+    """
+    e, w, f = np.meshgrid(np.asarray(eta), np.asarray(omega), np.asarray(F), indexing="ij")
+    amp = stuck_amplitude(e, w, f, d)
+    return {
+        "xmax_m": np.asarray(fields["xmax"]) * L_HALF_M,
+        "xmax_whole_run_m": np.asarray(fields["xmax_whole_run"]) * L_HALF_M,
+        "xmax_stuck_linear": amp,
+        "xmax_stuck_linear_m": amp * L_HALF_M,
+        "impacting": (np.asarray(fields["impacts_per_period"]) > 0).astype("i1"),
+        "chatter": (np.asarray(fields["regime"]) == "chatter").astype("i1"),
+        "failed": (np.asarray(fields["status"]) != "ok").astype("i1"),
+    }
+
+
+def section_marks(axis, values, dim: str) -> np.ndarray:
+    """int8 marks of ``axis`` entries that are one of ``values`` (exact floats).
+
+    Raises ValueError naming the values that are not on the axis.
+    """
+    axis = np.asarray(axis, dtype=float)
+    mark = np.isin(axis, np.asarray(values, dtype=float))
+    missing = set(map(float, values)) - set(axis[mark].tolist())
+    if missing:
+        raise ValueError(f"section {dim} = {sorted(missing)} is not on the grid axis")
+    return mark.astype("i1")
+
+
+def time_histories(points: list[dict], *, model: dict, simulation: dict,
+                   n_periods: int, samples_per_period: int) -> dict:
+    """Single runs at ``points``: the last ``n_periods`` forcing periods sampled densely
+    (``samples_per_period`` each, from the exact trajectory), their impacts (concatenated,
+    ``row_size`` per point) and the scalar measures of each run."""
+    n_s = int(n_periods) * int(samples_per_period) + 1
+    P = len(points)
+    out = {"t": np.empty((P, n_s)), "z_m": np.empty((P, n_s)), "v_m": np.empty((P, n_s)),
+           "z_b": np.empty((P, n_s)), "v_b": np.empty((P, n_s)), "ke_ratio": np.empty(P),
+           "xmax": np.empty(P), "regime": np.empty(P, dtype="U16"),
+           "status": np.empty(P, dtype="U16")}
+    imp_t, imp_dw, imp_phase, imp_wall, row_size = [], [], [], [], np.zeros(P, dtype=np.int64)
+    for i, pt in enumerate(points):
+        res = simulate(pt["eta"], pt["omega"], pt["F"], **model, **simulation)
+        T = 2 * math.pi / pt["omega"]
+        t1 = res.t_last
+        t0 = max(0.0, t1 - n_periods * T)
+        ts = np.linspace(t0, t1, n_s)
+        st = res.state_at(ts)
+        out["t"][i] = ts
+        for j, k in enumerate(("z_m", "v_m", "z_b", "v_b")):
+            out[k][i] = st[j]
+        out["ke_ratio"][i] = res.ke_ratio
+        out["xmax"][i] = res.xmax
+        out["regime"][i] = res.regime
+        out["status"][i] = res.status
+        sel = res.impacts["t"] >= t0
+        imp_t.append(res.impacts["t"][sel])
+        imp_dw.append(res.impact_dw[sel])
+        imp_phase.append(res.impact_phase[sel])
+        imp_wall.append(res.impacts["wall"][sel].astype("i1"))
+        row_size[i] = int(sel.sum())
+    out.update(impact_t=np.concatenate(imp_t), impact_dw=np.concatenate(imp_dw),
+               impact_phase=np.concatenate(imp_phase), impact_wall=np.concatenate(imp_wall),
+               row_size=row_size)
+    return out

@@ -1,0 +1,185 @@
+"""One dataset builder per pipeline stage: plain arrays in, CF datasets out.
+
+Names, ``long_name`` and ``units`` come from ``vines.data.schema``. Layouts:
+
+* grids and measures over dims (eta, omega, F);
+* bifurcation sweeps and time histories as CF contiguous ragged arrays (``row_size`` with
+  ``sample_dimension``);
+* 1:1 branches over ``point`` (plus ``event``), stability maps over (eta, omega).
+"""
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+
+from ..core.simulation import BATCH_FIELDS
+from .schema import (BATCH_ATTRS, BRANCH_ATTRS, COORD_ATTRS, DERIVED_ATTRS, DIMS,
+                     STABILITY_ATTRS, STABILITY_CLASS_FLAGS, SWEEP_INSTANCE_ATTRS,
+                     SWEEP_SAMPLE_ATTRS, TIMEHISTORY_ATTRS, attrs as cf)
+
+#: fill value of a grid point no chunk provided, by dtype kind
+FILL = {"f": np.nan, "i": -1, "U": "", "b": False}
+
+
+def _variables(dims, arrays: dict, table: dict) -> dict:
+    return {k: xr.Variable(dims, np.asarray(a), cf(table, k)) for k, a in arrays.items()}
+
+
+# ------------------------------------------------------------------ grids and measures
+
+def _coords(axes: dict) -> dict:
+    return {d: xr.Variable((d,), np.asarray(axes[d], dtype=float), COORD_ATTRS[d])
+            for d in DIMS}
+
+
+def grid_dataset(axes: dict, fields: dict, attrs: dict) -> xr.Dataset:
+    """Dataset over dims (eta, omega, F) holding ``fields`` (``simulate_batch`` arrays)."""
+    data = {name: xr.Variable(DIMS, np.asarray(arr).astype(BATCH_FIELDS[name]),
+                              cf(BATCH_ATTRS, name))
+            for name, arr in fields.items()}
+    return xr.Dataset(data, coords=_coords(axes), attrs=attrs)
+
+
+def merge_chunks(datasets, axes: dict) -> dict:
+    """Place chunk datasets (each a sub-grid) into the full grid given by ``axes``.
+
+    Values are matched exactly (chunks are cut from the same axes). Raises ValueError when a
+    chunk value is not on an axis or a grid point is missing.
+    """
+    full = {d: np.asarray(axes[d], dtype=float) for d in DIMS}
+    shape = tuple(full[d].size for d in DIMS)
+    out = {k: np.full(shape, FILL[np.dtype(dt).kind], dtype=dt) for k, dt in BATCH_FIELDS.items()}
+    seen = np.zeros(shape, dtype=bool)
+    for ds in datasets:
+        idx = []
+        for d in DIMS:
+            v = ds[d].values
+            pos = np.clip(np.searchsorted(full[d], v), 0, full[d].size - 1)
+            if not np.array_equal(full[d][pos], v):
+                raise ValueError(f"chunk values of {d} are not on the grid axis")
+            idx.append(pos)
+        ix = np.ix_(*idx)
+        for k in BATCH_FIELDS:
+            out[k][ix] = ds[k].values.astype(out[k].dtype)
+        seen[ix] = True
+    if not seen.all():
+        raise ValueError(f"{int((~seen).sum())} grid points missing from the chunks")
+    return out
+
+
+def measures_dataset(grid: xr.Dataset, derived: dict, sections: dict) -> xr.Dataset:
+    """The grid dataset plus derived measures and ``section_<dim>`` markers (int8 flags)."""
+    ds = grid.copy()
+    ds.update(_variables(DIMS, derived, DERIVED_ATTRS))
+    for dim, mark in sections.items():
+        ds[f"section_{dim}"] = xr.Variable(
+            (dim,), np.asarray(mark, dtype="i1"),
+            {"long_name": f"1 where {dim} is one of the requested sections", "units": "1",
+             "flag_values": np.array([0, 1], dtype="i1"),
+             "flag_meanings": "not_section section"})
+    return ds
+
+
+# ------------------------------------------------------------------ ragged arrays
+
+def ragged_dataset(instances: dict, samples: dict, row_size, *, instance_dim: str,
+                   sample_dim: str, attrs: dict) -> xr.Dataset:
+    """CF contiguous ragged array: ``row_size`` samples per instance, one after another.
+
+    ``instances`` / ``samples``: name -> (array, long_name, units).
+    """
+    data = {}
+    for name, (arr, ln, un) in instances.items():
+        data[name] = xr.Variable((instance_dim,), np.asarray(arr), {"long_name": ln, "units": un})
+    for name, (arr, ln, un) in samples.items():
+        data[name] = xr.Variable((sample_dim,), np.asarray(arr), {"long_name": ln, "units": un})
+    rs = np.asarray(row_size, dtype=np.int64)
+    n = int(rs.sum())
+    for name, (arr, _, _) in samples.items():
+        if np.asarray(arr).shape[0] != n:
+            raise ValueError(f"{name}: {np.asarray(arr).shape[0]} samples, row_size sums to {n}")
+    data["row_size"] = xr.Variable((instance_dim,), rs, {
+        "long_name": f"number of {sample_dim}s of each {instance_dim}", "units": "1",
+        "sample_dimension": sample_dim})
+    return xr.Dataset(data, attrs=attrs)
+
+
+def ragged_rows(ds: xr.Dataset, name: str, row_size: str = "row_size") -> list[np.ndarray]:
+    """Split a contiguous ragged sample variable into one array per instance."""
+    rs = ds[row_size].values
+    edges = np.concatenate([[0], np.cumsum(rs)])
+    v = ds[name].values
+    return [v[edges[i]:edges[i + 1]] for i in range(rs.size)]
+
+
+def sweep_dataset(sweep: dict, param: str, outer: str, attrs: dict) -> xr.Dataset:
+    """Bifurcation sweep lines (``pipeline.stages`` assembly) as a ragged array of impacts."""
+    inst = {
+        "value": (sweep["value"], f"swept parameter {param}: " + COORD_ATTRS[param]["long_name"], "1"),
+        "outer_value": (sweep["outer_value"], f"outer parameter {outer}: "
+                        + COORD_ATTRS[outer]["long_name"], "1"),
+    }
+    inst.update({k: (sweep[k], *SWEEP_INSTANCE_ATTRS[k]) for k in SWEEP_INSTANCE_ATTRS})
+    samples = {k: (sweep[k], *SWEEP_SAMPLE_ATTRS[k]) for k in SWEEP_SAMPLE_ATTRS}
+    return ragged_dataset(inst, samples, sweep["row_size"], instance_dim="point",
+                          sample_dim="impact", attrs=attrs)
+
+
+def timehistory_dataset(points: list[dict], th: dict, attrs: dict) -> xr.Dataset:
+    """Time histories (``core.measures.time_histories``) of ``points``: samples per point,
+    impacts as a ragged array."""
+    PS, P, I = ("point", "sample"), ("point",), ("impact",)
+    data = {k: xr.Variable(P, np.asarray([p[k] for p in points]), COORD_ATTRS[k]) for k in DIMS}
+    for k in TIMEHISTORY_ATTRS:
+        dims = PS if k in ("t", "z_m", "v_m", "z_b", "v_b") else I if k.startswith("impact_") else P
+        data[k] = xr.Variable(dims, np.asarray(th[k]), cf(TIMEHISTORY_ATTRS, k))
+        if k == "status":
+            data["row_size"] = xr.Variable(P, np.asarray(th["row_size"]), {
+                "long_name": "number of impacts of each point", "units": "1",
+                "sample_dimension": "impact"})
+    return xr.Dataset(data, attrs=attrs)
+
+
+# ------------------------------------------------------------------ orbits
+
+def branch_dataset(br, attrs: dict) -> xr.Dataset:
+    """A continued 1:1 branch (``orbits.continuation.Branch``) over ``point``, with events."""
+    D = ("point",)
+    data = {k: xr.Variable(D, np.asarray(getattr(br, k)), COORD_ATTRS[k]) for k in DIMS}
+    for k in ("lambda_max", "stable", "symmetric", "admissible", "dw_L", "dw_R",
+              "phase_L", "phase_R"):
+        a = np.asarray(getattr(br, k))
+        if k in ("stable", "symmetric", "admissible"):
+            a = a.astype("i1")
+        data[k] = xr.Variable(D, a, cf(BRANCH_ATTRS, k))
+        if k == "lambda_max":
+            data["abs_eigenvalues"] = xr.Variable(
+                ("point", "eig"), np.asarray(br.abs_eigenvalues).reshape(-1, 4),
+                cf(BRANCH_ATTRS, "abs_eigenvalues"))
+    data["event_type"] = xr.Variable(("event",), np.asarray([e["type"] for e in br.events],
+                                                             dtype="U32"),
+                                     cf(BRANCH_ATTRS, "event_type"))
+    data["event_at"] = xr.Variable(("event",), np.asarray([float(e["at"]) for e in br.events],
+                                                          dtype=float),
+                                   {"long_name": f"{br.param} value of the event", "units": "1"})
+    return xr.Dataset(data, attrs=attrs)
+
+
+def stability_dataset(eta, omega, res: dict, attrs: dict) -> xr.Dataset:
+    """A stability map (``orbits.stability_map``) over (eta, omega)."""
+    D = ("eta", "omega")
+    for k in STABILITY_ATTRS:
+        if np.shape(res[k]) != (np.size(eta), np.size(omega)):
+            raise ValueError(f"stability_map returned {k} with shape {np.shape(res[k])}, "
+                             f"expected (eta, omega) = {(np.size(eta), np.size(omega))}")
+    data = {
+        "lambda_max": xr.Variable(D, np.asarray(res["lambda_max"]), cf(STABILITY_ATTRS, "lambda_max")),
+        "cls": xr.Variable(D, np.asarray(res["cls"], dtype="i1"),
+                           cf(STABILITY_ATTRS, "cls", **STABILITY_CLASS_FLAGS)),
+        "dw_L": xr.Variable(D, np.asarray(res["dw_L"]), cf(STABILITY_ATTRS, "dw_L")),
+        "symmetric": xr.Variable(D, np.asarray(res["symmetric"], dtype="i1"),
+                                 cf(STABILITY_ATTRS, "symmetric")),
+    }
+    coords = {"eta": xr.Variable(("eta",), np.asarray(eta), COORD_ATTRS["eta"]),
+              "omega": xr.Variable(("omega",), np.asarray(omega), COORD_ATTRS["omega"])}
+    return xr.Dataset(data, coords=coords, attrs=attrs)

@@ -1,0 +1,104 @@
+"""The one dataset schema of vines: every variable's CF ``long_name`` and ``units``.
+
+Builders (``vines.data.builders``, ``vines.data.studies``) take names from here, so a
+quantity has one name and one description in every dataset. ``units`` is ``"1"`` for
+dimensionless numbers and ``""`` for labels (strings).
+"""
+from __future__ import annotations
+
+import numpy as np
+
+CONVENTIONS = "CF-1.10"
+from ..core.params import PARAM_NAMES as DIMS  # noqa: E402
+
+COORD_ATTRS = {
+    "eta": {"long_name": "ball-to-LO mass ratio eta = m/M", "units": "1"},
+    "omega": {"long_name": "forcing frequency ratio W = w/w0", "units": "1"},
+    "F": {"long_name": "forcing amplitude F = A/L", "units": "1"},
+}
+
+#: fields of ``vines.simulate_batch`` stored per grid point: name -> (long_name, units)
+BATCH_ATTRS = {
+    "ke_ratio": ("kinetic energy ratio K_b/(K_m+K_b)", "1"),
+    "xmax": ("max |z_m| over the window (dimensionless)", "1"),
+    "xmax_whole_run": ("max |z_m| over the whole run (dimensionless)", "1"),
+    "n_impacts": ("impacts in the whole run", "1"),
+    "impacts_per_period": ("impacts per forcing period in the window", "1"),
+    "t_stuck": ("time stuck in the window (dimensionless time)", "1"),
+    "period": ("period of the stroboscopic section in forcing periods (0: none)", "1"),
+    "regime": ("regime of the post-transient motion", ""),
+    "status": ("solver status", ""),
+}
+
+#: variables derived from the batch fields by ``vines.core.measures.derived_measures``
+DERIVED_ATTRS = {
+    "xmax_m": ("max |x_m| over the window", "m"),
+    "xmax_whole_run_m": ("max |x_m| over the whole run", "m"),
+    "xmax_stuck_linear": ("steady-state amplitude of the stuck linear system (Eq. 28)", "1"),
+    "xmax_stuck_linear_m": ("steady-state amplitude of the stuck linear system (Eq. 28)", "m"),
+    "impacting": ("1 where the post-transient motion has impacts", "1"),
+    "chatter": ("1 where the post-transient regime is chatter", "1"),
+    "failed": ("1 where the run did not finish (status != ok)", "1"),
+}
+
+#: bifurcation sweeps: instance (one per swept value) and sample (one per impact) variables
+SWEEP_INSTANCE_ATTRS = {
+    "direction": ("sweep direction (+1 up, -1 down)", "1"),
+    "line": ("index of the sweep line (outer value, direction)", "1"),
+    "phi": ("forcing phase at the start of the point", "rad"),
+    "status": ("solver status of the point", ""),
+}
+SWEEP_SAMPLE_ATTRS = {
+    "dw": ("relative velocity w' = z_m' - z_b' just before impact", "1"),
+    "phase": ("impact phase mod(W t + phi, 2 pi)", "rad"),
+    "wall": ("wall hit (+1 left end L, -1 right end R)", "1"),
+}
+
+#: 1:1 branches (map-solve)
+BRANCH_ATTRS = {
+    "lambda_max": ("largest |eigenvalue| of the 1:1 map", "1"),
+    "abs_eigenvalues": ("|eigenvalues| of J_P2 J_P1, decreasing", "1"),
+    "stable": ("1 if all |lambda| < 1", "1"),
+    "symmetric": ("1 if symmetric 1:1 orbit", "1"),
+    "admissible": ("1 if admissible (no earlier contact)", "1"),
+    "dw_L": ("relative velocity just before the L impact", "1"),
+    "dw_R": ("relative velocity just before the R impact", "1"),
+    "phase_L": ("phase of the L impact", "rad"),
+    "phase_R": ("phase of the R impact", "rad"),
+    "event_type": ("bifurcation / admissibility event type", ""),
+}
+
+#: stability maps over (eta, omega)
+STABILITY_ATTRS = {
+    "lambda_max": ("largest |eigenvalue| of the 1:1 orbit", "1"),
+    "cls": ("class of the 1:1 orbit", "1"),
+    "dw_L": ("relative velocity just before the L impact", "1"),
+    "symmetric": ("1 if symmetric", "1"),
+}
+STABILITY_CLASS_FLAGS = {
+    "flag_values": np.array([0, 1, 2, 3], dtype="i1"),
+    "flag_meanings": "no_admissible_1to1 symmetric_stable asymmetric_stable unstable",
+}
+
+#: time histories: per point, per sample and per impact variables
+TIMEHISTORY_ATTRS = {
+    "t": ("time t = w0 t_dim", "1"),
+    "z_m": ("LO displacement z_m (units of L)", "1"),
+    "v_m": ("LO velocity z_m'", "1"),
+    "z_b": ("ball displacement z_b (units of L)", "1"),
+    "v_b": ("ball velocity z_b'", "1"),
+    "ke_ratio": BATCH_ATTRS["ke_ratio"],
+    "xmax": BATCH_ATTRS["xmax"],
+    "regime": BATCH_ATTRS["regime"],
+    "status": BATCH_ATTRS["status"],
+    "impact_t": ("impact time", "1"),
+    "impact_dw": ("relative velocity w' just before impact", "1"),
+    "impact_phase": ("impact phase mod(W t + phi, 2 pi)", "rad"),
+    "impact_wall": ("wall hit (+1 L, -1 R)", "1"),
+}
+
+
+def attrs(table: dict, name: str, **extra) -> dict:
+    """CF attributes of ``name`` from one of the tables above (plus ``extra``)."""
+    long_name, units = table[name]
+    return {"long_name": long_name, "units": units, **extra}

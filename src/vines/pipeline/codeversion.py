@@ -1,0 +1,40 @@
+"""Code versions of the pipeline's rules: sha256 of the vines subpackages a rule depends on.
+
+Snakemake tracks a rule's script but not the modules it imports, so every rule gets the
+code version of the subpackages its numbers (or drawings) come from as a param: editing one
+of them reruns exactly the rules that depend on it. The package's top-level modules other
+than the command line (``__init__``, the numba cache guard) count for every rule.
+"""
+from __future__ import annotations
+
+import hashlib
+from pathlib import Path
+
+PKG_DIR = Path(__file__).resolve().parents[1]
+
+#: top-level modules no dataset or figure depends on
+NOT_TRACKED = ("cli.py", "__main__.py")
+
+#: subpackages each kind of rule depends on
+COMPUTE = ("core", "orbits", "data", "pipeline")           # every dataset stage
+STUDIES = COMPUTE + ("reference", "studies")               # work-precision, convergence
+FIGURES = ("plotting",)                                    # figure rules (+ their script)
+
+
+def tracked_files(subpackages, pkg_dir=PKG_DIR) -> list[Path]:
+    """The sources a rule depending on ``subpackages`` is rerun for, sorted."""
+    pkg_dir = Path(pkg_dir)
+    files = [f for f in pkg_dir.glob("*.py") if f.name not in NOT_TRACKED]
+    for sub in subpackages:
+        if not (pkg_dir / sub / "__init__.py").is_file():
+            raise ValueError(f"vines has no subpackage {sub!r}")
+        files += (pkg_dir / sub).rglob("*.py")
+    return sorted(files)
+
+
+def code_version(subpackages, pkg_dir=PKG_DIR) -> str:
+    """sha256 (16 hex digits) over the names and contents of ``tracked_files``."""
+    h = hashlib.sha256()
+    for f in tracked_files(subpackages, pkg_dir):
+        h.update(f.relative_to(pkg_dir).as_posix().encode() + b"\0" + f.read_bytes() + b"\0")
+    return h.hexdigest()[:16]

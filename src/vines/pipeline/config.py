@@ -1,0 +1,72 @@
+"""Pipeline config: schema validation with defaults, then cross-key checks (one-line errors)."""
+from __future__ import annotations
+
+import copy
+
+from .axes import DIMS, ConfigError, axis_values, grid_axes
+
+
+def _with_defaults(validator_class):
+    validate_properties = validator_class.VALIDATORS["properties"]
+
+    def set_defaults(validator, properties, instance, schema):
+        if isinstance(instance, dict):
+            for prop, sub in properties.items():
+                if "default" in sub and prop not in instance:
+
+                    instance[prop] = copy.deepcopy(sub["default"])
+        yield from validate_properties(validator, properties, instance, schema)
+
+    import jsonschema
+    return jsonschema.validators.extend(validator_class, {"properties": set_defaults})
+
+
+def load_schema(path) -> dict:
+    import yaml
+    with open(path) as fh:
+        return yaml.safe_load(fh)
+
+
+def validate_config(config: dict, schema: dict) -> dict:
+    """Validate ``config`` in place (filling defaults) and check cross-key rules.
+
+    Raises ConfigError naming the first offending key (dotted path).
+    """
+    import jsonschema
+    cls = _with_defaults(jsonschema.validators.validator_for(schema))
+    errors = sorted(cls(schema).iter_errors(config), key=lambda e: list(e.absolute_path))
+    if errors:
+        err = min(errors, key=lambda e: -len(e.absolute_path))
+        key = ".".join(str(p) for p in err.absolute_path) or "<top level>"
+        raise ConfigError(key, err.message)
+    sim = config["simulation"]
+    if sim["t_transient"] >= sim["t_end"]:
+        raise ConfigError("simulation.t_transient",
+                          f"{sim['t_transient']} must be < simulation.t_end = {sim['t_end']}")
+    for name, grid in config["grids"].items():
+        axes = grid_axes(grid, key=f"grids.{name}")
+        for dim, vals in grid.get("sections", {}).items():
+            missing = [v for v in vals if float(v) not in set(axes[dim].tolist())]
+            if missing:
+                raise ConfigError(f"grids.{name}.sections.{dim}",
+                                  f"{missing} not on the {dim} axis (add them with 'include')")
+    for name, sw in config["sweeps"].items():
+        if sw["outer"] == sw["param"]:
+            raise ConfigError(f"sweeps.{name}.outer", "must differ from param")
+        need = set(DIMS) - {sw["param"], sw["outer"]}
+        if set(sw["fixed"]) != need:
+            raise ConfigError(f"sweeps.{name}.fixed", f"must give exactly {sorted(need)}")
+        axis_values(sw["values"], key=f"sweeps.{name}.values")
+        axis_values(sw["outer_values"], key=f"sweeps.{name}.outer_values")
+    for name, br in config["branches"].items():
+        need = set(DIMS) - {br["param"]}
+        if set(br["fixed"]) != need:
+            raise ConfigError(f"branches.{name}.fixed", f"must give exactly {sorted(need)}")
+    for name, case in config["work_precision"]["cases"].items():
+        if case["t_transient"] >= case["t_end"]:
+            raise ConfigError(f"work_precision.cases.{name}.t_transient",
+                              f"{case['t_transient']} must be < t_end = {case['t_end']}")
+    for name, sm in config["stability_maps"].items():
+        axis_values(sm["eta"], key=f"stability_maps.{name}.eta")
+        axis_values(sm["omega"], key=f"stability_maps.{name}.omega")
+    return config

@@ -1,0 +1,35 @@
+"""Running one Snakemake job: output in its log, every failure recorded there.
+
+``run_job(snakemake, main)`` calls ``main()`` with stdout and stderr redirected to the job's
+log file. A failure writes its traceback and a one-line summary to the log and the summary, naming
+the job, to the console, then exits with status 1, so
+the log of a failed job always holds its error.
+"""
+from __future__ import annotations
+
+import sys
+import traceback
+from pathlib import Path
+
+def _job_name(sm) -> str:
+    wc = ", ".join(f"{k}={v}" for k, v in dict(sm.wildcards).items())
+    return f"{sm.rule}[{wc}]" if wc else str(sm.rule)
+
+
+def run_job(sm, main) -> None:
+    """Call ``main()`` with output in ``sm.log[0]``; on failure log it and exit(1)."""
+    console = sys.stderr
+    log_path = Path(sm.log[0])
+    log_path.parent.mkdir(parents=True, exist_ok=True)
+    with open(log_path, "w", buffering=1) as log:
+        sys.stdout = sys.stderr = log
+        try:
+            main()
+        except BaseException as exc:      # incl. KeyboardInterrupt: the log says why it stopped
+            traceback.print_exc(file=log)
+            line = f"vines {_job_name(sm)}: {type(exc).__name__}: {exc}".splitlines()[0]
+            print(line, file=log, flush=True)
+            print(f"{line} (log: {log_path})", file=console, flush=True)
+            sys.exit(1)
+        finally:
+            sys.stdout, sys.stderr = sys.__stdout__, console

@@ -1,0 +1,67 @@
+"""One source of truth: the config schema's defaults and choices equal the API's."""
+import inspect
+from pathlib import Path
+
+import yaml
+
+import vines
+from vines import cli
+from vines.core import params as P
+from vines.core.simulation import RK_METHODS, SOLVERS, simulate, simulate_batch
+from vines.core.sweep import bifurcation_sweep
+from vines.core.walls import WALL_L, WALL_R, impact_velocities
+from vines.reference.rk import METHODS
+from vines.reference.hiprec import DPS_DEFAULT, H_SAMPLE_DEFAULT
+
+SCHEMA = yaml.safe_load((Path(__file__).resolve().parents[1] / "workflow" / "schemas"
+                         / "config.schema.yaml").read_text())
+PROPS = SCHEMA["properties"]
+
+
+def _defaults(fn):
+    return {k: v.default for k, v in inspect.signature(fn).parameters.items()
+            if v.default is not inspect.Parameter.empty}
+
+
+def test_simulation_defaults_equal_the_api():
+    sim = PROPS["simulation"]["properties"]
+    api = _defaults(simulate)
+    for key in ("t_end", "t_transient", "v_stick", "max_impacts", "root_tol"):
+        assert sim[key]["default"] == api[key], key
+    assert _defaults(simulate_batch)["t_end"] == api["t_end"]
+    assert PROPS["model"]["properties"]["r"]["default"] == P.R_DEFAULT == api["r"]
+    assert PROPS["model"]["properties"]["d"]["default"] is None   # None -> P.D_DEFAULT
+    assert api["d"] == P.D_DEFAULT
+
+
+def test_sweep_defaults_equal_the_api():
+    sw = PROPS["sweeps"]["additionalProperties"]["properties"]
+    api = _defaults(bifurcation_sweep)
+    for key in ("t_settle", "t_step", "n_record", "v_stick"):
+        assert sw[key]["default"] == api[key], key
+
+
+def test_work_precision_defaults_equal_the_api():
+    wp = PROPS["work_precision"]["properties"]
+    assert wp["dps"]["default"] == DPS_DEFAULT
+    assert wp["h_sample"]["default"] == H_SAMPLE_DEFAULT
+
+
+def test_choices_come_from_one_registry():
+    assert SCHEMA["definitions"]["param_name"]["enum"] == list(P.PARAM_NAMES)
+    rk_enum = PROPS["work_precision"]["properties"]["rk_methods"]["items"]["enum"]
+    assert set(rk_enum) == set(RK_METHODS) == set(METHODS)
+    parser, _ = cli.build_parser()
+    sim_parser = parser._subparsers._group_actions[0].choices["simulate"]
+    solver = next(a for a in sim_parser._actions if a.dest == "solver")
+    assert tuple(solver.choices) == tuple(SOLVERS) == ("exact", "rk")
+    assert all(callable(f) for f in SOLVERS.values())
+
+
+def test_walls_and_impact_law_in_one_place():
+    assert (WALL_L, WALL_R) == (1, -1)
+    eta, r, vm, vb = 0.2, 0.65, 0.7, -0.4
+    vm_p, vb_p = impact_velocities(eta, r, vm, vb)
+    assert abs((vm_p + eta * vb_p) - (vm + eta * vb)) < 1e-15      # momentum
+    assert abs((vm_p - vb_p) + r * (vm - vb)) < 1e-15               # restitution
+    assert vines.core.result.WALL_L is WALL_L

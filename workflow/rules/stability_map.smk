@@ -1,0 +1,17 @@
+# stability-map: abs(lambda_max) and class of the 1:1 orbit on eta-omega grids (Fig 16).
+
+
+rule stability_map:
+    output:
+        f"{RES}/stability/{{smap}}.nc",
+    params:
+        spec=lambda w: SMAPS[w.smap],
+        model=MODEL,
+        code=CODE,
+    threads: config["threads"]
+    conda:
+        "../envs/vines.yaml"
+    log:
+        f"{RES}/logs/stability_map/{{smap}}.log",
+    script:
+        "../scripts/stability_map.py"
