@@ -48,19 +48,40 @@ def git_commit(path=None) -> str:
     return head + ("-dirty" if dirty else "")
 
 
+#: libraries whose versions every dataset records (``library_versions``)
+LIBRARIES = ("numpy", "scipy", "numba", "xarray", "netCDF4", "mpmath")
+
+
+def library_versions() -> dict:
+    """{'python': ..., 'numpy': ..., ...}: the versions that computed a dataset."""
+    import importlib
+    import platform
+    out = {"python": platform.python_version()}
+    for name in LIBRARIES:
+        try:
+            out[name] = importlib.import_module(name).__version__
+        except ImportError:
+            out[name] = "not installed"
+    return out
+
+
 def provenance_attrs(*, title: str, config_subset, settings: dict | None = None,
                      code_version: str = "", commit: str | None = None) -> dict:
     """Global attributes: CF conventions and provenance (deterministic: no timestamps)."""
     from .. import __version__
+    versions = library_versions()
     attrs = {
         "Conventions": CONVENTIONS,
         "title": title,
         "source": f"vines {__version__}",
+        "history": f"computed by vines {__version__} (code version {code_version or 'n/a'}) "
+                   "from the config subset in the attribute 'config'",
         "vines_version": __version__,
         "git_commit": git_commit() if commit is None else commit,
         "code_version": code_version,
         "config_sha256": config_sha256(config_subset),
         "config": json.dumps(config_subset, sort_keys=True, default=_json_default),
+        "library_versions": ", ".join(f"{k} {v}" for k, v in versions.items()),
     }
     for k, v in sorted((settings or {}).items()):
         attrs[f"solver_{k}"] = _attr_value(v)
