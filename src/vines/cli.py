@@ -79,7 +79,7 @@ def _add_model_args(parser: VinesArgumentParser, *, phi: bool = False,
     req = parser.add_argument_group(optional_group or "model parameters (required)")
     for flag, allowed, help in (
         ("--eta", "a number > 0", "ball-to-LO mass ratio m/M"),
-        ("--omega", "a number > 0", "forcing frequency ratio W = w/w0"),
+        ("--omega", "a number > 0", "forcing frequency ratio omega = w/w0"),
         ("--F", "a number >= 0", "forcing amplitude A/L"),
     ):
         parser.allowed_values[flag] = allowed

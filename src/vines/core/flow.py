@@ -2,29 +2,29 @@
 
 One oscillator covers both phases of the VINES motion:
 
-    m z'' + d z' + z = F sin(theta) + d W F cos(theta),   theta = theta0 + W s,
+    m z'' + d z' + z = F sin(theta) + d omega F cos(theta),   theta = theta0 + omega s,
 
 with m = 1 for the LO in free flight and m = 1 + eta for the stuck body (paper Eq. 28).
-``s`` is the local time since the start of the segment (s = t - t0) and theta0 = W t0 + phi
+``s`` is the local time since the start of the segment (s = t - t0) and theta0 = omega t0 + phi
 the forcing phase at that start: nothing grows like exp(d t / 2), unlike the paper's Eq. 12.
 
 The solution is z(s) = z_p(s) + x_h C(s) + v_h S(s) with the fundamental solutions C, S of
 the homogeneous equation (C(0)=1, C'(0)=0, S(0)=0, S'(0)=1) and x_h, v_h the initial
 homogeneous parts. Every damping regime is covered by one expression (kappa = 1/m - sigma^2,
 sigma = d/(2m)): underdamped (kappa > 0), critically damped (kappa = 0) and overdamped
-(kappa < 0), and the undamped resonance d = 0, m W^2 = 1 (to within RESONANCE_SNAP) with its
-secular particular solution z_p = A s cos(theta), A = -F/(2 m W).
+(kappa < 0), and the undamped resonance d = 0, m omega^2 = 1 (to within RESONANCE_SNAP) with its
+secular particular solution z_p = A s cos(theta), A = -F/(2 m omega).
 
 Bounds used by the event search: the homogeneous energy E_h = (z_h'^2 + z_h^2/m)/2 never
 increases (d >= 0), so for every later time |z_h'| <= b1 = sqrt(2 E_h), |z_h| <= b1/omega and
 |z_h^(n)| <= b_n with b_n = 2 sigma b_(n-1) + omega^2 b_(n-2); the particular part adds
-P W^n (P its amplitude), or the secular growth in the resonant case.
+P omega^n (P its amplitude), or the secular growth in the resonant case.
 
-Undamped and near resonance (d = 0, 1 < |1 - m W^2|/RESONANCE_SNAP, gain 1/|1 - m W^2| >
-NRES_GAIN) z_p and z_h are both ~F/|1 - m W^2| and cancel: there the flow is written instead
+Undamped and near resonance (d = 0, 1 < |1 - m omega^2|/RESONANCE_SNAP, gain 1/|1 - m omega^2| >
+NRES_GAIN) z_p and z_h are both ~F/|1 - m omega^2| and cancel: there the flow is written instead
 as z = x0 C + v0 S + R(s) with the zero-initial-condition response
     R(s) = K [2 sin(th0) sin(Sg s/2) Q(s) + cos(th0) (sin(om s)/om - 2 cos(Sg s/2) Q(s))],
-K = F/(m Sg), Sg = om + W, Dl = om - W, Q(s) = sin(Dl s/2)/Dl (-> s/2 as Dl -> 0), which has
+K = F/(m Sg), Sg = om + omega, Dl = om - omega, Q(s) = sin(Dl s/2)/Dl (-> s/2 as Dl -> 0), which has
 no cancellation (it tends to the secular solution); the bounds then use the energy of the
 whole state and |R^(n)| <= bounds growing like K Sg s (see ``deriv_bound``).
 
@@ -47,17 +47,17 @@ N_OSC = 20
 
 KIND_UNDER, KIND_CRIT, KIND_OVER = 1.0, 0.0, -1.0
 
-# d = 0 and |1 - m W^2| <= RESONANCE_SNAP: exact resonance (secular particular solution).
-# W cannot be typed more exactly (W = 1/sqrt(1 + eta) rounds to |1 - m W^2| ~ 2e-16), and
-# the non-resonant form would have a particular amplitude F/|1 - m W^2| ~ 1e15 F.
-# d = 0 and gain 1/|1 - m W^2| above NRES_GAIN: the cancellation-free near-resonant form.
+# d = 0 and |1 - m omega^2| <= RESONANCE_SNAP: exact resonance (secular particular solution).
+# omega cannot be typed more exactly (omega = 1/sqrt(1 + eta) rounds to |1 - m omega^2| ~ 2e-16), and
+# the non-resonant form would have a particular amplitude F/|1 - m omega^2| ~ 1e15 F.
+# d = 0 and gain 1/|1 - m omega^2| above NRES_GAIN: the cancellation-free near-resonant form.
 NRES_GAIN = 1e3
 
 
-def make_osc(m: float, d: float, W: float, F: float) -> np.ndarray:
-    """Pack the constants of m z'' + d z' + z = F sin(th) + d W F cos(th), th = th0 + W s.
+def make_osc(m: float, d: float, omega: float, F: float) -> np.ndarray:
+    """Pack the constants of m z'' + d z' + z = F sin(th) + d omega F cos(th), th = th0 + omega s.
 
-    Weakly damped near-resonant parameters (d > 0, gain 1/|1 - m W^2 + i d W| above
+    Weakly damped near-resonant parameters (d > 0, gain 1/|1 - m omega^2 + i d omega| above
     ``params.MAX_GAIN``) are refused by ``exact.oscillators`` (``check_conditioning``);
     undamped ones use the exact resonance or the near-resonant form (module docstring).
     """
@@ -68,23 +68,23 @@ def make_osc(m: float, d: float, W: float, F: float) -> np.ndarray:
     osc[I_SIGMA], osc[I_OM2], osc[I_OM] = sigma, om2, math.sqrt(om2)
     osc[I_KAPPA], osc[I_SQ] = kappa, math.sqrt(abs(kappa))
     osc[I_KIND] = KIND_UNDER if kappa > 0 else (KIND_CRIT if kappa == 0 else KIND_OVER)
-    osc[I_W], osc[I_M], osc[I_D], osc[I_F] = W, m, d, F
-    det = 1.0 - m * W * W
-    den = det * det + (d * W) ** 2
+    osc[I_W], osc[I_M], osc[I_D], osc[I_F] = omega, m, d, F
+    det = 1.0 - m * omega * omega
+    den = det * det + (d * omega) ** 2
     if d == 0.0 and abs(det) <= RESONANCE_SNAP:     # exact resonance (to round-off)
         osc[I_RES] = 1.0
-        osc[I_ARES] = -F / (2.0 * m * W)
+        osc[I_ARES] = -F / (2.0 * m * omega)
     elif d == 0.0 and abs(det) * NRES_GAIN < 1.0:     # undamped, near resonance
         om = osc[I_OM]
         osc[I_NRES] = 1.0
-        osc[I_SUM] = om + W
-        osc[I_DIFF] = det / (m * (om + W))            # om - W without cancellation
-        osc[I_K] = F / (m * (om + W))
-    else:                                # H = (1 + i d W)/(1 - m W^2 + i d W), z_p = F Im(H e^{i th})
-        osc[I_PS] = F * (det + (d * W) ** 2) / den
-        osc[I_PC] = -F * m * d * W ** 3 / den
+        osc[I_SUM] = om + omega
+        osc[I_DIFF] = det / (m * (om + omega))            # om - omega without cancellation
+        osc[I_K] = F / (m * (om + omega))
+    else:                                # H = (1 + i d omega)/(1 - m omega^2 + i d omega), z_p = F Im(H e^{i th})
+        osc[I_PS] = F * (det + (d * omega) ** 2) / den
+        osc[I_PC] = -F * m * d * omega ** 3 / den
         osc[I_PAMP] = math.hypot(osc[I_PS], osc[I_PC])
-    osc[I_RATE] = max(osc[I_OM], W, sigma + (osc[I_SQ] if kappa < 0 else 0.0))
+    osc[I_RATE] = max(osc[I_OM], omega, sigma + (osc[I_SQ] if kappa < 0 else 0.0))
     return osc
 
 
@@ -127,24 +127,24 @@ def particular(osc, sth0, cth0, s):
 
     sth0, cth0 are sin and cos of the forcing phase theta0 at s = 0.
     """
-    W = osc[I_W]
-    sw = math.sin(W * s)
-    cw = math.cos(W * s)
+    omega = osc[I_W]
+    sw = math.sin(omega * s)
+    cw = math.cos(omega * s)
     sth = sth0 * cw + cth0 * sw
     cth = cth0 * cw - sth0 * sw
     if osc[I_RES] > 0.5:
         A = osc[I_ARES]
         zp = A * s * cth
-        zp1 = A * cth - A * W * s * sth
-        zp2 = -2.0 * A * W * sth - A * W * W * s * cth
-        zp3 = -3.0 * A * W * W * cth + A * W * W * W * s * sth
+        zp1 = A * cth - A * omega * s * sth
+        zp2 = -2.0 * A * omega * sth - A * omega * omega * s * cth
+        zp3 = -3.0 * A * omega * omega * cth + A * omega * omega * omega * s * sth
     else:
         ps = osc[I_PS]
         pc = osc[I_PC]
         zp = ps * sth + pc * cth
-        zp1 = W * (ps * cth - pc * sth)
-        zp2 = -W * W * zp
-        zp3 = -W * W * zp1
+        zp1 = omega * (ps * cth - pc * sth)
+        zp2 = -omega * omega * zp
+        zp3 = -omega * omega * zp1
     return zp, zp1, zp2, zp3
 
 
@@ -163,7 +163,7 @@ def _flow_nres(osc, x0, v0, sth0, cth0, s):
     """``flow`` of the undamped near-resonant oscillator (module docstring)."""
     om = osc[I_OM]
     om2 = osc[I_OM2]
-    W = osc[I_W]
+    omega = osc[I_W]
     sg = osc[I_SUM]
     dl = osc[I_DIFF]
     K = osc[I_K]
@@ -180,12 +180,12 @@ def _flow_nres(osc, x0, v0, sth0, cth0, s):
     R1 = K * (sth0 * (sg * ch * Q + sh * cq) + cth0 * (sg * sh * Q - ch * cq + co))
     z = x0 * co + v0 * so / om + R
     z1 = -x0 * om * so + v0 * co + R1
-    sw = math.sin(W * s)
-    cw = math.cos(W * s)
+    sw = math.sin(omega * s)
+    cw = math.cos(omega * s)
     sth = sth0 * cw + cth0 * sw
     cth = cth0 * cw - sth0 * sw
     z2 = om2 * (F * sth - z)
-    z3 = om2 * (F * W * cth - z1)
+    z3 = om2 * (F * omega * cth - z1)
     b1 = math.sqrt(z1 * z1 + om2 * z * z)
     return z, z1, z2, z3, b1
 
@@ -232,10 +232,10 @@ def deriv_bound(osc, b1, n, s_hi):
             bh = two_sigma * bm1 + om2 * bm2
             bm2 = bm1
             bm1 = bh
-    W = osc[I_W]
+    omega = osc[I_W]
     if osc[I_NRES] > 0.5:
         # z(s + t) = free motion from the state at s (energy b1) + R_s(t), t <= s_hi, with
-        # |R| <= K (2 t + 1/om), |R'| <= K (Sg t + 3), R^(n+2) = om2 (F W^n sin|cos - R^(n))
+        # |R| <= K (2 t + 1/om), |R'| <= K (Sg t + 3), R^(n+2) = om2 (F omega^n sin|cos - R^(n))
         K = osc[I_K]
         F = osc[I_F]
         r0 = K * (2.0 * s_hi + 1.0 / om)
@@ -247,29 +247,29 @@ def deriv_bound(osc, b1, n, s_hi):
         elif n == 2:
             bp = om2 * (F + r0)
         elif n == 3:
-            bp = om2 * (F * W + r1)
+            bp = om2 * (F * omega + r1)
         else:
-            bp = om2 * (F * W * W + om2 * (F + r0))
+            bp = om2 * (F * omega * omega + om2 * (F + r0))
         return bh + bp
     if osc[I_RES] > 0.5:
-        # z_p^(n) = A W^(n-1) (n * trig + W s * trig): bounded by |A| W^(n-1) (n + W s_hi)
+        # z_p^(n) = A omega^(n-1) (n * trig + omega s * trig): bounded by |A| omega^(n-1) (n + omega s_hi)
         A = abs(osc[I_ARES])
-        bp = A * W ** (n - 1) * (n + W * s_hi) if n >= 1 else A * s_hi
+        bp = A * omega ** (n - 1) * (n + omega * s_hi) if n >= 1 else A * s_hi
     else:
-        bp = osc[I_PAMP] * W ** n
+        bp = osc[I_PAMP] * omega ** n
     return bh + bp
 
 
 @njit(cache=True, nogil=True)
 def forcing(osc, sth0, cth0, s):
-    """Right-hand side F sin(theta) + d W F cos(theta) at local time s."""
-    W = osc[I_W]
-    sw = math.sin(W * s)
-    cw = math.cos(W * s)
+    """Right-hand side F sin(theta) + d omega F cos(theta) at local time s."""
+    omega = osc[I_W]
+    sw = math.sin(omega * s)
+    cw = math.cos(omega * s)
     sth = sth0 * cw + cth0 * sw
     cth = cth0 * cw - sth0 * sw
     F = osc[I_F]
-    return F * sth + osc[I_D] * W * F * cth
+    return F * sth + osc[I_D] * omega * F * cth
 
 
 # ---------------------------------------------------------------------------------------------
@@ -326,7 +326,7 @@ def v2_integral(osc, x0, v0, sth0, cth0, L):
     if osc[I_KIND] < 0.5 or osc[I_RES] > 0.5 or osc[I_NRES] > 0.5 or kappa < 0.01 * om2:
         return _v2_gauss(osc, x0, v0, sth0, cth0, L, _GL_X, _GL_W)
     alpha = osc[I_SQ]
-    W = osc[I_W]
+    omega = osc[I_W]
     zp0, zp10 = particular0(osc, sth0, cth0)
     xh = x0 - zp0
     vh = v0 - zp10
@@ -335,11 +335,11 @@ def v2_integral(osc, x0, v0, sth0, cth0, L):
     b = -(om2 * xh + sigma * vh) / alpha
     Ah = complex(a, -b)
     lam = complex(-sigma, alpha)
-    # z_p'(s) = Re(Bp e^{i W s})
-    Bp = W * complex(osc[I_PS], osc[I_PC]) * complex(cth0, sth0)
+    # z_p'(s) = Re(Bp e^{i omega s})
+    Bp = omega * complex(osc[I_PS], osc[I_PC]) * complex(cth0, sth0)
     E = math.exp(-sigma * L) * complex(math.cos(alpha * L), math.sin(alpha * L))   # e^{lam L}
-    G = complex(math.cos(W * L), math.sin(W * L))                                  # e^{iWL}
-    iW = complex(0.0, W)
+    G = complex(math.cos(omega * L), math.sin(omega * L))                                  # e^{iWL}
+    iW = complex(0.0, omega)
     J_m2s = L * _phi1(complex(-2.0 * sigma * L, 0.0), complex(abs(E) ** 2, 0.0))
     J_lmw = L * _phi1((lam - iW) * L, E * G.conjugate())
     J_2l = L * _phi1(2.0 * lam * L, E * E)

@@ -1,6 +1,6 @@
 """The stuck linear system (paper Eq. 28): ball and LO moving together as one body.
 
-    (1 + eta) z'' + d z' + z = F sin(W t) + d W F cos(W t)
+    (1 + eta) z'' + d z' + z = F sin(omega t) + d omega F cos(omega t)
 
 Its steady-state amplitude is the reference curve of Fig. 11 (x_max of the VINES against
 the response of the LO with the ball stuck to a wall, natural frequency 1/sqrt(1 + eta)).
@@ -15,12 +15,12 @@ from .params import D_DEFAULT
 def stuck_amplitude(eta, omega, F, d=D_DEFAULT):
     """Steady-state amplitude of z (units of L) of Eq. 28; broadcasts over its arguments.
 
-    The forcing F (sin + d W cos) has amplitude F sqrt(1 + (d W)^2), the receptance is
-    1 / |1 - (1 + eta) W^2 + i d W|, so
+    The forcing F (sin + d omega cos) has amplitude F sqrt(1 + (d omega)^2), the receptance is
+    1 / |1 - (1 + eta) omega^2 + i d omega|, so
 
-        |z| = F sqrt(1 + (d W)^2) / sqrt((1 - (1 + eta) W^2)^2 + (d W)^2).
+        |z| = F sqrt(1 + (d omega)^2) / sqrt((1 - (1 + eta) omega^2)^2 + (d omega)^2).
 
-    Infinite at resonance W = 1/sqrt(1 + eta) when d = 0.
+    Infinite at resonance omega = 1/sqrt(1 + eta) when d = 0.
     """
     eta, omega, F, d = (np.asarray(x, dtype=float) for x in (eta, omega, F, d))
     dw = d * omega

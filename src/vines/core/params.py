@@ -5,7 +5,7 @@ Conventions (see docs/model.md and the spec):
 * Everything is dimensionless: lengths in units of the half cavity length L, time
   t = w0 * t_dim with w0 = sqrt(k/M), velocities in units of L*w0.
 * d = c/(M w0) is the LO damping coefficient in the dimensionless equation
-  z_m'' + d z_m' + z_m = F sin(W t + phi) + d W F cos(W t + phi). It is held fixed
+  z_m'' + d z_m' + z_m = F sin(omega t + phi) + d omega F cos(omega t + phi). It is held fixed
   when the ball mass ratio eta changes (c and M are fixed). Keeping the paper's
   xi = c/(m w0) fixed instead is offered explicitly through ``ModelParams.from_xi``.
 * Walls: w = z_m - z_b. Wall L is w = +1, wall R is w = -1.
@@ -36,8 +36,8 @@ ROOT_TOL_DEFAULT = 1e-13
 RTOL_DEFAULT = 1e-12          # rtol of the RK reference solver
 
 # Conditioning of the exact solver's closed form (see ``check_conditioning``).
-RESONANCE_SNAP = 16.0 * 2.220446049250313e-16   # d = 0, |1 - m W^2| <= this: exact resonance
-MAX_GAIN = 1e4                                   # largest 1/|1 - m W^2 + i d W| for d > 0
+RESONANCE_SNAP = 16.0 * 2.220446049250313e-16   # d = 0, |1 - m omega^2| <= this: exact resonance
+MAX_GAIN = 1e4                                   # largest 1/|1 - m omega^2 + i d omega| for d > 0
 
 
 class ParameterError(ValueError):
@@ -100,9 +100,9 @@ def check_conditioning(eta: float, omega: float, F: float, d: float) -> None:
 
     The closed form writes the motion of the free LO (mass m = 1) and of the stuck body
     (m = 1 + eta) as homogeneous + particular parts whose amplitudes reach F * gain,
-    gain = 1/|1 - m W^2 + i d W|, while the motion itself stays of order F or the cavity
+    gain = 1/|1 - m omega^2 + i d omega|, while the motion itself stays of order F or the cavity
     size; the round-off of the sum grows like 1e-16 F gain. Undamped points (d = 0) are
-    always accepted: exact resonance (|1 - m W^2| <= RESONANCE_SNAP) has the secular
+    always accepted: exact resonance (|1 - m omega^2| <= RESONANCE_SNAP) has the secular
     solution and near resonance a cancellation-free form (``vines.flow``). With d > 0,
     points with gain > MAX_GAIN (only possible for d < 1e-4 within 1e-4 of a natural
     frequency 1/sqrt(m)) raise ParameterError on omega. F = 0 is always accepted. The RK
@@ -118,7 +118,7 @@ def check_conditioning(eta: float, omega: float, F: float, d: float) -> None:
             raise ParameterError(
                 "omega", omega,
                 f"too close to the natural frequency {wn!r} of the {body} for d = {d:g} "
-                f"(gain 1/|1 - m W^2 + i d W| = {gain:.3g} > {MAX_GAIN:g}: the exact solver's "
+                f"(gain 1/|1 - m omega^2 + i d omega| = {gain:.3g} > {MAX_GAIN:g}: the exact solver's "
                 f"closed form would lose too many digits); detune omega, use d >= "
                 f"{1.0 / (MAX_GAIN * omega):.3g} or d = 0; the rk solver is not affected")
 
@@ -128,7 +128,7 @@ class ModelParams:
     """Dimensionless VINES parameters (validated on construction).
 
     eta   ball-to-LO mass ratio m/M (> 0)
-    omega forcing frequency ratio W = w/w0 (> 0)
+    omega forcing frequency ratio omega = w/w0 (> 0)
     F     forcing amplitude A/L (>= 0)
     r     coefficient of restitution (0 <= r <= 1)
     d     LO damping c/(M w0) (>= 0), fixed for every eta by default
@@ -175,7 +175,7 @@ class ModelParams:
 
     @property
     def period(self) -> float:
-        """Forcing period T = 2 pi / W (dimensionless time)."""
+        """Forcing period T = 2 pi / omega (dimensionless time)."""
         return 2.0 * math.pi / self.omega
 
     @property

@@ -94,7 +94,7 @@ class SimulationResult:
 
     @property
     def impact_phase(self) -> np.ndarray:
-        """phi_i = mod(W t_i + phi, 2 pi) of every impact [rad]."""
+        """phi_i = mod(omega t_i + phi, 2 pi) of every impact [rad]."""
         p = self.params
         return np.mod(p.omega * self.impacts["t"] + p.phi, 2.0 * math.pi)
 

@@ -31,7 +31,7 @@ def bifurcation_sweep(param, values, *, eta=None, omega=None, F=None, r=R_DEFAUL
 
     Returns dict with 1-D arrays over the values: value, row_size, phi (phase used at the
     start of each point), status; and over the impacts: dw (relative velocity w' = z_m' -
-    z_b' just before impact), phase (impact phase mod(W t + phi, 2 pi) with t counted from
+    z_b' just before impact), phase (impact phase mod(omega t + phi, 2 pi) with t counted from
     the start of the sweep so phases are comparable), wall (+1 L, -1 R).
     """
     if param not in SWEEP_PARAMS:
@@ -45,7 +45,7 @@ def bifurcation_sweep(param, values, *, eta=None, omega=None, F=None, r=R_DEFAUL
     t_step = check_real("t_step", t_step, lo=0.0, lo_open=True)
     n_record = check_int("n_record", n_record, lo=1)
     state = (0.0, 0.0, 0.0, 0.0)
-    theta = 0.0           # forcing phase W t + phi carried from point to point
+    theta = 0.0           # forcing phase omega t + phi carried from point to point
     dws, phases, walls = [], [], []
     row_size = np.zeros(values.size, dtype=np.int64)
     phis = np.zeros(values.size)

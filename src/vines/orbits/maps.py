@@ -11,11 +11,11 @@ moving away from the wall) are found as well and are flagged by ``is_admissible`
 
 Jacobian (4x4, columns d/d z_m', d/d z_b', d/d z_b, d/d t) by implicit differentiation
 of the closed form. With post-impact velocities (v_m+, v_b+) = I (z_m', z_b')
-(I the impact matrix), theta0 = W t + phi, and the flow
+(I the impact matrix), theta0 = omega t + phi, and the flow
     z_m(s) = z_p(s; theta0) + (z_m0 - z_p(0)) C(s) + (v_m+ - z_p'(0)) S(s),
 the derivatives at fixed s are dz/dz_m0 = C, dz/dv_m+ = S and
 dz/dtheta0 = flow(0, 0, cos theta0, -sin theta0)(s) (the flow is linear in (sin, cos)),
-dz/dt = W dz/dtheta0; the impact time moves by ds/dx = -(dG/dx)/(dG/ds) with
+dz/dt = omega dz/dtheta0; the impact time moves by ds/dx = -(dG/dx)/(dG/ds) with
 dG/ds = w'(s), and every output is differentiated along (explicit + w.r.t. s * ds/dx).
 """
 from __future__ import annotations
@@ -107,7 +107,7 @@ def _scan_s(osc, zm0, vp, zb0, vbp, sth, cth, to_wall, s_max):
 
 
 @njit(cache=True, nogil=True)
-def map_kernel(osc, eta, r, W, phi, x, from_wall, to_wall, s_guess, y, J):
+def map_kernel(osc, eta, r, omega, phi, x, from_wall, to_wall, s_guess, y, J):
     """Apply one map to x (pre-impact at from_wall); fill y (next pre-impact state) and J.
 
     s_guess > 0 starts Newton there; otherwise the first contact (or, when the flight hits
@@ -120,13 +120,13 @@ def map_kernel(osc, eta, r, W, phi, x, from_wall, to_wall, s_guess, y, J):
     one = 1.0 + eta
     a11, a12 = (1.0 - r * eta) / one, eta * (1.0 + r) / one
     a21, a22 = (1.0 + r) / one, (eta - r) / one
-    th0 = W * t + phi
+    th0 = omega * t + phi
     sth = math.sin(th0)
     cth = math.cos(th0)
     if s_guess > 0.0:
         s = _newton_s(osc, zm0, vp, zb, vbp, sth, cth, to_wall, s_guess)
     else:
-        s_max = 4.0 * 2.0 * math.pi / W + 20.0 / osc[I_RATE]
+        s_max = 4.0 * 2.0 * math.pi / omega + 20.0 / osc[I_RATE]
         wall, sc, _, _ = first_contact(osc, zm0, vp, zb, vbp, sth, cth, s_max, ROOT_TOL)
         if wall == to_wall and sc > 0.0:
             s = _newton_s(osc, zm0, vp, zb, vbp, sth, cth, to_wall, sc)
@@ -149,8 +149,8 @@ def map_kernel(osc, eta, r, W, phi, x, from_wall, to_wall, s_guess, y, J):
     zs, vs, _, _, _ = flow(osc, 0.0, 1.0, 0.0, 0.0, s)
     C, dC, S, dS = zc, vc, zs, vs
     zt, vt, _, _, _ = flow(osc, 0.0, 0.0, cth, -sth, s)     # d/dtheta0
-    zt *= W
-    vt *= W
+    zt *= omega
+    vt *= omega
     y[0] = v
     y[1] = vbp
     y[2] = zb + vbp * s
@@ -184,7 +184,7 @@ def map_kernel(osc, eta, r, W, phi, x, from_wall, to_wall, s_guess, y, J):
 
 
 @njit(cache=True, nogil=True)
-def admissible_kernel(osc, eta, r, W, phi, x, from_wall, to_wall, s):
+def admissible_kernel(osc, eta, r, omega, phi, x, from_wall, to_wall, s):
     """True when the flight of length s from x is a genuine impact-to-impact flight.
 
     The state must approach its starting wall, the exact first-contact search of the
@@ -196,7 +196,7 @@ def admissible_kernel(osc, eta, r, W, phi, x, from_wall, to_wall, s):
         return False
     zm0 = zb + from_wall
     vp, vbp = impact_velocities(eta, r, vm, vb)
-    th0 = W * t + phi
+    th0 = omega * t + phi
     sth = math.sin(th0)
     cth = math.cos(th0)
     tol = ADMISSIBLE_TOL * (1.0 + s)

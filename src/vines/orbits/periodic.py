@@ -1,4 +1,4 @@
-"""1:1 periodic orbits: fixed points of P2∘P1 with the time shifted by T = 2 pi / W.
+"""1:1 periodic orbits: fixed points of P2∘P1 with the time shifted by T = 2 pi / omega.
 
 Unknowns x_L = (z_m', z_b', z_b, t_L), the pre-impact state at wall L. The orbit solves
 P2(P1(x_L)) = x_L + (0, 0, 0, T); Newton uses the exact Jacobian J_P2(x_R) J_P1(x_L) - I.
@@ -78,13 +78,13 @@ def _solve(A, b, out):
 # --------------------------------------------------------------------------- Newton
 
 @njit(cache=True, nogil=True)
-def newton_1to1(osc, eta, r, W, phi, x0, s1, s2, x, xR, J1, J2, fl):
+def newton_1to1(osc, eta, r, omega, phi, x0, s1, s2, x, xR, J1, J2, fl):
     """Newton on P2(P1(x)) - x - (0,0,0,T) from x0 (flight-time guesses s1, s2).
 
     Fills x (fixed point), xR = P1(x), the Jacobians J1 = J_P1(x), J2 = J_P2(xR) and
     fl = (s1, s2). Returns the final residual norm (inf on failure).
     """
-    T = 2.0 * math.pi / W
+    T = 2.0 * math.pi / omega
     for i in range(4):
         x[i] = x0[i]
     y2 = np.empty(4)
@@ -93,10 +93,10 @@ def newton_1to1(osc, eta, r, W, phi, x0, s1, s2, x, xR, J1, J2, fl):
     dx = np.empty(4)
     res = math.inf
     for it in range(40):
-        s1n = map_kernel(osc, eta, r, W, phi, x, WALL_L, WALL_R, s1, xR, J1)
+        s1n = map_kernel(osc, eta, r, omega, phi, x, WALL_L, WALL_R, s1, xR, J1)
         if not math.isfinite(s1n):
             return math.inf
-        s2n = map_kernel(osc, eta, r, W, phi, xR, WALL_R, WALL_L, s2, y2, J2)
+        s2n = map_kernel(osc, eta, r, omega, phi, xR, WALL_R, WALL_L, s2, y2, J2)
         if not math.isfinite(s2n):
             return math.inf
         s1, s2 = s1n, s2n
@@ -140,7 +140,7 @@ def newton_1to1(osc, eta, r, W, phi, x0, s1, s2, x, xR, J1, J2, fl):
 # --------------------------------------------------------------------------- affine seeds
 
 @njit(cache=True, nogil=True)
-def _two_flights(osc, eta, r, W, u, s1, s2, E, sym):
+def _two_flights(osc, eta, r, omega, u, s1, s2, E, sym):
     """Residuals of the 1:1 conditions for u = (vm, vb, zb, sth, cth) (affine in u).
 
     sym: 4 conditions of the symmetric ansatz with s1 = T/2; else 5 conditions for flights
@@ -156,8 +156,8 @@ def _two_flights(osc, eta, r, W, u, s1, s2, E, sym):
         E[2] = vbp + vb
         E[3] = zb1 + zb
         return
-    c = math.cos(W * s1)
-    sn = math.sin(W * s1)
+    c = math.cos(omega * s1)
+    sn = math.sin(omega * s1)
     sth1 = sth * c + cth * sn
     cth1 = cth * c - sth * sn
     vp2, vbp2 = impact_velocities(eta, r, v1, vbp)
@@ -170,50 +170,50 @@ def _two_flights(osc, eta, r, W, u, s1, s2, E, sym):
 
 
 @njit(cache=True, nogil=True)
-def _affine(osc, eta, r, W, s1, s2, sym, A, b):
+def _affine(osc, eta, r, omega, s1, s2, sym, A, b):
     """E(u) = A u + b for the conditions of ``_two_flights``."""
     n = A.shape[0]
     u = np.zeros(5)
     E = np.empty(5)
-    _two_flights(osc, eta, r, W, u, s1, s2, E, sym)
+    _two_flights(osc, eta, r, omega, u, s1, s2, E, sym)
     for i in range(n):
         b[i] = E[i]
     for k in range(5):
         u[:] = 0.0
         u[k] = 1.0
-        _two_flights(osc, eta, r, W, u, s1, s2, E, sym)
+        _two_flights(osc, eta, r, omega, u, s1, s2, E, sym)
         for i in range(n):
             A[i, k] = E[i] - b[i]
 
 
 @njit(cache=True, nogil=True)
-def _circle_residual(osc, eta, r, W, s1, T, u):
+def _circle_residual(osc, eta, r, omega, s1, T, u):
     """sin^2 + cos^2 - 1 of the affine solution at L->R flight time s1 (nan if singular)."""
     A = np.empty((5, 5))
     b = np.empty(5)
-    _affine(osc, eta, r, W, s1, T - s1, False, A, b)
+    _affine(osc, eta, r, omega, s1, T - s1, False, A, b)
     if not _solve(A, -b, u):
         return math.nan
     return u[3] * u[3] + u[4] * u[4] - 1.0
 
 
 @njit(cache=True, nogil=True)
-def asymmetric_seeds(osc, eta, r, W, n_scan, out):
+def asymmetric_seeds(osc, eta, r, omega, n_scan, out):
     """Seeds (vm, vb, zb, theta_L, s1) from the scan of s1; returns how many (<= len(out))."""
-    T = 2.0 * math.pi / W
+    T = 2.0 * math.pi / omega
     u = np.empty(5)
     n = 0
     h_prev = math.nan
     s_prev = 0.0
     for k in range(n_scan):
         s = T * (k + 0.5) / n_scan
-        h = _circle_residual(osc, eta, r, W, s, T, u)
+        h = _circle_residual(osc, eta, r, omega, s, T, u)
         if math.isfinite(h) and math.isfinite(h_prev) and (h > 0.0) != (h_prev > 0.0) \
                 and n < out.shape[0]:
             a, fa, bb = s_prev, h_prev, s
             for _ in range(50):
                 m = 0.5 * (a + bb)
-                fm = _circle_residual(osc, eta, r, W, m, T, u)
+                fm = _circle_residual(osc, eta, r, omega, m, T, u)
                 if not math.isfinite(fm):
                     break
                 if (fm > 0.0) == (fa > 0.0):
@@ -223,7 +223,7 @@ def asymmetric_seeds(osc, eta, r, W, n_scan, out):
                 if bb - a < 1e-13 * T:
                     break
             m = 0.5 * (a + bb)
-            fm = _circle_residual(osc, eta, r, W, m, T, u)
+            fm = _circle_residual(osc, eta, r, omega, m, T, u)
             # a sign change through a pole is no root
             if math.isfinite(fm) and abs(fm) < 1e-3:
                 out[n, 0], out[n, 1], out[n, 2] = u[0], u[1], u[2]
@@ -235,12 +235,12 @@ def asymmetric_seeds(osc, eta, r, W, n_scan, out):
     return n
 
 
-def symmetric_seeds(osc, eta, r, W) -> list:
+def symmetric_seeds(osc, eta, r, omega) -> list:
     """The (0 or 2) symmetric 1:1 candidates: list of (vm, vb, zb, theta_L)."""
-    T = 2.0 * math.pi / W
+    T = 2.0 * math.pi / omega
     A = np.empty((4, 5))
     b = np.empty(4)
-    _affine(osc, eta, r, W, 0.5 * T, 0.5 * T, True, A, b)
+    _affine(osc, eta, r, omega, 0.5 * T, 0.5 * T, True, A, b)
     if not np.all(np.isfinite(A)) or not np.all(np.isfinite(b)):
         return []
     # general solution u = p + lam q of A u = -b
@@ -275,7 +275,7 @@ class PeriodicOrbit:
     eigenvalues     of J_P2(x_R) J_P1(x_L); lambda_max = max |eigenvalue|
     stable          all |lambda| < 1 and admissible
     dw_L, dw_R      relative velocity w' = z_m' - z_b' just before the L and R impacts
-    phase_L/_R      impact phases mod(W t + phi, 2 pi)
+    phase_L/_R      impact phases mod(omega t + phi, 2 pi)
     """
 
     x_L: np.ndarray
