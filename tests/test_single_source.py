@@ -65,3 +65,31 @@ def test_walls_and_impact_law_in_one_place():
     assert abs((vm_p + eta * vb_p) - (vm + eta * vb)) < 1e-15      # momentum
     assert abs((vm_p - vb_p) + r * (vm - vb)) < 1e-15               # restitution
     assert vines.core.result.WALL_L is WALL_L
+
+
+def _schema_keys(node, path, defs):
+    if "$ref" in node:
+        node = defs[node["$ref"].split("/")[-1]]
+    if node.get("type") != "object":
+        yield path
+        return
+    for k, v in node.get("properties", {}).items():
+        yield from _schema_keys(v, f"{path}.{k}" if path else k, defs)
+    if isinstance(node.get("additionalProperties"), dict):
+        yield from _schema_keys(node["additionalProperties"], f"{path}.<name>", defs)
+
+
+def test_config_readme_lists_every_key():
+    """config/README.md names every leaf key of the schema (braces and `.a`, `.b` lists
+    expand to several keys)."""
+    import re
+    text = (Path(__file__).resolve().parents[1] / "config" / "README.md").read_text()
+    listed = set()
+    for cell in re.findall(r"^\| (`[^|]+) \|", text, re.M):
+        for key in re.findall(r"`([^`]+)`", cell):
+            full = key if not key.startswith(".") else listed_base + key
+            listed_base = key.rsplit(".", 1)[0] if not key.startswith(".") else listed_base
+            m = re.match(r"(.*)\{(.*)\}$", full)
+            listed |= {m.group(1) + x for x in m.group(2).split(",")} if m else {full}
+    missing = set(_schema_keys(SCHEMA, "", SCHEMA["definitions"])) - listed
+    assert not missing, f"config/README.md lacks {sorted(missing)}"
