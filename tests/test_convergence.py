@@ -1,4 +1,5 @@
-"""vines.studies.convergence: run length / window, v_stick and grid-resolution studies.
+"""vines.studies.convergence: run length / window, v_stick and grid-resolution studies;
+their datasets (vines.data.studies) and the contour geometry (vines.studies.contours).
 
 Small sizes (a few seconds in all). Physical facts used as oracles, not values from the code:
 * a stable periodic attractor reached well before t = 4000 (1:1 at eta 0.05, W 1, F 0.05)
@@ -18,8 +19,10 @@ import pytest
 import xarray as xr
 
 import vines
-from vines.studies import convergence as C
 from vines.data.netcdf import read_dataset, write_dataset
+from vines.data.studies import convergence_dataset
+from vines.studies import contours as G
+from vines.studies import convergence as C
 
 ROOT = Path(__file__).resolve().parents[1]
 ONE_ONE = dict(eta=0.05, omega=1.0, F=0.05)          # stable 1:1 (Fig 4a)
@@ -29,18 +32,33 @@ GRID = dict(eta_range=(0.1, 0.6), omega_range=(0.9, 1.3), F=0.4, resolutions=(3,
 
 
 @pytest.fixture(scope="module")
-def window_ds():
+def window_res():
     return C.window_convergence([ONE_ONE], t_ends=(7000.0, 28000.0), n_threads=2)
 
 
 @pytest.fixture(scope="module")
-def vstick_ds():
+def vstick_res():
     return C.vstick_convergence([CHATTER], v_sticks=(1e-3, 1e-5, 1e-7, 1e-9), n_threads=2)
 
 
 @pytest.fixture(scope="module")
-def grid_ds():
+def grid_res():
     return C.grid_convergence(**GRID, n_threads=2)
+
+
+@pytest.fixture(scope="module")
+def window_ds(window_res):
+    return convergence_dataset("window", window_res)
+
+
+@pytest.fixture(scope="module")
+def vstick_ds(vstick_res):
+    return convergence_dataset("vstick", vstick_res)
+
+
+@pytest.fixture(scope="module")
+def grid_ds(grid_res):
+    return convergence_dataset("grid", grid_res)
 
 
 def _assert_cf(ds):
@@ -50,6 +68,46 @@ def _assert_cf(ds):
     for dim in ds.dims:
         assert dim in ds.coords, f"dimension {dim} has no coordinate"
     assert ds.attrs["Conventions"] == "CF-1.10"
+    for name, var in ds.variables.items():          # CF 3.5: flag_values of the var's type
+        if "flag_values" in var.attrs:
+            assert np.asarray(var.attrs["flag_values"]).dtype == var.dtype == np.int8, name
+
+
+def _assert_plain(result):
+    """A study result holds numbers, numpy arrays, lists and dicts of them: no xarray."""
+    def walk(x):
+        assert not isinstance(x, (xr.Dataset, xr.DataArray, xr.Variable)), type(x)
+        for v in (x.values() if isinstance(x, dict) else
+                  x if isinstance(x, (list, tuple)) else ()):
+            walk(v)
+    for v in vars(result).values():
+        walk(v)
+
+
+# ------------------------------------------------------------------ results and datasets
+
+def test_results_are_plain_and_datasets_hold_them(window_res, window_ds, vstick_res,
+                                                  vstick_ds, grid_res, grid_ds):
+    for res in (window_res, vstick_res, grid_res):
+        _assert_plain(res)
+    for name, arr in {**window_res.measures, **window_res.differences}.items():
+        np.testing.assert_array_equal(window_ds[name].values, arr)
+    np.testing.assert_array_equal(window_ds["t_transient"].values, window_res.t_transient)
+    assert window_ds["converged"].dtype == np.int8
+    assert window_res.differences["converged"].dtype == bool
+    np.testing.assert_array_equal(window_ds["xmax_m"].values,
+                                  window_res.measures["xmax"] * vines.core.params.L_HALF_M)
+    assert window_ds.attrs["solver_v_stick"] == window_res.solver["v_stick"] == 1e-6
+    np.testing.assert_array_equal(vstick_ds["run_time"].values, vstick_res.run_time)
+    np.testing.assert_array_equal(vstick_ds["v_stick"].values, vstick_res.v_stick)
+    for name, arr in grid_res.per_resolution.items():
+        np.testing.assert_array_equal(grid_ds[name].values, arr)
+    np.testing.assert_array_equal(grid_ds["ke_ratio"].values, grid_res.fields["ke_ratio"])
+    # the caller's attributes (provenance) go over the study's own
+    ds = convergence_dataset("grid", grid_res, {"title": "t", "extra": 1})
+    assert ds.attrs["title"] == "t" and ds.attrs["extra"] == 1 and ds.attrs["level"] == 0.6
+    with pytest.raises(ValueError, match="unknown convergence study"):
+        convergence_dataset("walls", grid_res)
 
 
 # ------------------------------------------------------------------ run length and window
@@ -77,8 +135,12 @@ def test_window_dataset_layout_and_reference(window_ds, tmp_path):
 
 
 def test_window_tested_setting_is_added():
-    ds = C.window_convergence([ONE_ONE], t_ends=(8000.0,), window_lengths=(2000.0,),
-                              window_fractions=(), n_threads=1)
+    res = C.window_convergence([ONE_ONE], t_ends=(8000.0,), window_lengths=(2000.0,),
+                               window_fractions=(), n_threads=1)
+    assert res.t_end.tolist() == [7000.0, 8000.0]
+    assert res.rules == [("length", 2000.0), ("length", 3000.0)]
+    assert (res.tested_window, res.tested_t_end_index) == (1, 0)
+    ds = convergence_dataset("window", res)
     assert ds["t_end"].values.tolist() == [7000.0, 8000.0]
     assert ds["window_length"].values.tolist() == [2000.0, 3000.0]
 
@@ -94,8 +156,8 @@ def test_stable_1to1_converged_at_7000_4000(window_ds):
     assert ds["tested_converged"].values[0] == 1 and ds["tested_regime_same"].values[0] == 1
     # over whole forcing periods, averages of the periodic attractor are the same for the
     # 7000/4000 run and the 28000 runs (window 3000 or 14000)
-    whole = C.window_convergence([ONE_ONE], t_ends=(7000.0, 28000.0), whole_periods=True,
-                                 n_threads=2)
+    whole = convergence_dataset("window", C.window_convergence(
+        [ONE_ONE], t_ends=(7000.0, 28000.0), whole_periods=True, n_threads=2))
     assert np.all(np.abs(whole["d_ke"].values) <= 1e-6)
     assert np.all(np.abs(whole["rel_d_xmax"].values) <= 1e-6)
     T = 2 * math.pi
@@ -168,7 +230,7 @@ def test_grid_arguments_are_checked():
     with pytest.raises(ValueError, match="not nested"):
         C.grid_convergence(resolutions=(11, 20))
     with pytest.raises(ValueError, match="not nested"):
-        C.nested_axis(0.0, 1.0, 81, 30)
+        G.nested_axis(0.0, 1.0, 81, 30)
 
 
 def test_contour_tools_on_analytic_fields():
@@ -176,29 +238,31 @@ def test_contour_tools_on_analytic_fields():
     th = np.linspace(0, 2 * np.pi, 2001)
     c1 = [np.c_[np.cos(th), np.sin(th)]]
     c2 = [1.1 * c1[0]]
-    mean, mx = C.contour_distance(c1, c2, 1e-3)
+    mean, mx = G.contour_distance(c1, c2, 1e-3)
     assert mean == pytest.approx(0.1, abs=1e-5) and mx == pytest.approx(0.1, abs=1e-5)
-    assert max(C.contour_distance(c2, c2, 1e-3)) <= 1e-12
-    assert C.contour_distance([], c2, 1e-3) == (pytest.approx(np.nan, nan_ok=True),) * 2
+    assert max(G.contour_distance(c2, c2, 1e-3)) <= 1e-12
+    assert G.contour_distance([], c2, 1e-3) == (pytest.approx(np.nan, nan_ok=True),) * 2
     # contour of r = 0.5 from a grid: within O(h^2) of the circle; area above the level
     x = np.linspace(-1, 1, 101)
     z = np.hypot(*np.meshgrid(x, x))
-    lines = C.contour_lines(x, x, z, 0.5)
+    lines = G.contour_lines(x, x, z, 0.5)
     r = np.hypot(*np.concatenate(lines).T)
     np.testing.assert_allclose(r, 0.5, atol=(x[1] - x[0]) ** 2)
-    assert C.area_above(x, x, z, 0.5) == pytest.approx(4 - np.pi * 0.25, abs=2e-3)
-    assert C.area_above(x, x, z, 5.0) == 0.0
+    assert G.line_length(lines) == pytest.approx(np.pi, rel=1e-3)   # circumference 2 pi r
+    assert G.area_above(x, x, z, 0.5) == pytest.approx(4 - np.pi * 0.25, abs=2e-3)
+    assert G.area_above(x, x, z, 5.0) == 0.0
 
 
 # ------------------------------------------------------------------ threads, figure
 
 def test_results_do_not_depend_on_n_threads(window_ds, vstick_ds, grid_ds):
     w1 = C.window_convergence([ONE_ONE], t_ends=(7000.0, 28000.0), n_threads=1)
-    xr.testing.assert_identical(w1, window_ds)
+    xr.testing.assert_identical(convergence_dataset("window", w1), window_ds)
     v1 = C.vstick_convergence([CHATTER], v_sticks=(1e-3, 1e-5, 1e-7, 1e-9), n_threads=1)
-    xr.testing.assert_identical(v1.drop_vars("run_time"), vstick_ds.drop_vars("run_time"))
+    xr.testing.assert_identical(convergence_dataset("vstick", v1).drop_vars("run_time"),
+                                vstick_ds.drop_vars("run_time"))
     g1 = C.grid_convergence(**GRID, n_threads=1)
-    xr.testing.assert_identical(g1, grid_ds)
+    xr.testing.assert_identical(convergence_dataset("grid", g1), grid_ds)
 
 
 def test_figure_script_draws_the_datasets(window_ds, vstick_ds, grid_ds, tmp_path,
@@ -208,7 +272,8 @@ def test_figure_script_draws_the_datasets(window_ds, vstick_ds, grid_ds, tmp_pat
     sm = SimpleNamespace(input=SimpleNamespace(**{k: str(p) for k, p in paths.items()}),
                          output=SimpleNamespace(pdf=str(tmp_path / "c.pdf"),
                                                 png=str(tmp_path / "c.png")),
-                         log=[str(tmp_path / "c.log")])
+                         log=[str(tmp_path / "c.log")], wildcards={},
+                         rule="figure_convergence")
     scripts = ROOT / "workflow" / "scripts" / "figures"
     monkeypatch.syspath_prepend(str(scripts))
     runpy.run_path(str(scripts / "convergence.py"), init_globals={"snakemake": sm})

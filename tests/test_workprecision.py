@@ -8,7 +8,9 @@ import vines
 from vines.reference.hiprec import reference_run
 from vines.core.params import ModelParams, ParameterError, SolverSettings
 from vines.core.result import IMPACT_DTYPE
-from vines.studies.workprecision import errors, timed, visible, work_precision
+from vines.data.studies import work_precision_dataset
+from vines.studies.workprecision import (RUN_FIELDS, WorkPrecisionResult, errors, timed,
+                                         visible, work_precision)
 
 PERIODIC = (0.05, 1.0, 0.05)          # stable 1:1 orbit, regular transient
 CHATTER = (0.2, 0.9, 0.8)             # chatter cascades and sticking from t ~ 43
@@ -116,12 +118,25 @@ def test_timed_repeats_fast_calls():
 
 
 def test_work_precision_dataset():
-    ds = work_precision(*PERIODIC, t_end=100.0, t_transient=40.0, root_tols=(1e-13,),
-                        v_sticks=(1e-4,), rk_methods=("DOP853",), rtols=(1e-5, 1e-10),
-                        min_time=0.005)
-    assert ds.sizes["run"] == 4
+    res = work_precision(*PERIODIC, t_end=100.0, t_transient=40.0, root_tols=(1e-13,),
+                         v_sticks=(1e-4,), rk_methods=("DOP853",), rtols=(1e-5, 1e-10),
+                         min_time=0.005)
+    assert isinstance(res, WorkPrecisionResult) and res.n_runs == 4
+    assert set(res.runs) == set(RUN_FIELDS)
+    assert all(isinstance(a, np.ndarray) and a.shape == (4,) for a in res.runs.values())
+    assert res.runs["sequence_ok"].dtype == np.int8
+    assert res.reference["v_stick"] == 1e-6 and res.reference_limit["v_stick"] == 1e-14
+    assert res.reference["n_impacts"] > 0 and res.case["t_end"] == 100.0
+    ds = work_precision_dataset(res, {"title": "wp"})
+    assert ds.sizes["run"] == 4 and list(ds.data_vars) == list(RUN_FIELDS)
+    for k in RUN_FIELDS:
+        np.testing.assert_array_equal(ds[k].values, res.runs[k])
     for v in ds.data_vars.values():
         assert "long_name" in v.attrs and "units" in v.attrs
+    flags = ds["sequence_ok"].attrs["flag_values"]        # CF 3.5: the variable's type
+    assert ds["sequence_ok"].dtype == flags.dtype == np.int8 and flags.tolist() == [0, 1]
+    assert ds.attrs["title"] == "wp" and ds.attrs["reference_n_impacts"] == \
+        res.reference["n_impacts"] and ds.attrs["reference_limit_v_stick"] == 1e-14
     assert list(ds["knob"].values) == ["root_tol", "v_stick", "rtol", "rtol"]
     assert bool(np.all(ds["sequence_ok"].values == 1))
     te = ds["t_error"].values

@@ -11,6 +11,9 @@ Every run of one case (a parameter point and a horizon [0, t_end], window
 * cost: wall-clock seconds per run (best of several timed rounds, each long enough to
   measure) and impacts per second.
 
+:func:`work_precision` returns a :class:`WorkPrecisionResult` (plain arrays over the runs and
+the settings of the case); ``vines.data.studies.work_precision_dataset`` makes it a dataset.
+
 Knobs: the exact solver's ``root_tol`` (at the case's v_stick) and ``v_stick`` (the chatter
 threshold, a model knob: these runs are compared with a reference at ``v_stick_reference``,
 the accumulation limit), the RK solvers' ``rtol`` (atol = rtol * 1e-2) for each method.
@@ -19,9 +22,9 @@ from __future__ import annotations
 
 import math
 import time
+from dataclasses import dataclass
 
 import numpy as np
-import xarray as xr
 
 from ..reference.hiprec import DPS_DEFAULT, H_SAMPLE_DEFAULT, V_STICK_REFERENCE, reference_run
 from ..core.params import (D_DEFAULT, R_DEFAULT, ROOT_TOL_DEFAULT, V_STICK_DEFAULT, ModelParams,
@@ -69,23 +72,59 @@ def errors(res, ref, v_visible: float = V_VISIBLE_DEFAULT) -> dict:
                 xmax_error=abs(res.xmax - ref.xmax) if finite else math.nan)
 
 
-RUN_FIELDS = {
-    # name: (long_name, units)
-    "solver": ("solver", ""),
-    "method": ("method (exact: closed-form event kernel; else scipy solve_ivp)", ""),
-    "knob": ("accuracy setting varied in this run", ""),
-    "tolerance": ("value of the varied setting (root_tol, v_stick or rtol)", "1"),
-    "v_stick": ("sticking threshold of the run", "1"),
-    "t_error": ("max |impact time - reference| over visible impacts (NaN: sequence differs)", "1"),
-    "ke_error": ("|KE ratio - reference|", "1"),
-    "xmax_error": ("|x_max - reference| (dimensionless, units of L)", "1"),
-    "seconds": ("wall-clock time per run", "s"),
-    "impacts_per_second": ("impacts simulated per second of wall-clock time", "s-1"),
-    "n_impacts": ("impacts in the run", "1"),
-    "n_visible": ("visible impacts compared (|w'-| >= v_visible)", "1"),
-    "sequence_ok": ("visible impacts in the reference's order on the same walls", "1"),
-    "status": ("solver status", ""),
-}
+#: per-run values of a WorkPrecisionResult (arrays over the runs, in this order)
+RUN_FIELDS = ("solver", "method", "knob", "tolerance", "v_stick", "t_error", "ke_error",
+              "xmax_error", "seconds", "impacts_per_second", "n_impacts", "n_visible",
+              "sequence_ok", "status")
+
+
+@dataclass(frozen=True)
+class WorkPrecisionResult:
+    """Error and cost of every run of one case.
+
+    ``runs``: RUN_FIELDS -> array over the runs (``sequence_ok`` int8 0/1, strings for
+    solver, method, knob, status). ``case``: eta, omega, F, r, d, t_end, t_transient,
+    v_visible as given. ``reference``: the high-precision reference at the case's v_stick
+    (v_stick, dps, h_sample, n_impacts, ke_ratio, xmax, n_sticks); ``reference_limit``: the
+    one at v_stick_reference the v_stick runs are compared with (v_stick, n_impacts,
+    ke_ratio, xmax), None without v_stick runs.
+    """
+
+    runs: dict
+    case: dict
+    reference: dict
+    reference_limit: dict | None = None
+
+    @property
+    def n_runs(self) -> int:
+        return len(self.runs["solver"])
+
+
+def _plan(root_tols, v_sticks, rk_methods, rtols, v_stick, ref, ref_limit) -> list[tuple]:
+    """(solver, method, knob, value, v_stick, reference, simulate kwargs) of every run."""
+    plan = [("exact", "exact", "root_tol", tol, v_stick, ref,
+             dict(root_tol=tol, v_stick=v_stick)) for tol in root_tols]
+    plan += [("exact", "exact", "v_stick", vs, vs, ref_limit, dict(v_stick=vs))
+             for vs in v_sticks]
+    plan += [("rk", m, "rtol", tol, v_stick, ref,
+              dict(solver="rk", method=m, rtol=tol, v_stick=v_stick))
+             for m in rk_methods for tol in rtols]
+    return plan
+
+
+def _references(p, st, v_sticks, v_stick_reference, dps, h_sample, say):
+    """The reference at st.v_stick and (with v_sticks) the one at v_stick_reference."""
+    t0 = time.perf_counter()
+    ref = reference_run(p, st, dps=dps, h_sample=h_sample)
+    say(f"reference (v_stick {st.v_stick:g}): {ref.impacts.size} impacts, "
+        f"{time.perf_counter() - t0:.1f} s")
+    ref_limit = None
+    if len(v_sticks):
+        t0 = time.perf_counter()
+        ref_limit = reference_run(p, st, dps=dps, h_sample=h_sample, v_stick=v_stick_reference)
+        say(f"reference (v_stick {v_stick_reference:g}): {ref_limit.impacts.size} impacts, "
+            f"{time.perf_counter() - t0:.1f} s")
+    return ref, ref_limit
 
 
 def work_precision(eta, omega, F, *, t_end, t_transient, r=R_DEFAULT, d=D_DEFAULT,
@@ -93,11 +132,13 @@ def work_precision(eta, omega, F, *, t_end, t_transient, r=R_DEFAULT, d=D_DEFAUL
                    rk_methods=("RK45", "DOP853", "LSODA"), rtols=(1e-4, 1e-6, 1e-8, 1e-10, 1e-12),
                    v_stick_reference=V_STICK_REFERENCE, dps=DPS_DEFAULT,
                    h_sample=H_SAMPLE_DEFAULT, v_visible=V_VISIBLE_DEFAULT, min_time=0.05,
-                   max_impacts=200_000, progress=None) -> xr.Dataset:
-    """Error and cost of every solver setting on one case; a Dataset over dimension ``run``.
+                   max_impacts=200_000, progress=None) -> WorkPrecisionResult:
+    """Error and cost of every solver setting on one case, as a :class:`WorkPrecisionResult`.
 
-    Times are dimensionless (t = w0 t_dim), the run starts from rest at t = 0. ``progress``
-    (a callable taking a line of text) reports each run as it finishes.
+    Runs: the exact solver at each of ``root_tols``, then at each of ``v_sticks``, then
+    each RK method at each of ``rtols``. Times are dimensionless (t = w0 t_dim), the run
+    starts from rest at t = 0. ``progress`` (a callable taking a line of text) reports each
+    run as it finishes.
     """
     p = ModelParams(eta=eta, omega=omega, F=F, r=r, d=d)
     st = SolverSettings(t_end=t_end, t_transient=t_transient, v_stick=v_stick,
@@ -107,28 +148,12 @@ def work_precision(eta, omega, F, *, t_end, t_transient, r=R_DEFAULT, d=D_DEFAUL
             raise ParameterError("rk_methods", m, f"must be among {', '.join(RK_METHODS)}")
     say = progress or (lambda line: None)
     simulate(eta, omega, F, t_end=1.0, t_transient=0.0)   # load the compiled kernel first
-    t0 = time.perf_counter()
-    ref = reference_run(p, st, dps=dps, h_sample=h_sample)
-    say(f"reference (v_stick {v_stick:g}): {ref.impacts.size} impacts, "
-        f"{time.perf_counter() - t0:.1f} s")
-    ref_limit = None
-    if len(v_sticks):
-        t0 = time.perf_counter()
-        ref_limit = reference_run(p, st, dps=dps, h_sample=h_sample, v_stick=v_stick_reference)
-        say(f"reference (v_stick {v_stick_reference:g}): {ref_limit.impacts.size} impacts, "
-            f"{time.perf_counter() - t0:.1f} s")
-
+    ref, ref_limit = _references(p, st, v_sticks, v_stick_reference, dps, h_sample, say)
     base = dict(eta=eta, omega=omega, F=F, r=r, d=d, t_end=t_end, t_transient=t_transient,
                 max_impacts=max_impacts)
-    plan = [("exact", "exact", "root_tol", tol, v_stick, ref,
-             dict(root_tol=tol, v_stick=v_stick)) for tol in root_tols]
-    plan += [("exact", "exact", "v_stick", vs, vs, ref_limit, dict(v_stick=vs))
-             for vs in v_sticks]
-    plan += [("rk", m, "rtol", tol, v_stick, ref,
-              dict(solver="rk", method=m, rtol=tol, v_stick=v_stick))
-             for m in rk_methods for tol in rtols]
     rows = []
-    for solver, method, knob, tol, vs, reference, kw in plan:
+    for solver, method, knob, tol, vs, reference, kw in _plan(
+            root_tols, v_sticks, rk_methods, rtols, v_stick, ref, ref_limit):
         sec, res = timed(lambda: simulate(**base, **kw), min_time=min_time)
         e = errors(res, reference, v_visible)
         rows.append(dict(solver=solver, method=method, knob=knob, tolerance=float(tol),
@@ -139,21 +164,15 @@ def work_precision(eta, omega, F, *, t_end, t_transient, r=R_DEFAULT, d=D_DEFAUL
             f"ke_error {e['ke_error']:.2e}, {sec:.3g} s, status {res.status}")
     for row in rows:
         row["sequence_ok"] = np.int8(row["sequence_ok"])
-    data = {k: ("run", [row[k] for row in rows],
-                {"long_name": ln, "units": u}) for k, (ln, u) in RUN_FIELDS.items()}
-    data["sequence_ok"][2].update(flag_values=[0, 1], flag_meanings="differs same")
-    attrs = {
-        "case_eta": eta, "case_omega": omega, "case_F": F, "case_r": r, "case_d": d,
-        "t_end": t_end, "t_transient": t_transient, "v_visible": v_visible,
-        "reference": f"vines.hiprec at {dps} digits, sampling step {h_sample}",
-        "reference_v_stick": v_stick, "reference_n_impacts": int(ref.impacts.size),
-        "reference_ke_ratio": ref.ke_ratio, "reference_xmax": ref.xmax,
-        "reference_n_sticks": len(ref.sticks),
-        "comment": "seconds are wall-clock measurements: they vary from run to run",
-    }
+    runs = {k: np.asarray([row[k] for row in rows]) for k in RUN_FIELDS}
+    case = dict(eta=eta, omega=omega, F=F, r=r, d=d, t_end=t_end, t_transient=t_transient,
+                v_visible=v_visible)
+    reference = dict(v_stick=v_stick, dps=dps, h_sample=h_sample,
+                     n_impacts=int(ref.impacts.size), ke_ratio=ref.ke_ratio, xmax=ref.xmax,
+                     n_sticks=len(ref.sticks))
+    limit = None
     if ref_limit is not None:
-        attrs.update(reference_limit_v_stick=v_stick_reference,
-                     reference_limit_n_impacts=int(ref_limit.impacts.size),
-                     reference_limit_ke_ratio=ref_limit.ke_ratio,
-                     reference_limit_xmax=ref_limit.xmax)
-    return xr.Dataset(data, attrs=attrs)
+        limit = dict(v_stick=v_stick_reference, n_impacts=int(ref_limit.impacts.size),
+                     ke_ratio=ref_limit.ke_ratio, xmax=ref_limit.xmax)
+    return WorkPrecisionResult(runs=runs, case=case, reference=reference,
+                               reference_limit=limit)
