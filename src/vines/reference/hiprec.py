@@ -1,11 +1,12 @@
 """High-precision reference trajectories (mpmath) for measuring the solvers' errors.
 
-The model of SPEC sections 1-2, computed independently of the double-precision code (nothing
-of ``vines.flow`` or ``vines._engine`` is used) at ``dps`` significant digits:
+The model of SPEC sections 1-2, computed independently of the double-precision code (no
+numerical code of ``vines.core`` is used, only its containers) at ``dps`` significant digits:
 
 * Between events the LO (mass m = 1) or the stuck body (m = 1 + eta) follows the closed form
-  of m z'' + d z' + z = F sin(W t + phi) + d W F cos(W t + phi) written with complex
-  exponentials in local time s = t - t0 of the segment; the free ball moves uniformly.
+  of m z'' + d z' + z = F sin(omega t + phi) + d omega F cos(omega t + phi) written with
+  complex exponentials in local time s = t - t0 of the segment; the free ball moves
+  uniformly. Both phases (free flight, stuck) run on one skeleton (``_RefRun._phase``).
 * Events are located by sampling every segment at steps of ``h_sample`` and splitting each
   sample interval at the extrema of the event function (roots of its derivative, found from a
   sign change of the derivative at the samples): a crossing of a wall inside an interval
@@ -40,39 +41,44 @@ V_STICK_REFERENCE = 1e-14   # default sticking threshold of the reference (accum
 class _Osc:
     """Closed-form motion of m z'' + d z' + z = f(t) from (z0, v0) at absolute time t0."""
 
-    def __init__(self, m, d, W, F, phi, t0, z0, v0):
+    def __init__(self, m, d, omega, F, phi, t0, z0, v0):
         self.t0 = t0
         disc = mp.sqrt(mp.mpc(d * d - 4 * m))
         if abs(disc) < mp.mpf(10) ** (-20):
             raise ValueError("critically damped oscillator: not handled by the reference")
         l1, l2 = (-d + disc) / (2 * m), (-d - disc) / (2 * m)
-        den = 1 - m * W * W + 1j * d * W
+        den = 1 - m * omega * omega + 1j * d * omega
         if abs(den) < mp.mpf(10) ** (-25):
             raise ValueError("undamped resonance: not handled by the reference")
-        self.W = W
-        self.fc = (F + 1j * d * W * F) * mp.expj(W * t0 + phi)     # forcing f = Im(fc e^{iWs})
-        E = self.fc / den                                          # z_p = Im(E e^{iWs})
+        self.omega = omega
+        # forcing f = Im(fc e^{i omega s})
+        self.fc = (F + 1j * d * omega * F) * mp.expj(omega * t0 + phi)
+        E = self.fc / den                                   # z_p = Im(E e^{i omega s})
         h0 = z0 - E.imag
-        h1 = v0 - W * E.real
+        h1 = v0 - omega * E.real
         B = (l1 * h0 - h1) / (l1 - l2)
         A = h0 - B
         self.l1, self.l2, self.A, self.B, self.E = l1, l2, A, B, E
         # z_m' = sum c_k exp(mu_k s), real sum
-        self.vterms = [(l1 * A, l1), (l2 * B, l2), (W * E / 2, mp.mpc(0, W)),
-                       (W * mp.conj(E) / 2, mp.mpc(0, -W))]
+        self.vterms = [(l1 * A, l1), (l2 * B, l2), (omega * E / 2, mp.mpc(0, omega)),
+                       (omega * mp.conj(E) / 2, mp.mpc(0, -omega))]
 
     def state(self, s):
         """(z, z', z'') at local time s."""
-        e1, e2, ew = mp.exp(self.l1 * s), mp.exp(self.l2 * s), mp.expj(self.W * s)
+        e1, e2, ew = mp.exp(self.l1 * s), mp.exp(self.l2 * s), mp.expj(self.omega * s)
         A1, B2, Ew = self.A * e1, self.B * e2, self.E * ew
-        W = self.W
+        omega = self.omega
         z = (A1 + B2).real + Ew.imag
-        v = (self.l1 * A1 + self.l2 * B2).real + W * Ew.real
-        a = (self.l1 ** 2 * A1 + self.l2 ** 2 * B2).real - W * W * Ew.imag
+        v = (self.l1 * A1 + self.l2 * B2).real + omega * Ew.real
+        a = (self.l1 ** 2 * A1 + self.l2 ** 2 * B2).real - omega * omega * Ew.imag
         return z, v, a
 
     def forcing(self, s):
-        return (self.fc * mp.expj(self.W * s)).imag
+        return (self.fc * mp.expj(self.omega * s)).imag
+
+    def dforcing(self, s):
+        """Time derivative of the forcing at local time s."""
+        return (1j * self.omega * self.fc * mp.expj(self.omega * s)).imag
 
     def int_v2(self, sa, sb):
         """Exact integral of z'^2 over local times [sa, sb]."""
@@ -141,171 +147,196 @@ def reference_run(params: ModelParams, settings: SolverSettings, *, dps: int = D
 
 
 def _run(p, st, h_sample, v_stick, max_events):
-    mpf = mp.mpf
-    eta, r, d, W, F, phi = (mpf(p.eta), mpf(p.r), mpf(p.d), mpf(p.omega), mpf(p.F), mpf(p.phi))
-    t_end, t_tr, h = mpf(st.t_end), mpf(st.t_transient), mpf(h_sample)
-    v_stick = mpf(v_stick)
-    tol = mpf(10) ** (-(mp.mp.dps - 8))
-    zm, vm, zb, vb = (mpf(x) for x in st.state0)
-    if abs(zm - zb) >= 1:
-        raise ValueError("the reference needs a start state strictly inside the cavity")
-    t = mpf(0)
-    mode, departed = 0, 0          # mode: 0 free, +-1 stuck at L/R; departed: wall just left
-    impacts, sticks = [], []
-    acc = {"vm2": mpf(0), "vb2": mpf(0), "xmax": mpf(0), "n": 0}
-    if t_tr == 0:
-        acc["xmax"] = abs(zm)
+    """The run at the current mpmath precision (see ``reference_run``)."""
+    return _RefRun(p, st, h_sample, v_stick, max_events).run()
 
-    def window(sa_abs, sb_abs):
-        return max(sa_abs, t_tr), min(sb_abs, t_end)
 
-    while t < t_end:
-        if len(impacts) + len(sticks) > max_events:
-            raise RuntimeError("reference: too many events")
-        if mode == 0:
-            osc = _Osc(mpf(1), d, W, F, phi, t, zm, vm)
-            s_w = 0
+class _RefRun:
+    """One reference run: the state, the records and the phase loop, all in mpmath numbers.
 
-            def wfun(s):            # (w, w', z_m, z_m') at local time s
-                z, v, _ = osc.state(s)
-                return z - (zb + vb * s), v - vb, z, v
+    ``mode`` is 0 in free flight and +-1 while stuck on wall L/R; ``departed`` is the wall
+    the ball left last (a start on it is no new contact).
+    """
 
-            s_end = t_end - t
-            a_s = mpf(0)
-            wa, dwa, za, va = wfun(a_s)
-            # heading of w' at the start: away from the departed wall when w' is 0 there
-            dwa_sign = dwa if dwa != 0 else (-departed if departed else 1)
-            hit = None
-            while a_s < s_end:
-                b_s = min(a_s + h, s_end)
-                acc["n"] += 1
-                wb, dwb, zb_, vb_ = wfun(b_s)
-                # x_max: extrema of z_m inside (a, b)
-                _note_extremum(acc, osc, t, a_s, b_s, va, vb_, tol, t_tr, t_end)
-                # split (a, b) at an extremum of w
-                pieces = [(a_s, wa, b_s, wb)]
-                if dwa_sign * dwb < 0:
-                    se = _illinois(lambda s: wfun(s)[1], a_s, b_s,
-                                   dwa if dwa != 0 else dwa_sign * tol, dwb, tol)
-                    we = wfun(se)[0]
-                    pieces = [(a_s, wa, se, we), (se, we, b_s, wb)]
-                for (x0, w0, x1, w1) in pieces:
-                    for wall in (1, -1):
-                        g0, g1 = wall * (w0 - wall), wall * (w1 - wall)   # <= 0 inside
-                        leaving = (x0 == 0 and departed == wall)
-                        if g1 >= 0 and (g0 < 0 or (g0 == 0 and not leaving and x0 > 0)):
-                            if g0 == 0:
-                                hit = (x0, wall)
-                            else:
-                                sr = _illinois(lambda s, wall=wall: wall * (wfun(s)[0] - wall),
-                                               x0, x1, g0, g1, tol)
-                                hit = (sr, wall)
-                            break
-                    if hit:
-                        break
-                if hit:
+    def __init__(self, p, st, h_sample, v_stick, max_events):
+        mpf = mp.mpf
+        self.eta, self.r, self.d = mpf(p.eta), mpf(p.r), mpf(p.d)
+        self.omega, self.F, self.phi = mpf(p.omega), mpf(p.F), mpf(p.phi)
+        self.t_end, self.t_tr, self.h = mpf(st.t_end), mpf(st.t_transient), mpf(h_sample)
+        self.v_stick = mpf(v_stick)
+        self.max_events = max_events
+        self.tol = mpf(10) ** (-(mp.mp.dps - 8))
+        self.zm, self.vm, self.zb, self.vb = (mpf(x) for x in st.state0)
+        if abs(self.zm - self.zb) >= 1:
+            raise ValueError("the reference needs a start state strictly inside the cavity")
+        self.t = mpf(0)
+        self.mode, self.departed = 0, 0
+        self.impacts, self.sticks = [], []
+        self.vm2, self.vb2, self.xmax, self.n = mpf(0), mpf(0), mpf(0), 0
+        if self.t_tr == 0:
+            self.xmax = abs(self.zm)
+
+    def run(self) -> Reference:
+        while self.t < self.t_end:
+            if len(self.impacts) + len(self.sticks) > self.max_events:
+                raise RuntimeError("reference: too many events")
+            if self.mode == 0:
+                wall = self._free_phase()
+                if wall is None:
                     break
-                a_s, wa, dwa, dwa_sign, za, va = b_s, wb, dwb, dwb, zb_, vb_
-            s1 = hit[0] if hit else s_end
-            z1, v1, _ = osc.state(s1)
-            if t < t_tr < t + s1:
-                _note_x(acc, t_tr, osc.state(t_tr - t)[0], t_tr, t_end)
-            ta, tb = window(t, t + s1)
-            if tb > ta:
-                acc["vm2"] += osc.int_v2(ta - t, tb - t)
-                acc["vb2"] += vb * vb * (tb - ta)
-            zb1 = zb + vb * s1
-            t = t + s1
-            zm, vm, zb = z1, v1, zb1
-            _note_x(acc, t, zm, t_tr, t_end)
-            if hit is None:
-                break
-            wall = hit[1]
-            zb = zm - wall
-            impacts.append((t, zm, vm, zb, vb, wall))
-            vmp = ((1 - r * eta) * vm + eta * (1 + r) * vb) / (1 + eta)
-            vbp = ((1 + r) * vm + (eta - r) * vb) / (1 + eta)
-            vm, vb = vmp, vbp
-            dw = vm - vb
-            vc = (vm + eta * vb) / (1 + eta)
-            press = wall * (F * mp.sin(W * t + phi) + d * W * F * mp.cos(W * t + phi)
-                            - d * vc - zm)
-            if abs(dw) <= v_stick and press > 0:
-                mode, vm, vb = wall, vc, vc
-                sticks.append([t, None])
+                self._impact(wall)
             else:
-                departed = wall
-        else:
-            wall = mode
-            osc = _Osc(1 + eta, d, W, F, phi, t, zm, vm)
-
-            def gfun(s):            # contact force (times wall): > 0 while pressed
-                z, v, a = osc.state(s)
-                return wall * (osc.forcing(s) - d * v - z)
-
-            def dgfun(s):
-                z, v, a = osc.state(s)
-                dfor = (1j * W * osc.fc * mp.expj(W * s)).imag
-                return wall * (dfor - d * a - v)
-
-            s_end = t_end - t
-            a_s = mpf(0)
-            ga, dga = gfun(a_s), dgfun(a_s)
-            _, va, _ = osc.state(a_s)
-            rel = None
-            while a_s < s_end:
-                b_s = min(a_s + h, s_end)
-                acc["n"] += 1
-                gb, dgb = gfun(b_s), dgfun(b_s)
-                _, vb_, _ = osc.state(b_s)
-                _note_extremum(acc, osc, t, a_s, b_s, va, vb_, tol, t_tr, t_end)
-                pieces = [(a_s, ga, b_s, gb)]
-                if dga * dgb < 0:
-                    se = _illinois(dgfun, a_s, b_s, dga, dgb, tol)
-                    pieces = [(a_s, ga, se, gfun(se)), (se, gfun(se), b_s, gb)]
-                for (x0, g0, x1, g1) in pieces:
-                    if g1 <= 0 < g0:
-                        rel = _illinois(gfun, x0, x1, g0, g1, tol)
-                        break
-                if rel is not None:
+                wall = self.mode
+                released = self._stuck_phase()
+                self.sticks[-1][1] = self.t
+                if not released:
                     break
-                a_s, ga, dga, va = b_s, gb, dgb, vb_
-            s1 = rel if rel is not None else s_end
-            z1, v1, _ = osc.state(s1)
-            if t < t_tr < t + s1:
-                _note_x(acc, t_tr, osc.state(t_tr - t)[0], t_tr, t_end)
-            ta, tb = window(t, t + s1)
-            if tb > ta:
-                iv = osc.int_v2(ta - t, tb - t)
-                acc["vm2"] += iv
-                acc["vb2"] += iv
-            t = t + s1
-            zm, vm = z1, v1
-            zb, vb = zm - wall, vm
-            _note_x(acc, t, zm, t_tr, t_end)
-            sticks[-1][1] = t
-            if rel is None:
-                break
-            mode, departed = 0, wall
+                self.mode, self.departed = 0, wall
+        return self._result()
 
-    t_win = t_end - t_tr
-    K_m = acc["vm2"] / (2 * t_win)
-    K_b = eta * acc["vb2"] / (2 * t_win)
-    tot = K_m + K_b
-    imp = np.array([tuple(float(x) for x in row[:5]) + (row[5],) for row in impacts],
-                   dtype=IMPACT_DTYPE) if impacts else np.zeros(0, dtype=IMPACT_DTYPE)
-    return Reference(impacts=imp, ke_ratio=float(K_b / tot) if tot > 0 else 0.0,
-                     xmax=float(acc["xmax"]), K_m=float(K_m), K_b=float(K_b),
-                     sticks=[(float(a), float(b)) for a, b in sticks], n_intervals=acc["n"])
+    # ---- the two phases ----
+    def _free_phase(self):
+        """Free flight to the first wall contact (returns its wall) or t_end (None)."""
+        zb, vb, departed, tol = self.zb, self.vb, self.departed, self.tol
+        osc = _Osc(mp.mpf(1), self.d, self.omega, self.F, self.phi, self.t, self.zm, self.vm)
 
+        def probe(s):           # (w, w', z_m') at local time s
+            z, v, _ = osc.state(s)
+            return z - (zb + vb * s), v - vb, v
 
-def _note_extremum(acc, osc, t, a, b, va, vb, tol, t_tr, t_end):
-    """Note |z_m| at an extremum of z_m inside local times (a, b) (z_m' changes sign)."""
-    if va * vb < 0:
-        se = _illinois(lambda s: osc.state(s)[1], a, b, va, vb, tol)
-        _note_x(acc, t + se, osc.state(se)[0], t_tr, t_end)
+        def contact(x0, w0, x1, w1):
+            """First wall reached in a piece where w is monotone: (local time, wall)."""
+            for wall in (1, -1):
+                g0, g1 = wall * (w0 - wall), wall * (w1 - wall)   # <= 0 inside
+                # (g0 = 0 at x0 = 0 is the departed wall: no new contact)
+                if g1 >= 0 and (g0 < 0 or (g0 == 0 and x0 > 0)):
+                    if g0 == 0:
+                        return x0, wall
+                    return _illinois(lambda s: wall * (probe(s)[0] - wall),
+                                     x0, x1, g0, g1, tol), wall
+            return None
 
+        # heading of w' at the start: away from the departed wall when w' is 0 there
+        s1, wall = self._phase(osc, probe, contact, -departed if departed else 1, vb)
+        self.zb = zb + vb * s1
+        return wall
 
-def _note_x(acc, t, z, t_tr, t_end):
-    if t_tr <= t <= t_end and abs(z) > acc["xmax"]:
-        acc["xmax"] = abs(z)
+    def _stuck_phase(self):
+        """Stuck on wall ``mode`` until the contact force changes sign (returns True) or
+        t_end (False)."""
+        wall, d = self.mode, self.d
+        osc = _Osc(1 + self.eta, d, self.omega, self.F, self.phi, self.t, self.zm, self.vm)
+
+        def probe(s):           # (contact force times wall: > 0 while pressed, its rate, z')
+            z, v, a = osc.state(s)
+            return wall * (osc.forcing(s) - d * v - z), wall * (osc.dforcing(s) - d * a - v), v
+
+        def release(x0, g0, x1, g1):
+            if g1 <= 0 < g0:
+                return _illinois(lambda s: probe(s)[0], x0, x1, g0, g1, self.tol), wall
+            return None
+
+        _, released = self._phase(osc, probe, release, 0, None)
+        self.zb, self.vb = self.zm - wall, self.vm
+        return released is not None
+
+    # ---- the shared skeleton ----
+    def _phase(self, osc, probe, crossing, heading, ball_speed):
+        """Advance one phase from t to its first event or to t_end.
+
+        osc       closed-form motion of the LO (free) or of the stuck body, from (t, zm, vm)
+        probe     s -> (e, e', z_m') at local time s: the event function, its derivative and
+                  the LO velocity
+        crossing  (x0, e0, x1, e1) -> (local time, tag) of the event in a piece where e is
+                  monotone, or None
+        heading   sign assumed for e' at s = 0 when e'(0) = 0 (0: no split there)
+        ball_speed  the free ball's constant z_b' (None: the ball moves with the LO)
+
+        Adds the window integrals and x_max, moves t, zm, vm to the end of the phase and
+        returns (phase length, tag of the event or None at t_end).
+        """
+        t, t_tr, t_end = self.t, self.t_tr, self.t_end
+        s_end = t_end - t
+        event = self._first_event(osc, probe, crossing, heading, s_end)
+        s1 = event[0] if event else s_end
+        z1, v1, _ = osc.state(s1)
+        if t < t_tr < t + s1:
+            self._note_x(t_tr, osc.state(t_tr - t)[0])
+        ta, tb = max(t, t_tr), min(t + s1, t_end)
+        if tb > ta:
+            iv = osc.int_v2(ta - t, tb - t)
+            self.vm2 += iv
+            self.vb2 += iv if ball_speed is None else ball_speed * ball_speed * (tb - ta)
+        self.t = t + s1
+        self.zm, self.vm = z1, v1
+        self._note_x(self.t, self.zm)
+        return s1, (event[1] if event else None)
+
+    def _first_event(self, osc, probe, crossing, heading, s_end):
+        """Sample [0, s_end] at steps h, split each interval at an extremum of the event
+        function e and return the first crossing (local time, tag), or None."""
+        tol = self.tol
+        a_s = mp.mpf(0)
+        ea, dea, va = probe(a_s)
+        dea_sign = dea if dea != 0 else heading
+        while a_s < s_end:
+            b_s = min(a_s + self.h, s_end)
+            self.n += 1
+            eb, deb, vb = probe(b_s)
+            self._note_extremum(osc, a_s, b_s, va, vb)
+            pieces = [(a_s, ea, b_s, eb)]
+            if dea_sign * deb < 0:      # split (a, b) at the extremum of e
+                se = _illinois(lambda s: probe(s)[1], a_s, b_s,
+                               dea if dea != 0 else dea_sign * tol, deb, tol)
+                ee = probe(se)[0]
+                pieces = [(a_s, ea, se, ee), (se, ee, b_s, eb)]
+            for piece in pieces:
+                event = crossing(*piece)
+                if event is not None:
+                    return event
+            a_s, ea, dea, dea_sign, va = b_s, eb, deb, deb, vb
+        return None
+
+    # ---- impacts and records ----
+    def _impact(self, wall):
+        """Impact on ``wall`` at the current state: record it, apply the impact law, then
+        stick (|w'+| <= v_stick while pressed) or depart."""
+        t, zm, eta, r, d, omega, F, phi = (self.t, self.zm, self.eta, self.r, self.d,
+                                           self.omega, self.F, self.phi)
+        self.zb = zm - wall
+        self.impacts.append((t, zm, self.vm, self.zb, self.vb, wall))
+        vm, vb = self.vm, self.vb
+        vm, vb = (((1 - r * eta) * vm + eta * (1 + r) * vb) / (1 + eta),
+                  ((1 + r) * vm + (eta - r) * vb) / (1 + eta))
+        dw = vm - vb
+        vc = (vm + eta * vb) / (1 + eta)
+        press = wall * (F * mp.sin(omega * t + phi) + d * omega * F * mp.cos(omega * t + phi)
+                        - d * vc - zm)
+        if abs(dw) <= self.v_stick and press > 0:
+            self.mode, self.vm, self.vb = wall, vc, vc
+            self.sticks.append([t, None])
+        else:
+            self.vm, self.vb = vm, vb
+            self.departed = wall
+
+    def _note_extremum(self, osc, a, b, va, vb):
+        """Note |z_m| at an extremum of z_m inside local times (a, b) (z_m' changes sign)."""
+        if va * vb < 0:
+            se = _illinois(lambda s: osc.state(s)[1], a, b, va, vb, self.tol)
+            self._note_x(self.t + se, osc.state(se)[0])
+
+    def _note_x(self, t, z):
+        if self.t_tr <= t <= self.t_end and abs(z) > self.xmax:
+            self.xmax = abs(z)
+
+    def _result(self) -> Reference:
+        t_win = self.t_end - self.t_tr
+        K_m = self.vm2 / (2 * t_win)
+        K_b = self.eta * self.vb2 / (2 * t_win)
+        tot = K_m + K_b
+        imp = np.array([tuple(float(x) for x in row[:5]) + (row[5],) for row in self.impacts],
+                       dtype=IMPACT_DTYPE) if self.impacts else np.zeros(0, dtype=IMPACT_DTYPE)
+        return Reference(impacts=imp, ke_ratio=float(K_b / tot) if tot > 0 else 0.0,
+                         xmax=float(self.xmax), K_m=float(K_m), K_b=float(K_b),
+                         sticks=[(float(a), float(b)) for a, b in self.sticks],
+                         n_intervals=self.n)

@@ -7,7 +7,7 @@ carried as extra ODE states.
 
 Model (dimensionless, see docs/model.md). Free flight, |w| < 1 with w = z_m - z_b::
 
-    z_m'' + d z_m' + z_m = f(t) = F sin(W t + phi) + d W F cos(W t + phi),   z_b'' = 0.
+    z_m'' + d z_m' + z_m = f(t) = F sin(omega t + phi) + d omega F cos(omega t + phi),   z_b'' = 0.
 
 Wall L is w = +1, wall R is w = -1; an impact happens only when approaching the wall
 (w' > 0 at L, w' < 0 at R) and maps pre (-) to post (+) velocities by::
@@ -133,230 +133,298 @@ def run_rk(params: ModelParams, settings: SolverSettings, *, method: str = "DOP8
     atol = rtol * 1e-2 if atol is None else float(atol)
     if not (atol > 0.0 and math.isfinite(atol)):
         raise ValueError(f"invalid atol = {atol!r}: must be a finite number > 0")
+    return _RKEventLoop(params, settings, method, rtol, atol).run()
 
-    eta, W, F, r, d, phi = (params.eta, params.omega, params.F, params.r, params.d, params.phi)
-    t_end, t_tr = settings.t_end, settings.t_transient
-    v_stick, max_imp, root_tol = settings.v_stick, settings.max_impacts, settings.root_tol
-    dWF = d * W * F
-    inv1e = 1.0 / (1.0 + eta)
-    tol_w = max(4.0 * atol, 1e-13)      # beyond-wall tolerance of the graze check
 
-    def force(t):
-        a = W * t + phi
-        return F * math.sin(a) + dWF * math.cos(a)
+# ---- event functions ----------------------------------------------------------------------
+# Every event function caches its values by time. solve_ivp detects a sign change from the
+# values at the two step ends (computed from the solver's states) and brentq then evaluates
+# the same function at the same two times on the dense output; the cache makes both see
+# identical end values (LSODA's dense output does not reproduce the step ends exactly, which
+# otherwise breaks the bracket when a value is near 0). At the segment start t0 the cached
+# value is the one of the initial state or, if that is exactly 0, a value on the side the
+# function is heading to: a function that leaves zero at t0 then never reports a root at t0.
 
-    # ---- right-hand sides (weight 1 inside the window, 0 before) ----
-    def rhs_free(wgt):
-        def f(t, y):
-            vm, vb = y[1], y[3]
-            return [vm, force(t) - d * vm - y[0], vb, 0.0, wgt * vm * vm, wgt * vb * vb]
-        return f
+def _cached_event(raw, t0, v0, heading, terminal, direction):
+    """Event function ``raw(t, y)`` for solve_ivp with the time cache and start value above."""
+    cache = {t0: v0 if v0 != 0.0 else (heading if heading != 0.0 else 1.0)}
 
-    def rhs_stuck(wgt):
-        def f(t, y):
-            v = y[1]
-            return [v, (force(t) - d * v - y[0]) * inv1e, wgt * v * v, wgt * v * v]
-        return f
+    def ev(t, y):
+        v = cache.get(t)
+        if v is None:
+            if len(cache) > 256:        # keep the latest step ends (largest times)
+                keep = sorted(cache)[-2:]
+                kept = {k: cache[k] for k in keep}
+                cache.clear()
+                cache.update(kept)
+            v = cache[t] = raw(t, y)
+        return v
+    ev.terminal, ev.direction = terminal, direction
+    return ev
 
-    # ---- event functions ----
-    # Every event function caches its values by time. solve_ivp detects a sign change from
-    # the values at the two step ends (computed from the solver's states) and brentq then
-    # evaluates the same function at the same two times on the dense output; the cache makes
-    # both see identical end values (LSODA's dense output does not reproduce the step ends
-    # exactly, which otherwise breaks the bracket when a value is near 0). At the segment
-    # start t0 the cached value is the one of the initial state or, if that is exactly 0, a
-    # value on the side the function is heading to: a function that leaves zero at t0 then
-    # never reports a root at t0.
-    def make_event(raw, t0, v0, heading, terminal, direction):
-        cache = {t0: v0 if v0 != 0.0 else (heading if heading != 0.0 else 1.0)}
 
-        def ev(t, y):
-            v = cache.get(t)
-            if v is None:
-                if len(cache) > 256:        # keep the latest step ends (largest times)
-                    keep = sorted(cache)[-2:]
-                    kept = {k: cache[k] for k in keep}
-                    cache.clear()
-                    cache.update(kept)
-                v = cache[t] = raw(t, y)
-            return v
-        ev.terminal, ev.direction = terminal, direction
-        return ev
+def _raw_L(t, y):           # wall L: w - 1
+    return y[0] - y[2] - 1.0
 
-    def raw_L(t, y):            # wall L: w - 1
-        return y[0] - y[2] - 1.0
 
-    def raw_R(t, y):            # wall R: w + 1
-        return y[0] - y[2] + 1.0
+def _raw_R(t, y):           # wall R: w + 1
+    return y[0] - y[2] + 1.0
 
-    def raw_dw(t, y):           # w' (turning points and extrema of w)
-        return y[1] - y[3]
 
-    def raw_v(t, y):            # z_m' (extrema of z_m)
-        return y[1]
+def _raw_dw(t, y):          # w' (turning points and extrema of w)
+    return y[1] - y[3]
 
-    def raw_g(t, y):            # contact-force sign of a stuck phase
-        return force(t) - d * y[1] - y[0]
+
+def _raw_v(t, y):           # z_m' (extrema of z_m)
+    return y[1]
+
+
+class _RKEventLoop:
+    """State and bookkeeping of one ``run_rk`` run: a loop over integration segments.
+
+    The run alternates free-flight segments (6 ODE states: z_m, z_m', z_b, z_b' and the two
+    window integrals) and stuck segments (4 states: z, z' of the common body and the two
+    integrals), each one ``solve_ivp`` call ending at an event, t_transient or t_end. An
+    impact is applied between segments (``pending_impact``). ``stuck`` is the wall the ball
+    sticks to (0 in free flight), ``departed`` the wall just left in free flight (its event
+    is not armed, see the restart rule in the module docstring).
+    """
+
+    def __init__(self, params: ModelParams, settings: SolverSettings, method, rtol, atol):
+        self.method, self.rtol, self.atol = method, rtol, atol
+        self.eta, self.omega, self.F = params.eta, params.omega, params.F
+        self.r, self.d, self.phi = params.r, params.d, params.phi
+        self.t_end, self.t_tr = settings.t_end, settings.t_transient
+        self.v_stick, self.max_imp = settings.v_stick, settings.max_impacts
+        self.root_tol, self.state0 = settings.root_tol, settings.state0
+        self.dWF = self.d * self.omega * self.F
+        self.inv1e = 1.0 / (1.0 + self.eta)
+        self.tol_w = max(4.0 * atol, 1e-13)      # beyond-wall tolerance of the graze check
+        # records
+        self.impacts = []
+        self.segments = []
+        self.int_vm2 = self.int_vb2 = 0.0       # window integrals of z_m'^2, z_b'^2
+        self.xmax_window = self.xmax_all = 0.0
+        self.t_stuck_window = self.t_stuck_total = 0.0
+        self.nfev = 0
+        self.n_sticks = 0
+        self.status = "ok"
+        self.stalled = 0        # consecutive segments that made no progress in time
+        # state
+        self.t = 0.0
+        self.zm, self.vm, self.zb, self.vb = settings.state0
+        self.stuck = 0
+        self.departed = 0
+        self.pending_impact = None      # wall of an impact to apply at the current state
+        # current segment: its end, whether it lies in the window, weight of the integrals
+        self.t_stop, self.in_win, self.wgt = self.t_end, False, 0.0
+
+    # ---- model ----
+    def force(self, t):
+        a = self.omega * t + self.phi
+        return self.F * math.sin(a) + self.dWF * math.cos(a)
+
+    def gfree(self, t, zm, vm):
+        """Free relative acceleration z_m'' = w'' (the contact-force sign when stuck)."""
+        return self.force(t) - self.d * vm - zm
+
+    def _rhs_free(self, t, y):
+        vm, vb, wgt = y[1], y[3], self.wgt
+        return [vm, self.force(t) - self.d * vm - y[0], vb, 0.0, wgt * vm * vm, wgt * vb * vb]
+
+    def _rhs_stuck(self, t, y):
+        v, wgt = y[1], self.wgt
+        return [v, (self.force(t) - self.d * v - y[0]) * self.inv1e, wgt * v * v, wgt * v * v]
+
+    def _raw_g(self, t, y):      # contact-force sign of a stuck phase
+        return self.gfree(t, y[0], y[1])
 
     # ---- bookkeeping ----
-    impacts = []
-    segments = []
-    acc = {"ivm": 0.0, "ivb": 0.0, "xw": 0.0, "xa": 0.0, "tsw": 0.0, "tst": 0.0, "nfev": 0}
-    n_sticks = 0
-    status = "ok"
-
-    def note_x(t, zm):
+    def note_x(self, t, zm):
         a = abs(zm)
-        if a > acc["xa"]:
-            acc["xa"] = a
-        if t >= t_tr and a > acc["xw"]:
-            acc["xw"] = a
+        if a > self.xmax_all:
+            self.xmax_all = a
+        if t >= self.t_tr and a > self.xmax_window:
+            self.xmax_window = a
 
-    def gfree(t, zm, vm):
-        return force(t) - d * vm - zm
+    def _stick(self, s):
+        """Start a stuck phase on wall s (velocities already merged)."""
+        self.stuck, self.departed = s, 0
+        self.n_sticks += 1
 
-    zm, vm, zb, vb = settings.state0
-    t = 0.0
-    note_x(t, zm)
+    def _integrate(self, rhs, y0, events):
+        res = solve_ivp(rhs, (self.t, self.t_stop), y0, method=self.method, rtol=self.rtol,
+                        atol=self.atol, dense_output=True, events=events)
+        self.nfev += res.nfev
+        return res
 
-    # mode: "free" or "stuck"; departed: wall just left (0 = none, both walls armed)
-    mode = "free"
-    departed = 0
-    stick_wall = 0
-    pending_impact = None    # wall of an impact to apply at the current state
+    def _close_segment(self, t1, y1, sol, wall):
+        """Store the segment [t, t1], add its window integrals and move t to t1.
 
-    w0 = zm - zb
-    if w0 >= 1.0 - root_tol or w0 <= -(1.0 - root_tol):
-        s = 1 if w0 > 0 else -1
-        zb = zm - s
-        dw = vm - vb
-        if dw * s > 0:
-            pending_impact = s
-        elif dw == 0.0 and gfree(t, zm, vm) * s > 0:
-            # resting on the wall and pressed on it: sticking (for any v_stick)
-            mode, stick_wall = "stuck", s
-            n_sticks += 1
-        else:
-            departed = s
+        wall: the wall of a stuck segment, 0 for free flight."""
+        self.stalled = self.stalled + 1 if t1 <= self.t else 0
+        self.segments.append(_Segment(self.t, t1, sol, wall != 0, wall))
+        k = 2 if wall else 4        # index of the integral of z_m'^2 in the ODE state
+        if self.in_win:
+            self.int_vm2 += y1[k]
+            self.int_vb2 += y1[k + 1]
+            if wall:
+                self.t_stuck_window += t1 - self.t
+        if wall:
+            self.t_stuck_total += t1 - self.t
+        self.t = t1
 
-    def apply_impact(t, zm, vm, zb, vb, s):
-        """Record the impact (pre-impact values); return v_m+, v_b+ and z_b on the wall."""
-        impacts.append((t, zm, vm, zb, vb, s))
-        vmp = ((1.0 - r * eta) * vm + eta * (1.0 + r) * vb) * inv1e
-        vbp = ((1.0 + r) * vm + (eta - r) * vb) * inv1e
-        return vmp, vbp, zm - s
-
-    stalled = 0             # consecutive segments that made no progress in time
-    while status == "ok" and t < t_end:
-        if stalled > 1000:
-            status = "stalled"
-            break
-        if pending_impact is not None:
-            s = pending_impact
-            pending_impact = None
-            vm, vb, zb = apply_impact(t, zm, vm, zb, vb, s)
-            note_x(t, zm)
-            if len(impacts) >= max_imp:
-                status = "max_impacts"
+    # ---- the loop ----
+    def run(self) -> RawRun:
+        self.note_x(self.t, self.zm)
+        self._start_on_wall()
+        while self.status == "ok" and self.t < self.t_end:
+            if self.stalled > 1000:
+                self.status = "stalled"
                 break
-            dw = vm - vb
-            vc = (vm + eta * vb) * inv1e
-            gc = gfree(t, zm, vc)
-            if abs(dw) <= v_stick and gc * s > 0:
-                # (v_stick = 0: only a plastic impact, w'+ = 0 exactly, as with r = 0)
-                mode, stick_wall = "stuck", s
-                vm = vb = vc
-                n_sticks += 1
+            if self.pending_impact is not None:
+                self._impact()
+                continue
+            self.t_stop = self.t_tr if self.t < self.t_tr else self.t_end
+            self.in_win = self.t >= self.t_tr
+            self.wgt = 1.0 if self.in_win else 0.0
+            if self.stuck:
+                self._stuck_segment()
             else:
-                mode, departed = "free", s
-            continue
+                self._free_segment()
+        return self._result()
 
-        t_stop = t_tr if t < t_tr else t_end
-        in_win = t >= t_tr
-        wgt = 1.0 if in_win else 0.0
+    def _start_on_wall(self):
+        """A start within root_tol of a wall: impact, sticking or departure from it."""
+        w0 = self.zm - self.zb
+        root_tol = self.root_tol
+        if w0 >= 1.0 - root_tol or w0 <= -(1.0 - root_tol):
+            s = 1 if w0 > 0 else -1
+            self.zb = self.zm - s
+            dw = self.vm - self.vb
+            if dw * s > 0:
+                self.pending_impact = s
+            elif dw == 0.0 and self.gfree(self.t, self.zm, self.vm) * s > 0:
+                # resting on the wall and pressed on it: sticking (for any v_stick)
+                self._stick(s)
+            else:
+                self.departed = s
 
-        if mode == "stuck":
-            s = stick_wall
-            g0 = force(t) - d * vm - zm
-            rel = make_event(raw_g, t, g0, float(s), True, -float(s))
-            ext = make_event(raw_v, t, vm, g0, False, 0.0)
-            res = solve_ivp(rhs_stuck(wgt), (t, t_stop), [zm, vm, 0.0, 0.0], method=method,
-                            rtol=rtol, atol=atol, dense_output=True, events=[rel, ext])
-            acc["nfev"] += res.nfev
-            t1 = float(res.t[-1])
-            y1 = res.y[:, -1]
-            for te, ye in zip(res.t_events[1], res.y_events[1]):
-                note_x(te, ye[0])
-            released = res.status == 1
-            if released:
-                # make sure the contact force has really changed sign at the release time
-                tr, k = t1, 0
-                yr = y1
-                while (force(tr) - d * yr[1] - yr[0]) * s > 0 and k < 60:
-                    tr = t1 + 4.0 * np.finfo(float).eps * max(1.0, abs(t1)) * 2.0 ** k
-                    yr = res.sol(tr)
-                    k += 1
-                t1, y1 = tr, yr
-            stalled = stalled + 1 if t1 <= t else 0
-            segments.append(_Segment(t, t1, res.sol, True, s))
-            if in_win:
-                acc["ivm"] += y1[2]
-                acc["ivb"] += y1[3]
-                acc["tsw"] += t1 - t
-            acc["tst"] += t1 - t
-            t = t1
-            zm, vm = float(y1[0]), float(y1[1])
-            zb, vb = zm - s, vm
-            note_x(t, zm)
-            if released:
-                mode, departed = "free", s
-            continue
+    def _impact(self):
+        """Apply the pending impact (recording pre-impact values), then stick or depart."""
+        s, self.pending_impact = self.pending_impact, None
+        t, zm, vm, vb, eta, r = self.t, self.zm, self.vm, self.vb, self.eta, self.r
+        self.impacts.append((t, zm, vm, self.zb, vb, s))
+        vm, vb = (((1.0 - r * eta) * vm + eta * (1.0 + r) * vb) * self.inv1e,
+                  ((1.0 + r) * vm + (eta - r) * vb) * self.inv1e)
+        self.vm, self.vb, self.zb = vm, vb, zm - s
+        self.note_x(t, zm)
+        if len(self.impacts) >= self.max_imp:
+            self.status = "max_impacts"
+            return
+        dw = vm - vb
+        vc = (vm + eta * vb) * self.inv1e
+        if abs(dw) <= self.v_stick and self.gfree(t, zm, vc) * s > 0:
+            # (v_stick = 0: only a plastic impact, w'+ = 0 exactly, as with r = 0)
+            self.vm = self.vb = vc
+            self._stick(s)
+        else:
+            self.departed = s
 
-        # ---- free flight ----
-        a0 = gfree(t, zm, vm)       # z_m'' = w'' at t
-        dw0 = vm - vb
-        w0 = zm - zb
-        events = [make_event(raw_v, t, vm, a0, False, 0.0),
-                  make_event(raw_dw, t, dw0, -float(departed) if departed else a0, False, 0.0)]
-        kinds = ["ext", "wext"]
-        if departed != 1:       # L armed
-            events.append(make_event(raw_L, t, w0 - 1.0, -1.0, True, 1.0))
-            kinds.append("L")
-        if departed != -1:      # R armed
-            events.append(make_event(raw_R, t, w0 + 1.0, 1.0, True, -1.0))
-            kinds.append("R")
-        if departed:            # turning back towards the departed wall
-            events.append(make_event(raw_dw, t, dw0, -float(departed), True, float(departed)))
-            kinds.append("turn")
-        res = solve_ivp(rhs_free(wgt), (t, t_stop), [zm, vm, zb, vb, 0.0, 0.0], method=method,
-                        rtol=rtol, atol=atol, dense_output=True, events=events)
-        acc["nfev"] += res.nfev
+    def _stuck_segment(self):
+        """Integrate the stuck body until the contact force changes sign (release)."""
+        s, t, zm, vm = self.stuck, self.t, self.zm, self.vm
+        g0 = self.gfree(t, zm, vm)
+        rel = _cached_event(self._raw_g, t, g0, float(s), True, -float(s))
+        ext = _cached_event(_raw_v, t, vm, g0, False, 0.0)
+        res = self._integrate(self._rhs_stuck, [zm, vm, 0.0, 0.0], [rel, ext])
         t1 = float(res.t[-1])
         y1 = res.y[:, -1]
-        hit = None          # wall hit at t1
-        turned = False
-        if res.status == 1:
-            for kind, te in zip(kinds, res.t_events):
-                if kind in ("L", "R", "turn") and te.size and te[-1] == t1:
-                    if kind == "L":
-                        hit = 1
-                    elif kind == "R":
-                        hit = -1
-                    else:
-                        turned = True
-            if hit is not None:
-                turned = False
+        for te, ye in zip(res.t_events[1], res.y_events[1]):
+            self.note_x(te, ye[0])
+        released = res.status == 1
+        if released:
+            t1, y1 = self._release_point(res, t1, y1, s)
+        self._close_segment(t1, y1, res.sol, s)
+        self.zm, self.vm = float(y1[0]), float(y1[1])
+        self.zb, self.vb = self.zm - s, self.vm
+        self.note_x(self.t, self.zm)
+        if released:
+            self.stuck, self.departed = 0, s
 
-        # graze check: an extremum of w beyond a wall means a crossing was stepped over
-        t_prev = t
+    def _release_point(self, res, t1, y1, s):
+        """Nudge the release time forward until the contact force has really changed sign."""
+        tr, k = t1, 0
+        yr = y1
+        while self.gfree(tr, yr[0], yr[1]) * s > 0 and k < 60:
+            tr = t1 + 4.0 * np.finfo(float).eps * max(1.0, abs(t1)) * 2.0 ** k
+            yr = res.sol(tr)
+            k += 1
+        return tr, yr
+
+    def _free_events(self):
+        """Event functions of a free-flight segment and their kinds (see the module docstring)."""
+        t, zm, vm, zb, vb, departed = self.t, self.zm, self.vm, self.zb, self.vb, self.departed
+        a0 = self.gfree(t, zm, vm)       # z_m'' = w'' at t
+        dw0 = vm - vb
+        w0 = zm - zb
+        events = [_cached_event(_raw_v, t, vm, a0, False, 0.0),
+                  _cached_event(_raw_dw, t, dw0, -float(departed) if departed else a0,
+                                False, 0.0)]
+        kinds = ["ext", "wext"]
+        if departed != 1:       # L armed
+            events.append(_cached_event(_raw_L, t, w0 - 1.0, -1.0, True, 1.0))
+            kinds.append("L")
+        if departed != -1:      # R armed
+            events.append(_cached_event(_raw_R, t, w0 + 1.0, 1.0, True, -1.0))
+            kinds.append("R")
+        if departed:            # turning back towards the departed wall
+            events.append(_cached_event(_raw_dw, t, dw0, -float(departed), True,
+                                        float(departed)))
+            kinds.append("turn")
+        return events, kinds
+
+    def _free_segment(self):
+        """Integrate free flight until a wall is hit, the motion turns back towards the
+        departed wall, or t_stop."""
+        events, kinds = self._free_events()
+        res = self._integrate(self._rhs_free, [self.zm, self.vm, self.zb, self.vb, 0.0, 0.0],
+                              events)
+        t1 = float(res.t[-1])
+        y1 = res.y[:, -1]
+        hit, turned = _terminal_event(res, kinds, t1)
+        graze = self._grazed_wall(res, t1)
+        if graze is not None:
+            t1, hit = graze
+            y1 = res.sol(t1)
+            turned = False
+        for te, ye in zip(res.t_events[0], res.y_events[0]):
+            if te <= t1:
+                self.note_x(te, ye[0])
+        self._close_segment(t1, y1, res.sol, 0)
+        self.zm, self.vm, self.zb, self.vb = (float(x) for x in y1[:4])
+        self.note_x(self.t, self.zm)
+        if hit is not None:
+            self.pending_impact = hit
+            self.departed = 0
+        elif turned:
+            self._turning_point()
+
+    def _grazed_wall(self, res, t1):
+        """Graze check: (crossing time, wall) of a wall crossing stepped over, or None.
+
+        An extremum of w (non-terminal event "wext") beyond a wall means the crossing was
+        stepped over; it is located with brentq between the previous extremum (or the
+        segment start), where w is monotone, and the extremum."""
+        t = t_prev = self.t
         for te, ye in zip(res.t_events[1], res.y_events[1]):
             if te > t1:
                 break
             wx = ye[0] - ye[2]
-            if te > t and abs(wx) > 1.0 + tol_w:
+            if te > t and abs(wx) > 1.0 + self.tol_w:
                 s = 1 if wx > 0 else -1
 
-                def wf(tt, s=s):
+                def wf(tt):
                     yy = res.sol(tt)
                     return yy[0] - yy[2] - s
                 if wf(t_prev) * s < 0:
@@ -364,60 +432,62 @@ def run_rk(params: ModelParams, settings: SolverSettings, *, method: str = "DOP8
                                 rtol=4 * np.finfo(float).eps)
                 else:
                     tc = t_prev
-                t1 = tc
-                y1 = res.sol(tc)
-                hit, turned = s, False
-                break
+                return tc, s
             t_prev = te
+        return None
 
-        for te, ye in zip(res.t_events[0], res.y_events[0]):
-            if te <= t1:
-                note_x(te, ye[0])
-        stalled = stalled + 1 if t1 <= t else 0
-        segments.append(_Segment(t, t1, res.sol, False, 0))
-        if in_win:
-            acc["ivm"] += y1[4]
-            acc["ivb"] += y1[5]
-        t = t1
-        zm, vm, zb, vb = (float(x) for x in y1[:4])
-        note_x(t, zm)
+    def _turning_point(self):
+        """The motion turned back towards the departed wall: re-arm it, or (a turning point
+        on/over the wall: a flight below integration accuracy, cut short to w = s, w' = 0)
+        stick when pressed on the wall (v_stick > 0) or stop ("zeno"); otherwise depart
+        again with zero relative velocity."""
+        s = self.departed
+        if (self.zm - self.zb) * s >= 1.0:
+            self.zb = self.zm - s
+            vc = (self.vm + self.eta * self.vb) * self.inv1e
+            self.vm = self.vb = vc
+            if self.gfree(self.t, self.zm, vc) * s > 0:
+                if self.v_stick > 0.0:
+                    self._stick(s)
+                else:
+                    self.status = "zeno"
+        else:
+            self.departed = 0
 
+    def _result(self) -> RawRun:
+        t_last = min(self.t, self.t_end)
+        imp = (np.array(self.impacts, dtype=IMPACT_DTYPE) if self.impacts
+               else np.zeros(0, dtype=IMPACT_DTYPE))
+        return RawRun(
+            impacts=imp,
+            int_vm2=float(self.int_vm2),
+            int_vb2=float(self.int_vb2),
+            xmax_window=float(self.xmax_window),
+            xmax_whole_run=float(self.xmax_all),
+            t_stuck_window=float(self.t_stuck_window),
+            t_stuck_total=float(self.t_stuck_total),
+            n_impacts=len(self.impacts),
+            status=self.status,
+            t_last=float(t_last),
+            state_at=_StateAt(self.segments, self.state0, t_last),
+            n_sticks=self.n_sticks,
+            solver_info={"method": self.method, "rtol": self.rtol, "atol": self.atol,
+                         "nfev": int(self.nfev)},
+        )
+
+
+def _terminal_event(res, kinds, t1):
+    """(wall hit at t1 or None, turned back at t1) from the terminal events of a segment."""
+    hit, turned = None, False
+    if res.status == 1:
+        for kind, te in zip(kinds, res.t_events):
+            if kind in ("L", "R", "turn") and te.size and te[-1] == t1:
+                if kind == "L":
+                    hit = 1
+                elif kind == "R":
+                    hit = -1
+                else:
+                    turned = True
         if hit is not None:
-            pending_impact = hit
-            departed = 0
-        elif turned:
-            s = departed
-            if (zm - zb) * s >= 1.0:
-                # turning point on/over the departed wall: a flight below integration accuracy
-                # (cut short to w = s, w' = 0). Pressed on the wall: stick (v_stick > 0) or
-                # stop ("zeno"); otherwise depart again with zero relative velocity.
-                zb = zm - s
-                vc = (vm + eta * vb) * inv1e
-                vm = vb = vc
-                if gfree(t, zm, vc) * s > 0:
-                    if v_stick > 0.0:
-                        mode, stick_wall = "stuck", s
-                        n_sticks += 1
-                        departed = 0
-                    else:
-                        status = "zeno"
-            else:
-                departed = 0
-
-    t_last = min(t, t_end)
-    imp = np.array(impacts, dtype=IMPACT_DTYPE) if impacts else np.zeros(0, dtype=IMPACT_DTYPE)
-    return RawRun(
-        impacts=imp,
-        int_vm2=float(acc["ivm"]),
-        int_vb2=float(acc["ivb"]),
-        xmax_window=float(acc["xw"]),
-        xmax_whole_run=float(acc["xa"]),
-        t_stuck_window=float(acc["tsw"]),
-        t_stuck_total=float(acc["tst"]),
-        n_impacts=len(impacts),
-        status=status,
-        t_last=float(t_last),
-        state_at=_StateAt(segments, settings.state0, t_last),
-        n_sticks=n_sticks,
-        solver_info={"method": method, "rtol": rtol, "atol": atol, "nfev": int(acc["nfev"])},
-    )
+            turned = False
+    return hit, turned
