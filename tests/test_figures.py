@@ -1,21 +1,29 @@
-"""Figures: input checks of vines.plotting.draw and the figure rules' rerun plans.
+"""Figures: vines.plotting (input checks, drawing, layouts), the figure scripts run through the
+shared job runner, and the figure rules' rerun plans.
 
-Input checks run on tiny synthetic datasets. The dry-run test works on a copy of the
-workflow in tmp_path with a copy of the smoke run's datasets (results/smoke, made by
-`snakemake -c2 --configfile config/smoke.yaml`); it never touches results/.
+Input checks and scripts run on tiny synthetic datasets. The Snakemake tests work on a copy
+of the workflow in tmp_path with a copy of the smoke run's datasets (results/smoke, made by
+`snakemake -c2 --configfile config/smoke.yaml`, or the directory named by VINES_SMOKE); they
+never touch results/.
 """
+import os
+import runpy
 import shutil
+import time
 from pathlib import Path
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
 import xarray as xr
 
+import vines.plotting as P
 from test_pipeline import ROOT, _copy_workflow, _planned, _smk, needs_snakemake
-from vines.plotting import draw as P
-from vines.data.netcdf import COORD_ATTRS
+from vines.data.schema import COORD_ATTRS, STABILITY_CLASS_FLAGS
 
-SMOKE = ROOT / "results" / "smoke"
+SMOKE = Path(os.environ.get("VINES_SMOKE", ROOT / "results" / "smoke"))
+SCRIPTS = ROOT / "workflow" / "scripts" / "figures"
+TH_FIGURES = ("fig4", "fig5", "fig9", "fig10")
 
 
 def _grid(tmp_path, eta=(0.05, 0.1, 0.15), ke=None, drop=None, name="g.nc"):
@@ -34,6 +42,43 @@ def _grid(tmp_path, eta=(0.05, 0.1, 0.15), ke=None, drop=None, name="g.nc"):
     ds.to_netcdf(path)
     return path
 
+
+def _timehistories(tmp_path, n_points=2, n_samples=50, bad=False, name="th.nc"):
+    t = np.linspace(0.0, 20.0, n_samples)
+    rows = np.stack([t] * n_points)
+    zb = np.stack([np.sin(t + k) for k in range(n_points)])
+    if bad:
+        zb[0, 3] = np.nan
+    ds = xr.Dataset(
+        {"t": (("point", "sample"), rows), "z_m": (("point", "sample"), 0.2 * np.sin(rows)),
+         "v_m": (("point", "sample"), 0.2 * np.cos(rows)), "z_b": (("point", "sample"), zb),
+         "v_b": (("point", "sample"), np.cos(rows)),
+         "row_size": (("point",), np.zeros(n_points, np.int64)),
+         "eta": (("point",), np.linspace(0.05, 0.1, n_points)),
+         "omega": (("point",), np.ones(n_points)), "F": (("point",), np.full(n_points, 0.05))})
+    path = tmp_path / name
+    ds.to_netcdf(path)
+    return path
+
+
+# ------------------------------------------------------------------ the package's layout
+
+def test_public_names_come_from_their_modules():
+    from vines.plotting import checks, draw, layouts
+    assert P.FigureInputError is checks.FigureInputError
+    assert P.measures is checks.measures and P.sweep_points is checks.sweep_points
+    assert P.contour_map is draw.contour_map and P.save is draw.save
+    assert P.time_history_figure is layouts.time_history_figure
+    assert P.zoom_figure is layouts.zoom_figure
+    assert all(hasattr(P, name) for name in P.__all__)
+
+
+def test_stability_classes_match_the_dataset_flags():
+    flags = [int(v) for v in STABILITY_CLASS_FLAGS["flag_values"]]
+    assert list(P.CLASS_VALUES) == flags == sorted(P.CLASSES)
+
+
+# ------------------------------------------------------------------ input checks
 
 def test_good_grid_passes(tmp_path):
     ds = P.measures(_grid(tmp_path), axes=("eta",), fixed=("omega", "F"))
@@ -75,6 +120,23 @@ def test_stability_map_allows_nan_only_without_a_1to1_orbit(tmp_path):
                 P.stability(path)
 
 
+def test_sweep_points_select_outer_value_and_last_impacts(tmp_path):
+    ds = xr.Dataset({"value": ("point", [0.1, 0.2, 0.1]),
+                     "outer_value": ("point", [1.0, 1.0, 2.0]),
+                     "direction": ("point", [1, 1, 1]),
+                     "row_size": ("point", [3, 0, 2]),
+                     "dw": ("impact", [1.0, 2.0, 3.0, 4.0, 5.0])})
+    path = tmp_path / "sw.nc"
+    ds.to_netcdf(path)
+    sw = P.sweep(path)
+    x, y = P.sweep_points(sw)
+    assert x.tolist() == [0.1, 0.1, 0.1, 0.1, 0.1] and y.tolist() == [1, 2, 3, 4, 5]
+    x, y = P.sweep_points(sw, 1.0, max_per_point=2)
+    assert x.tolist() == [0.1, 0.1] and y.tolist() == [2.0, 3.0]
+    with pytest.raises(P.FigureInputError, match="no sweep at outer value 3"):
+        P.sweep_points(sw, 3.0)
+
+
 def test_save_is_atomic_and_writes_both_files(tmp_path):
     fig, axes = P.figure(1, 1)
     axes[0, 0].plot([0, 1], [0, 1])
@@ -83,30 +145,92 @@ def test_save_is_atomic_and_writes_both_files(tmp_path):
     assert (tmp_path / "f.png").read_bytes()[:4] == b"\x89PNG"
 
 
+# ------------------------------------------------------------------ figure scripts
+
+def _run_script(name, tmp_path, **inputs):
+    """Run a figure script as Snakemake would (``snakemake`` injected), return its log."""
+    out = tmp_path / "figures"
+    sm = SimpleNamespace(input=SimpleNamespace(**inputs), rule="fig4", wildcards={},
+                         output=SimpleNamespace(pdf=str(out / "fig4.pdf"),
+                                                png=str(out / "fig4.png")),
+                         log=[str(tmp_path / "logs" / "fig4.log")])
+    runpy.run_path(str(SCRIPTS / f"{name}.py"), init_globals={"snakemake": sm})
+    return Path(sm.log[0])
+
+
+def test_time_history_script_draws_one_row_per_point(tmp_path):
+    _run_script("timehistory", tmp_path, th=[str(_timehistories(tmp_path, n_points=3))])
+    png = tmp_path / "figures" / "fig4.png"
+    assert png.read_bytes()[:4] == b"\x89PNG" and (tmp_path / "figures" / "fig4.pdf").is_file()
+    fig = P.time_history_figure(P.timehistory(_timehistories(tmp_path, n_points=3)))
+    assert len(fig.axes) == 6 and fig.axes[0].get_title(loc="left").startswith("(a) $\\eta$")
+
+
+def test_bad_input_fails_with_one_line_in_log_and_console(tmp_path, capfd):
+    with pytest.raises(SystemExit) as ei:
+        _run_script("timehistory", tmp_path, th=[str(_timehistories(tmp_path, bad=True))])
+    assert ei.value.code == 1
+    line = "vines fig4: FigureInputError: "
+    log = (tmp_path / "logs" / "fig4.log").read_text().splitlines()
+    assert log[-1].startswith(line) and "variable 'z_b' has 1 non-finite value" in log[-1]
+    console = [ln for ln in capfd.readouterr().err.splitlines() if ln.startswith(line)]
+    assert len(console) == 1 and "(log: " in console[0]
+    assert not (tmp_path / "figures").exists()
+
+
+def test_figure_scripts_share_one_preamble():
+    for script in sorted(SCRIPTS.glob("*.py")):
+        text = script.read_text()
+        assert "sys.path" not in text, script.name
+        assert "import vines.plotting as P\n" in text, script.name
+        assert text.rstrip().splitlines()[-1].startswith(
+            "run_job(snakemake, lambda: main(snakemake))"), script.name
+    for fig in TH_FIGURES:
+        assert not (SCRIPTS / f"{fig}.py").exists()
+
+
+# ------------------------------------------------------------------ rules and reruns
+
+def _copy_datasets(tmp_path, subdirs):
+    """Copy smoke datasets into the workflow copy, newer than its scripts and in DAG order
+    (the copies must not look outdated: only figure jobs are to be planned)."""
+    dst = tmp_path / "results" / "smoke"
+    now = time.time()
+    for k, sub in enumerate(subdirs):
+        shutil.copytree(SMOKE / sub, dst / sub)
+        for f in (dst / sub).rglob("*.nc"):
+            os.utime(f, (now + k, now + k))
+    return dst
+
+
 @needs_snakemake
 @pytest.mark.skipif(not (SMOKE / "measures").is_dir(), reason="no smoke datasets")
-def test_editing_one_figure_script_reruns_only_that_figure(tmp_path):
-    _copy_workflow(tmp_path)
-    dst = tmp_path / "results" / "smoke"
-    for sub in ("grid", "measures", "stability"):       # copy2: mtimes kept
-        shutil.copytree(SMOKE / sub, dst / sub)
+def test_editing_a_figure_script_reruns_only_its_figures(tmp_path):
+    _copy_workflow(tmp_path, with_src_copy=True)
+    dst = _copy_datasets(tmp_path, ("grid", "measures", "stability", "timehistories"))
     smoke = ["--configfile", str(tmp_path / "config" / "smoke.yaml")]
-    figs = [f"results/smoke/figures/{f}.{e}" for f in ("fig2", "fig16") for e in ("pdf", "png")]
-    assert _planned(_smk(tmp_path, "-n", *figs, *smoke)) == {"fig2": 1, "fig16": 1}
+    names = ("fig2", "fig16") + TH_FIGURES
+    figs = [f"results/smoke/figures/{f}.{e}" for f in names for e in ("pdf", "png")]
+    assert _planned(_smk(tmp_path, "-n", *figs, *smoke)) == dict.fromkeys(names, 1)
     _smk(tmp_path, *figs, *smoke)
     assert _planned(_smk(tmp_path, "-n", *figs, *smoke)) == {}
-    script = tmp_path / "workflow" / "scripts" / "figures" / "fig16.py"
-    script.write_text(script.read_text() + "\n# restyled\n")
-    assert _planned(_smk(tmp_path, "-n", *figs, *smoke)) == {"fig16": 1}
+    for name, rerun in (("workflow/scripts/figures/fig16.py", ("fig16",)),
+                        ("workflow/scripts/figures/timehistory.py", TH_FIGURES),
+                        ("src/vines/plotting/draw.py", names)):
+        f = tmp_path / name
+        text, st = f.read_text(), f.stat()
+        f.write_text(text + "\n# restyled\n")
+        assert _planned(_smk(tmp_path, "-n", *figs, *smoke)) == dict.fromkeys(rerun, 1), name
+        f.write_text(text)
+        os.utime(f, ns=(st.st_atime_ns, st.st_mtime_ns))   # as before the edit
+    assert _planned(_smk(tmp_path, "-n", *figs, *smoke)) == {}
 
 
 @needs_snakemake
 @pytest.mark.skipif(not (SMOKE / "measures").is_dir(), reason="no smoke datasets")
 def test_figure_rule_fails_clearly_on_bad_input(tmp_path):
     _copy_workflow(tmp_path)
-    dst = tmp_path / "results" / "smoke"
-    for sub in ("grid", "measures"):
-        shutil.copytree(SMOKE / sub, dst / sub)
+    dst = _copy_datasets(tmp_path, ("grid", "measures"))
     bad = dst / "measures" / "fig2_F0.1.nc"
     with xr.open_dataset(bad) as ds:
         ds = ds.load()
@@ -115,6 +239,8 @@ def test_figure_rule_fails_clearly_on_bad_input(tmp_path):
     r = _smk(tmp_path, "results/smoke/figures/fig2.png",
              "--configfile", str(tmp_path / "config" / "smoke.yaml"), check=False)
     assert r.returncode != 0
-    assert "vines figures: fig2: bad input:" in r.stderr + r.stdout
-    assert "'ke_ratio' has 1 non-finite value" in r.stderr + r.stdout
+    line = "vines fig2: FigureInputError: results/smoke/measures/fig2_F0.1.nc: variable "
+    assert line + "'ke_ratio' has 1 non-finite value" in r.stderr + r.stdout
+    log = (dst / "logs" / "figures" / "fig2.log").read_text()
+    assert log.splitlines()[-1].startswith(line)
     assert not (dst / "figures" / "fig2.png").exists()

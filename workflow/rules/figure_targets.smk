@@ -1,8 +1,8 @@
-# Figure inputs and targets (functions only: FIG_INPUTS, FIGURES, fig_out, all_figures,
-# all_targets). A figure takes its datasets by name from the config sections: grids, sweeps,
-# branches, stability maps and time histories named `figN` or `figN_<anything>` (see
-# docs/figures.md). A figure whose datasets are not all configured (e.g. a test config) is
-# not requested. Included by workflow/rules/figures.smk.
+# Figure inputs and targets: FIG_INPUTS, REQUESTED_FIGURES, figure_rule, figure_script,
+# fig_out, all_figures, all_targets. A figure takes its datasets by name from the config
+# sections: grids, sweeps, branches, stability maps and time histories named `figN` or
+# `figN_<anything>` (see docs/figures.md). A figure whose datasets are not all configured
+# (e.g. a test config) is not requested. Included by workflow/rules/figures.smk.
 
 
 def _named(section, prefix, folder):
@@ -19,11 +19,11 @@ def _sweeps(p):
 
 
 def _branches(p):
-    return _named(BRANCHES, p, "branches") if HAVE_CONTINUATION else []
+    return _named(BRANCHES, p, "branches")
 
 
 def _smaps(p):
-    return _named(SMAPS, p, "stability") if HAVE_STABILITY_MAP else []
+    return _named(SMAPS, p, "stability")
 
 
 def _th(p):
@@ -52,11 +52,25 @@ FIG_INPUTS = {
     "convergence": {s: f"{RES}/convergence/{s}.nc" if s in CONV else ""
                     for s in ("window", "vstick", "grid")},
 }
-FIGURES = [f for f, ins in FIG_INPUTS.items() if all(ins.values())]
-_missing = [f for f in FIG_INPUTS if f not in FIGURES]
-if _missing and FIGURES:
+REQUESTED_FIGURES = [f for f, ins in FIG_INPUTS.items() if all(ins.values())]
+_missing = [f for f in FIG_INPUTS if f not in REQUESTED_FIGURES]
+if _missing and REQUESTED_FIGURES:
     print(f"vines pipeline: warning: figures {', '.join(_missing)} are not requested "
           "(their datasets are not configured)", file=sys.stderr)
+
+
+#: figures drawn by the shared time-history script
+TIMEHISTORY_FIGURES = ("fig4", "fig5", "fig9", "fig10")
+
+
+def figure_rule(fig):
+    """Rule name of a figure: figN, fig_<study>."""
+    return fig if fig.startswith("fig") else f"fig_{fig}"
+
+
+def figure_script(fig):
+    """Script (workflow/scripts/figures/<name>.py) of a figure."""
+    return "timehistory" if fig in TIMEHISTORY_FIGURES else fig
 
 
 def fig_out(name):
@@ -68,7 +82,7 @@ def fig_out(name):
 
 
 def all_figures():
-    return [f"{RES}/figures/{f}.{ext}" for f in FIGURES for ext in ("pdf", "png")]
+    return [f"{RES}/figures/{f}.{ext}" for f in REQUESTED_FIGURES for ext in ("pdf", "png")]
 
 
 def all_targets():

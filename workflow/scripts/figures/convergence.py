@@ -7,12 +7,12 @@ KE-ratio contour to the finest grid's against grid resolution, (f) the contours 
 Inputs (datasets of ``vines.studies.convergence``): ``snakemake.input.window``, ``.vstick``,
 ``.grid``; outputs ``snakemake.output.pdf`` / ``.png``; log ``snakemake.log[0]``.
 """
-import _common
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.lines import Line2D
 
-from vines.plotting import draw as P
+import vines.plotting as P
+from vines.pipeline.jobs import run_job
 
 FLOOR = 1e-16       # |differences| below (round-off, exact zeros) are drawn at this value
 SYM = {"eta": r"\eta", "omega": r"\Omega", "F": "F"}
@@ -209,4 +209,4 @@ def main(sm):
     P.save(fig, sm.output.pdf, sm.output.png)
 
 
-_common.run(snakemake, main)  # noqa: F821  (injected by Snakemake)
+run_job(snakemake, lambda: main(snakemake))  # noqa: F821  (injected by Snakemake)

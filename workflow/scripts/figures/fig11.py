@@ -1,10 +1,11 @@
 """Fig 11: (a, b) x_max (m, log axis) vs W of the VINES (red) and of the stuck linear
 system Eq. 28 (black), one panel per eta (grid fig11_*); (c-e) LO displacement of the
 VINES (red) and the steady state of Eq. 28 (black) at the points of timehistories.fig11."""
-import _common
+import matplotlib.pyplot as plt
 import numpy as np
 
-from vines.plotting import draw as P
+import vines.plotting as P
+from vines.pipeline.jobs import run_job
 
 
 def eq28_steady(t, eta, omega, F, d, phi=0.0):
@@ -23,7 +24,7 @@ def main(sm):
                                  "is missing")
     d = float(d)
     ne, nt = ds.sizes["eta"], th.sizes["point"]
-    fig = P.plt.figure(figsize=(max(3.6 * nt, 4.5 * ne), 6.4), constrained_layout=True)
+    fig = plt.figure(figsize=(max(3.6 * nt, 4.5 * ne), 6.4), constrained_layout=True)
     gs = fig.add_gridspec(2, ne * nt)
     F = P.fixed_value(ds, "F")
     W = ds["omega"].values
@@ -61,4 +62,4 @@ def main(sm):
     P.save(fig, sm.output.pdf, sm.output.png)
 
 
-_common.run(snakemake, main)  # noqa: F821  (injected by Snakemake)
+run_job(snakemake, lambda: main(snakemake))  # noqa: F821  (injected by Snakemake)

@@ -1,10 +1,11 @@
 """Fig 12: contour maps over (eta, W) of x_max in metres (a-c, dashed W = 1/sqrt(1+eta))
 and the KE ratio (d-f, stable 1:1 region of the stability map with the same F outlined and
 hatched in white), one column per F (grids fig12_*, stability maps fig16_*)."""
-import _common
+import matplotlib.pyplot as plt
 import numpy as np
 
-from vines.plotting import draw as P
+import vines.plotting as P
+from vines.pipeline.jobs import run_job
 
 
 def main(sm):
@@ -34,7 +35,7 @@ def main(sm):
         stable = np.isin(sm_["cls"].values, (1, 2)).astype(float).T   # (omega, eta)
         se, sW = sm_["eta"].values, sm_["omega"].values
         if stable.any():
-            with P.plt.rc_context({"hatch.color": "white", "hatch.linewidth": 0.8}):
+            with plt.rc_context({"hatch.color": "white", "hatch.linewidth": 0.8}):
                 ax.contourf(se, sW, stable, levels=[0.5, 1.5], colors="none",
                             hatches=["////"])
             ax.contour(se, sW, stable, levels=[0.5], colors="white", linewidths=1.4)
@@ -48,4 +49,4 @@ def main(sm):
     P.save(fig, sm.output.pdf, sm.output.png)
 
 
-_common.run(snakemake, main)  # noqa: F821  (injected by Snakemake)
+run_job(snakemake, lambda: main(snakemake))  # noqa: F821  (injected by Snakemake)

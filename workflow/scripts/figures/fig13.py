@@ -1,9 +1,8 @@
 """Fig 13: sections of Fig 12 at the eta values marked in the grids (section_eta, config
 key grids.fig12_*.sections): KE ratio (blue stars) and x_max (m, red circles) vs W; rows F,
 columns eta."""
-import _common
-
-from vines.plotting import draw as P
+import vines.plotting as P
+from vines.pipeline.jobs import run_job
 
 
 def main(sm):
@@ -23,4 +22,4 @@ def main(sm):
     P.save(fig, sm.output.pdf, sm.output.png)
 
 
-_common.run(snakemake, main)  # noqa: F821  (injected by Snakemake)
+run_job(snakemake, lambda: main(snakemake))  # noqa: F821  (injected by Snakemake)

@@ -1,9 +1,10 @@
 """Fig 14: 3-D bifurcation diagrams of w'_i over (eta, W), one row per F (sweeps fig14_*),
 W <= 1 (a, c, e) and W >= 1 (b, d, f)."""
-import _common
+import matplotlib.pyplot as plt
 import numpy as np
 
-from vines.plotting import draw as P
+import vines.plotting as P
+from vines.pipeline.jobs import run_job
 
 #: impacts drawn per swept point (the last ones recorded), keeps the 3-D scatter readable
 MAX_PER_POINT = 20
@@ -24,7 +25,7 @@ def main(sm):
         Fs.append(float(fx["F"]))
     order = np.argsort(Fs)
     n = len(sweeps)
-    fig = P.plt.figure(figsize=(10.0, 3.9 * n), constrained_layout=True)
+    fig = plt.figure(figsize=(10.0, 3.9 * n), constrained_layout=True)
     for r, k in enumerate(order):
         s = sweeps[k]
         W = np.unique(s["outer_value"].values)
@@ -43,8 +44,8 @@ def main(sm):
             ax.set_zlabel(r"$\dot w_i$", fontsize=8)
             ax.tick_params(labelsize=7)
             ax.view_init(elev=25, azim=-60 if c == 0 else -120)
-            P.panel_label(ax, 2 * r + c, rf"$F$ = {P.fmt(Fs[k])}, {side}", three_d=True)
+            P.panel_label(ax, 2 * r + c, rf"$F$ = {P.fmt(Fs[k])}, {side}")
     P.save(fig, sm.output.pdf, sm.output.png)
 
 
-_common.run(snakemake, main)  # noqa: F821  (injected by Snakemake)
+run_job(snakemake, lambda: main(snakemake))  # noqa: F821  (injected by Snakemake)

@@ -1,9 +1,8 @@
 """Fig 15: zoomed bifurcation diagrams (black dots, sweep fig15) with the analytic 1:1
 branch (red, solid stable, dotted unstable) and |lambda| vs eta with the |lambda| = 1 line;
 one row per branch fig15_* (F = 0.3077, W = 0.9 and 1.1)."""
-import _common
-
-from vines.plotting import draw as P
+import vines.plotting as P
+from vines.pipeline.jobs import run_job
 
 
 def main(sm):
@@ -14,4 +13,4 @@ def main(sm):
     P.save(fig, sm.output.pdf, sm.output.png, dpi=200)
 
 
-_common.run(snakemake, main)  # noqa: F821  (injected by Snakemake)
+run_job(snakemake, lambda: main(snakemake))  # noqa: F821  (injected by Snakemake)

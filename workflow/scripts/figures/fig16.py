@@ -1,12 +1,12 @@
 """Fig 16: the 1:1 orbit over (eta, W), one panel per F (stability maps fig16_*): symmetric
 stable (orange), asymmetric stable (black), unstable (white), no admissible 1:1 (grey),
 with |lambda_max| = 1 contour and a legend of the four classes."""
-import _common
 import numpy as np
 from matplotlib.colors import BoundaryNorm, ListedColormap
 from matplotlib.patches import Patch
 
-from vines.plotting import draw as P
+import vines.plotting as P
+from vines.pipeline.jobs import run_job
 
 
 def main(sm):
@@ -37,4 +37,4 @@ def main(sm):
     P.save(fig, sm.output.pdf, sm.output.png)
 
 
-_common.run(snakemake, main)  # noqa: F821  (injected by Snakemake)
+run_job(snakemake, lambda: main(snakemake))  # noqa: F821  (injected by Snakemake)

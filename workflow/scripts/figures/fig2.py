@@ -1,9 +1,9 @@
 """Fig 2: x_max of the LO (m, red circles) and KE ratio (blue stars) vs eta at W = 1, one
 panel per F (grids fig2_*): the KE ratio peaks where x_max is smallest."""
-import _common
 import numpy as np
 
-from vines.plotting import draw as P
+import vines.plotting as P
+from vines.pipeline.jobs import run_job
 
 
 def main(sm):
@@ -26,4 +26,4 @@ def main(sm):
     P.save(fig, sm.output.pdf, sm.output.png)
 
 
-_common.run(snakemake, main)  # noqa: F821  (injected by Snakemake)
+run_job(snakemake, lambda: main(snakemake))  # noqa: F821  (injected by Snakemake)

@@ -1,9 +1,9 @@
 """Fig 3: bifurcation diagrams of the relative impact velocity w'_i vs eta at W = 1, one
 panel per F (sweep fig3, both sweep directions)."""
-import _common
 import numpy as np
 
-from vines.plotting import draw as P
+import vines.plotting as P
+from vines.pipeline.jobs import run_job
 
 
 def main(sm):
@@ -14,7 +14,6 @@ def main(sm):
     outer_name = sw.attrs.get("outer_parameter", "F")
     outers = np.unique(sw["outer_value"].values)
     fig, axes = P.figure(1, len(outers), width=5.0 * len(outers), height=3.6)
-    sym = {"F": "F", "omega": r"\Omega", "eta": r"\eta"}
     for i, o in enumerate(outers):
         ax = axes[0, i]
         x, y = P.sweep_points(sw, o)
@@ -22,9 +21,9 @@ def main(sm):
         ax.axhline(0, color="0.7", lw=0.5)
         ax.set_xlabel(P.LABELS["eta"])
         ax.set_ylabel(P.LABELS["dw"])
-        P.panel_label(ax, i, rf"${sym[outer_name]}$ = {P.fmt(o)}, {sw.attrs.get('fixed', '')}"
-                      .replace("omega=", r"$\Omega$ = "))
+        title = rf"${P.SYMBOLS[outer_name]}$ = {P.fmt(o)}, {sw.attrs.get('fixed', '')}"
+        P.panel_label(ax, i, title.replace("omega=", r"$\Omega$ = "))
     P.save(fig, sm.output.pdf, sm.output.png, dpi=200)
 
 
-_common.run(snakemake, main)  # noqa: F821  (injected by Snakemake)
+run_job(snakemake, lambda: main(snakemake))  # noqa: F821  (injected by Snakemake)

@@ -1,9 +1,8 @@
 """Fig 6: zoom of Fig 3 (numerical impacts, black dots) with the analytic 1:1 branch (red,
 solid stable, dotted unstable) and |lambda| of J_P2 J_P1 vs eta with the |lambda| = 1 line;
 one row per branch fig6_* (F = 0.05, 0.1 at W = 1)."""
-import _common
-
-from vines.plotting import draw as P
+import vines.plotting as P
+from vines.pipeline.jobs import run_job
 
 
 def main(sm):
@@ -13,4 +12,4 @@ def main(sm):
     P.save(fig, sm.output.pdf, sm.output.png, dpi=200)
 
 
-_common.run(snakemake, main)  # noqa: F821  (injected by Snakemake)
+run_job(snakemake, lambda: main(snakemake))  # noqa: F821  (injected by Snakemake)

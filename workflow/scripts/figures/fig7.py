@@ -1,8 +1,7 @@
 """Fig 7: contour maps over (eta, F) of the KE ratio (a-c) and x_max in metres (d-f), one
 column per W (grids fig7_*), each with its colour bar."""
-import _common
-
-from vines.plotting import draw as P
+import vines.plotting as P
+from vines.pipeline.jobs import run_job
 
 
 def main(sm):
@@ -24,4 +23,4 @@ def main(sm):
     P.save(fig, sm.output.pdf, sm.output.png)
 
 
-_common.run(snakemake, main)  # noqa: F821  (injected by Snakemake)
+run_job(snakemake, lambda: main(snakemake))  # noqa: F821  (injected by Snakemake)

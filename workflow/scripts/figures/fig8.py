@@ -1,9 +1,8 @@
 """Fig 8: sections of Fig 7 at the F values marked in the grids (section_F, config key
 grids.fig7_*.sections): KE ratio (blue stars) and x_max (m, red circles) vs eta; rows F,
 columns W."""
-import _common
-
-from vines.plotting import draw as P
+import vines.plotting as P
+from vines.pipeline.jobs import run_job
 
 
 def main(sm):
@@ -23,4 +22,4 @@ def main(sm):
     P.save(fig, sm.output.pdf, sm.output.png)
 
 
-_common.run(snakemake, main)  # noqa: F821  (injected by Snakemake)
+run_job(snakemake, lambda: main(snakemake))  # noqa: F821  (injected by Snakemake)

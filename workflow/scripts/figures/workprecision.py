@@ -1,9 +1,9 @@
 """Work-precision: error against cost per run for the exact solver and the RK solvers, one
 row per case (workprecision/<case>.nc), columns impact times, KE ratio, x_max."""
-import _common
 import numpy as np
 
-from vines.plotting import draw as P
+import vines.plotting as P
+from vines.pipeline.jobs import run_job
 
 FLOOR = 1e-16          # errors below (exact agreement in double precision) drawn here
 STYLE = {"exact": dict(color="k", marker="o"), "RK45": dict(color="tab:blue", marker="s"),
@@ -76,4 +76,4 @@ def main(sm):
     P.save(fig, sm.output.pdf, sm.output.png)
 
 
-_common.run(snakemake, main)  # noqa: F821  (injected by Snakemake)
+run_job(snakemake, lambda: main(snakemake))  # noqa: F821  (injected by Snakemake)

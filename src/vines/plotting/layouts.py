@@ -1,0 +1,65 @@
+"""Multi-panel layouts shared by several figures (Figs 4, 5, 9, 10 and Figs 6, 15)."""
+from __future__ import annotations
+
+import xarray as xr
+
+from .checks import sweep_points
+from .draw import (LABELS, SYMBOLS, bifurcation_dots, branch_lines, eigenvalue_panel, figure,
+                   fmt, panel_label, th_title, time_history)
+
+#: a zoom window is the stable 1:1 interval widened by this fraction of its width each side
+ZOOM_PAD = 0.6
+
+
+def time_history_figure(ds: xr.Dataset):
+    """Figs 4, 5, 9, 10: one row per point, time history (a, c) and phase portrait (b, d)."""
+    n = ds.sizes["point"]
+    fig, axes = figure(n, 2, width=9.0, height=2.8 * n,
+                       gridspec_kw={"width_ratios": [1.8, 1]})
+    for i in range(n):
+        time_history(axes[i, 0], axes[i, 1], ds, i)
+        panel_label(axes[i, 0], 2 * i, th_title(ds, i))
+        panel_label(axes[i, 1], 2 * i + 1)
+    axes[0, 0].legend(fontsize=7, loc="upper right")
+    axes[0, 1].legend(fontsize=7, loc="upper right")
+    return fig
+
+
+def zoom_range(br: xr.Dataset):
+    """The eta window of a zoom: the stable 1:1 interval (else the admissible one) widened
+    by ``ZOOM_PAD`` times its width on each side, within the branch's range."""
+    adm = br["admissible"].values.astype(bool)
+    st = br["stable"].values.astype(bool) & adm
+    eta = br["eta"].values
+    sel = st if st.any() else adm
+    if not sel.any():
+        return float(eta.min()), float(eta.max())
+    a, b = float(eta[sel].min()), float(eta[sel].max())
+    w = max(b - a, 0.02 * float(eta.max() - eta.min()))
+    return max(float(eta.min()), a - ZOOM_PAD * w), min(float(eta.max()), b + ZOOM_PAD * w)
+
+
+def zoom_figure(sw: xr.Dataset, branches, outer_dim: str):
+    """Figs 6, 15: per branch a row of (zoomed bifurcation + analytic 1:1, |lambda|)."""
+    n = len(branches)
+    fig, axes = figure(n, 2, width=9.0, height=3.0 * n)
+    for i, br in enumerate(branches):
+        outer = float(br[outer_dim].values[0])
+        ax, axl = axes[i]
+        x, y = sweep_points(sw, outer)
+        lo, hi = zoom_range(br)
+        sel = (x >= lo) & (x <= hi)
+        bifurcation_dots(ax, x[sel], y[sel], s=1.5, label="numerical")
+        branch_lines(ax, br)
+        ax.set_xlim(lo, hi)
+        ax.set_xlabel(LABELS["eta"])
+        ax.set_ylabel(LABELS["dw"])
+        others = ", ".join(f"${SYMBOLS[k]}$ = {fmt(float(br[k].values[0]))}"
+                           for k in ("F", "omega"))
+        panel_label(ax, 2 * i, others)
+        ax.legend(fontsize=7, loc="best", markerscale=4)
+        eigenvalue_panel(axl, br)
+        axl.set_xlim(lo, hi)
+        panel_label(axl, 2 * i + 1, others)
+        axl.legend(fontsize=7, loc="best", ncol=2)
+    return fig
