@@ -3,8 +3,10 @@
 Names, ``long_name`` and ``units`` come from ``vines.data.schema``. Layouts:
 
 * grids and measures over dims (eta, omega, F);
-* bifurcation sweeps and time histories as CF contiguous ragged arrays (``row_size`` with
-  ``sample_dimension``);
+* bifurcation sweeps and time histories as CF contiguous ragged arrays (``row_size``, 32-bit
+  int, with ``sample_dimension``) of the discrete sampling geometry ``featureType``
+  ``timeSeries``: one instance per parameter point, whose (parameter, time) coordinates the
+  ``coordinates`` attribute of every data variable names (docs/cf-compliance.md);
 * 1:1 branches over ``point`` (plus ``event``), stability maps over (eta, omega).
 """
 from __future__ import annotations
@@ -13,9 +15,9 @@ import numpy as np
 import xarray as xr
 
 from ..core.simulation import BATCH_FIELDS
-from .schema import (BATCH_ATTRS, BRANCH_ATTRS, COORD_ATTRS, DERIVED_ATTRS, DIMS,
-                     STABILITY_ATTRS, STABILITY_CLASS_FLAGS, SWEEP_INSTANCE_ATTRS,
-                     SWEEP_SAMPLE_ATTRS, TIMEHISTORY_ATTRS, attrs as cf)
+from .schema import (BATCH_ATTRS, BRANCH_ATTRS, COORD_ATTRS, COUNT_DTYPE, DERIVED_ATTRS, DIMS,
+                     FEATURE_TYPE, STABILITY_ATTRS, STABILITY_CLASS_FLAGS,
+                     SWEEP_INSTANCE_ATTRS, SWEEP_SAMPLE_ATTRS, TIMEHISTORY_ATTRS, attrs as cf)
 
 #: fill value of a grid point no chunk provided, by dtype kind
 FILL = {"f": np.nan, "i": -1, "U": "", "b": False}
@@ -82,26 +84,49 @@ def measures_dataset(grid: xr.Dataset, derived: dict, sections: dict) -> xr.Data
 
 # ------------------------------------------------------------------ ragged arrays
 
+def count_variable(row_size, instance_dim: str, sample_dim: str, long_name: str) -> xr.Variable:
+    """The CF count variable of a contiguous ragged array: ``row_size`` as 32-bit int
+    (``COUNT_DTYPE``, values unchanged) with ``sample_dimension``."""
+    rs = np.asarray(row_size)
+    if rs.size and (rs.dtype.kind not in "iub" or rs.min() < 0
+                    or rs.max() > np.iinfo(COUNT_DTYPE).max):
+        raise ValueError(f"row_size must be non-negative integers that fit {COUNT_DTYPE}")
+    return xr.Variable((instance_dim,), rs.astype(COUNT_DTYPE), {
+        "long_name": long_name, "units": "1", "sample_dimension": sample_dim})
+
+
+def _dsg(data: dict, attrs: dict, coordinates: dict) -> xr.Dataset:
+    """Dataset of a discrete sampling geometry: global ``featureType`` and, on every variable
+    named in ``coordinates`` (name -> blank-separated coordinate names), a CF ``coordinates``
+    attribute."""
+    for name, coords in coordinates.items():
+        data[name].attrs = {**data[name].attrs, "coordinates": coords}
+    return xr.Dataset(data, attrs={**attrs, "featureType": FEATURE_TYPE})
+
+
 def ragged_dataset(instances: dict, samples: dict, row_size, *, instance_dim: str,
-                   sample_dim: str, attrs: dict) -> xr.Dataset:
+                   sample_dim: str, attrs: dict, coordinates=()) -> xr.Dataset:
     """CF contiguous ragged array: ``row_size`` samples per instance, one after another.
 
-    ``instances`` / ``samples``: name -> (array, long_name, units).
+    ``instances`` / ``samples``: name -> (array, long_name, units); ``coordinates``: names of
+    the instance variables that locate an instance (named in the ``coordinates`` attribute of
+    every other instance and sample variable). The dataset gets the global ``featureType``.
     """
     data = {}
     for name, (arr, ln, un) in instances.items():
         data[name] = xr.Variable((instance_dim,), np.asarray(arr), {"long_name": ln, "units": un})
     for name, (arr, ln, un) in samples.items():
         data[name] = xr.Variable((sample_dim,), np.asarray(arr), {"long_name": ln, "units": un})
-    rs = np.asarray(row_size, dtype=np.int64)
-    n = int(rs.sum())
+    count = count_variable(row_size, instance_dim, sample_dim,
+                           f"number of {sample_dim}s of each {instance_dim}")
+    n = int(count.values.sum(dtype=np.int64))
     for name, (arr, _, _) in samples.items():
         if np.asarray(arr).shape[0] != n:
             raise ValueError(f"{name}: {np.asarray(arr).shape[0]} samples, row_size sums to {n}")
-    data["row_size"] = xr.Variable((instance_dim,), rs, {
-        "long_name": f"number of {sample_dim}s of each {instance_dim}", "units": "1",
-        "sample_dimension": sample_dim})
-    return xr.Dataset(data, attrs=attrs)
+    data["row_size"] = count
+    coords = " ".join(coordinates)
+    located = {k: coords for k in data if coords and k not in coordinates and k != "row_size"}
+    return _dsg(data, attrs, located)
 
 
 def ragged_rows(ds: xr.Dataset, name: str, row_size: str = "row_size") -> list[np.ndarray]:
@@ -122,22 +147,28 @@ def sweep_dataset(sweep: dict, param: str, outer: str, attrs: dict) -> xr.Datase
     inst.update({k: (sweep[k], *SWEEP_INSTANCE_ATTRS[k]) for k in SWEEP_INSTANCE_ATTRS})
     samples = {k: (sweep[k], *SWEEP_SAMPLE_ATTRS[k]) for k in SWEEP_SAMPLE_ATTRS}
     return ragged_dataset(inst, samples, sweep["row_size"], instance_dim="point",
-                          sample_dim="impact", attrs=attrs)
+                          sample_dim="impact", attrs=attrs, coordinates=("value", "outer_value"))
 
 
 def timehistory_dataset(points: list[dict], th: dict, attrs: dict) -> xr.Dataset:
-    """Time histories (``core.measures.time_histories``) of ``points``: samples per point,
-    impacts as a ragged array."""
+    """Time histories (``core.measures.time_histories``) of ``points``: samples per point
+    (incomplete multidimensional array over (point, sample)), impacts as a contiguous ragged
+    array; one ``timeSeries`` per point, located by (eta, omega, F) and timed by ``t`` /
+    ``impact_t``."""
     PS, P, I = ("point", "sample"), ("point",), ("impact",)
     data = {k: xr.Variable(P, np.asarray([p[k] for p in points]), COORD_ATTRS[k]) for k in DIMS}
+    where = " ".join(DIMS)
+    coordinates = {}
     for k in TIMEHISTORY_ATTRS:
         dims = PS if k in ("t", "z_m", "v_m", "z_b", "v_b") else I if k.startswith("impact_") else P
         data[k] = xr.Variable(dims, np.asarray(th[k]), cf(TIMEHISTORY_ATTRS, k))
+        if k not in ("t", "impact_t"):
+            time = "t " if dims == PS else "impact_t " if dims == I else ""
+            coordinates[k] = time + where
         if k == "status":
-            data["row_size"] = xr.Variable(P, np.asarray(th["row_size"]), {
-                "long_name": "number of impacts of each point", "units": "1",
-                "sample_dimension": "impact"})
-    return xr.Dataset(data, attrs=attrs)
+            data["row_size"] = count_variable(th["row_size"], "point", "impact",
+                                              "number of impacts of each point")
+    return _dsg(data, attrs, coordinates)
 
 
 # ------------------------------------------------------------------ orbits

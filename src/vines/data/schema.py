@@ -2,7 +2,8 @@
 
 Builders (``vines.data.builders``, ``vines.data.studies``) take names from here, so a
 quantity has one name and one description in every dataset. ``units`` is ``"1"`` for
-dimensionless numbers and ``""`` for labels (strings).
+dimensionless numbers and ``""`` for labels (strings). How the datasets meet the CF checkers
+(and where they knowingly deviate): docs/cf-compliance.md.
 """
 from __future__ import annotations
 
@@ -16,6 +17,14 @@ COORD_ATTRS = {
     "omega": {"long_name": "forcing frequency ratio W = w/w0", "units": "1"},
     "F": {"long_name": "forcing amplitude F = A/L", "units": "1"},
 }
+
+#: CF discrete sampling geometry (CF 9) of the ragged datasets (sweeps, time histories): each
+#: instance is one parameter point (eta, omega, F) whose samples are in time order, i.e. a
+#: time series at a fixed "station" of parameter space (docs/cf-compliance.md: why not another)
+FEATURE_TYPE = "timeSeries"
+#: dtype of the count variable ``row_size`` of contiguous ragged arrays: CF 9.3.3 asks for an
+#: integer type; the NCAS cfchecker accepts only 32-bit ``int`` (not ``int64``)
+COUNT_DTYPE = np.dtype("i4")
 
 #: fields of ``vines.simulate_batch`` stored per grid point: name -> (long_name, units)
 BATCH_ATTRS = {
