@@ -32,16 +32,18 @@ def _json_default(x):
 
 
 def git_commit(path=None) -> str:
-    """Commit of the git checkout holding ``path`` (default: the vines sources), or 'unknown'.
+    """Commit of the git checkout holding ``path`` (default: the running vines sources),
+    or 'unknown' outside a checkout.
 
-    A checkout with uncommitted changes to tracked files gets a ``-dirty`` suffix.
+    A checkout with uncommitted changes to any tracked file (sources, workflow, config) gets
+    a ``-dirty`` suffix.
     """
-    where = Path(path) if path is not None else Path(__file__).resolve().parent
+    where = Path(path) if path is not None else Path(__file__).resolve().parents[1]
     try:
         head = subprocess.run(["git", "-C", str(where), "rev-parse", "HEAD"], check=True,
                               capture_output=True, text=True, timeout=10).stdout.strip()
         dirty = subprocess.run(["git", "-C", str(where), "status", "--porcelain",
-                                "--untracked-files=no", "--", "."], check=True,
+                                "--untracked-files=no"], check=True,
                                capture_output=True, text=True, timeout=10).stdout.strip()
     except (OSError, subprocess.SubprocessError):
         return "unknown"

@@ -1,9 +1,9 @@
 """Running one Snakemake job: output in its log, every failure recorded there.
 
 ``run_job(snakemake, main)`` calls ``main()`` with stdout and stderr redirected to the job's
-log file. A failure writes its traceback and a one-line summary to the log and the summary, naming
-the job, to the console, then exits with status 1, so
-the log of a failed job always holds its error.
+log file. A failure writes its traceback and a one-line summary to the log, and the
+summary (naming the job and the log) to the console, then exits with status 1: the log of a
+failed job always holds its error.
 """
 from __future__ import annotations
 
@@ -18,7 +18,7 @@ def _job_name(sm) -> str:
 
 def run_job(sm, main) -> None:
     """Call ``main()`` with output in ``sm.log[0]``; on failure log it and exit(1)."""
-    console = sys.stderr
+    console, stdout = sys.stderr, sys.stdout
     log_path = Path(sm.log[0])
     log_path.parent.mkdir(parents=True, exist_ok=True)
     with open(log_path, "w", buffering=1) as log:
@@ -32,4 +32,4 @@ def run_job(sm, main) -> None:
             print(f"{line} (log: {log_path})", file=console, flush=True)
             sys.exit(1)
         finally:
-            sys.stdout, sys.stderr = sys.__stdout__, console
+            sys.stdout, sys.stderr = stdout, console
