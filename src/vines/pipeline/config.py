@@ -1,9 +1,14 @@
-"""Pipeline config: schema validation with defaults, then cross-key checks (one-line errors)."""
+"""Pipeline config: YAML reading, schema validation with defaults, the physical checks of
+``vines.pipeline.checks`` and cross-key rules; every error is one line naming the key.
+
+``python -m vines.pipeline.config FILE`` checks a config file without running anything
+(Snakemake itself reports a YAML syntax error in a ``--configfile`` without its line)."""
 from __future__ import annotations
 
 import copy
 
 from .axes import DIMS, ConfigError, axis_values, grid_axes
+from .checks import check_physical
 
 
 def _with_defaults(validator_class):
@@ -13,7 +18,6 @@ def _with_defaults(validator_class):
         if isinstance(instance, dict):
             for prop, sub in properties.items():
                 if "default" in sub and prop not in instance:
-
                     instance[prop] = copy.deepcopy(sub["default"])
         yield from validate_properties(validator, properties, instance, schema)
 
@@ -25,6 +29,24 @@ def load_schema(path) -> dict:
     import yaml
     with open(path) as fh:
         return yaml.safe_load(fh)
+
+
+def load_yaml(path) -> dict:
+    """Read a YAML config file; a syntax error is a ConfigError naming the file and line."""
+    import yaml
+    try:
+        with open(path) as fh:
+            data = yaml.safe_load(fh)
+    except OSError as err:
+        raise ConfigError(str(path), f"cannot be read ({err.strerror})") from None
+    except yaml.YAMLError as err:
+        mark = getattr(err, "problem_mark", None)
+        where = f"{path}:{mark.line + 1}:{mark.column + 1}" if mark else str(path)
+        problem = getattr(err, "problem", None) or str(err).splitlines()[0]
+        raise ConfigError(where, f"YAML syntax error: {problem}") from None
+    if not isinstance(data, dict):
+        raise ConfigError(str(path), "must hold a mapping of config keys")
+    return data
 
 
 def validate_config(config: dict, schema: dict) -> dict:
@@ -39,6 +61,7 @@ def validate_config(config: dict, schema: dict) -> dict:
         err = min(errors, key=lambda e: -len(e.absolute_path))
         key = ".".join(str(p) for p in err.absolute_path) or "<top level>"
         raise ConfigError(key, err.message)
+    check_physical(config)
     sim = config["simulation"]
     if sim["t_transient"] >= sim["t_end"]:
         raise ConfigError("simulation.t_transient",
@@ -70,3 +93,25 @@ def validate_config(config: dict, schema: dict) -> dict:
         axis_values(sm["eta"], key=f"stability_maps.{name}.eta")
         axis_values(sm["omega"], key=f"stability_maps.{name}.omega")
     return config
+
+
+def main(argv=None) -> int:
+    """Check config files: ``python -m vines.pipeline.config FILE...`` (exit 2 if invalid)."""
+    import sys
+    from pathlib import Path
+    args = sys.argv[1:] if argv is None else argv
+    schema = load_schema(Path(__file__).resolve().parents[3] / "workflow" / "schemas"
+                         / "config.schema.yaml")
+    status = 0
+    for path in args:
+        try:
+            validate_config(load_yaml(path), schema)
+            print(f"{path}: valid")
+        except ConfigError as err:
+            print(f"vines pipeline: {path}: {err}", file=sys.stderr)
+            status = 2
+    return status
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

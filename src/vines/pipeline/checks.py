@@ -1,0 +1,166 @@
+"""Physical checks of a validated config, with the API's own validators.
+
+The schema checks types and shapes; here every parameter value of every section goes
+through ``ModelParams`` / ``SolverSettings`` (the validators of the Python API), every
+number must be finite, and the sizes a config asks for stay below the ``limits`` section
+(grid points, run length, branch points). Each failure is one ``ConfigError`` naming the
+key path, the value and what is allowed, raised before any job runs.
+"""
+from __future__ import annotations
+
+import math
+
+from ..core.params import ModelParams, ParameterError, SolverSettings
+from .axes import DIMS, ConfigError, axis_values
+
+
+def _walk_finite(node, path=""):
+    """Refuse NaN and infinities anywhere (YAML .nan / .inf pass a schema's minimum)."""
+    if isinstance(node, dict):
+        for k, v in node.items():
+            _walk_finite(v, f"{path}.{k}" if path else str(k))
+    elif isinstance(node, list):
+        for i, v in enumerate(node):
+            _walk_finite(v, f"{path}[{i}]")
+    elif isinstance(node, float) and not math.isfinite(node):
+        raise ConfigError(path, f"{node!r} is not a finite number")
+
+
+def _check_param(key: str, name: str, value, model: dict) -> None:
+    """``value`` of parameter ``name`` must be accepted by ModelParams (with ``model``)."""
+    kw = {"eta": 0.1, "omega": 1.0, "F": 0.0, "r": model["r"], "d": model["d"], name: value}
+    try:
+        ModelParams(**kw)
+    except ParameterError as err:
+        raise ConfigError(key, f"{value!r}: {name} {err.allowed}") from None
+
+
+def axis_size(spec) -> int:
+    """Number of values an axis spec asks for (without building it)."""
+    if isinstance(spec, dict) and "num" in spec:
+        return int(spec["num"]) + len(spec.get("include", []))
+    if isinstance(spec, dict):
+        return len(spec["values"]) + len(spec.get("include", []))
+    return len(spec) if isinstance(spec, list) else 1
+
+
+def _check_axis(key: str, name: str, spec, model: dict) -> int:
+    n = axis_size(spec)
+    if n > 10_000_000:
+        raise ConfigError(key, f"{n} values on one axis (at most 10000000)")
+    for v in (axis_values(spec, key=key)[[0, -1]] if n else []):
+        _check_param(key, name, float(v), model)
+    return n
+
+
+def _check_size(key: str, n: int, limits: dict, what: str = "points") -> None:
+    cap = limits["max_grid_points"]
+    if n > cap:
+        raise ConfigError(key, f"{n} {what} exceed limits.max_grid_points = {cap} "
+                               "(raise it in the config's 'limits' section if this is intended)")
+
+
+def _check_t_end(key: str, t_end, limits: dict) -> None:
+    cap = limits["max_t_end"]
+    if t_end > cap:
+        raise ConfigError(key, f"{t_end!r} exceeds limits.max_t_end = {cap!r} "
+                               "(raise it in the config's 'limits' section if this is intended)")
+
+
+def _check_settings(key: str, settings: dict, limits: dict) -> None:
+    try:
+        SolverSettings(**settings)
+    except ParameterError as err:
+        raise ConfigError(f"{key}.{err.name}", f"{err.value!r}: {err.allowed}") from None
+    _check_t_end(f"{key}.t_end", settings["t_end"], limits)
+
+
+def _check_point(key: str, point: dict, model: dict) -> None:
+    for name in DIMS:
+        _check_param(f"{key}.{name}", name, point[name], model)
+
+
+def check_grids(config: dict, model: dict, limits: dict) -> None:
+    for name, grid in config["grids"].items():
+        n = 1
+        for dim, spec in grid.get("axes", {}).items():
+            n *= _check_axis(f"grids.{name}.axes.{dim}", dim, spec, model)
+        for dim, v in grid.get("fixed", {}).items():
+            _check_param(f"grids.{name}.fixed.{dim}", dim, v, model)
+        _check_size(f"grids.{name}", n, limits)
+
+
+def check_sweeps(config: dict, model: dict, limits: dict) -> None:
+    for name, sw in config["sweeps"].items():
+        key = f"sweeps.{name}"
+        n = _check_axis(f"{key}.values", sw["param"], sw["values"], model)
+        n_lines = _check_axis(f"{key}.outer_values", sw["outer"], sw["outer_values"], model)
+        for dim, v in sw["fixed"].items():
+            _check_param(f"{key}.fixed.{dim}", dim, v, model)
+        _check_size(key, n * n_lines, limits, "sweep points")
+        _check_t_end(f"{key}.t_step", sw["t_settle"] + n * sw["t_step"], limits)
+
+
+def check_branches(config: dict, model: dict, limits: dict) -> None:
+    for name, br in config["branches"].items():
+        key = f"branches.{name}"
+        for end in ("start", "stop"):
+            _check_param(f"{key}.{end}", br["param"], br[end], model)
+        for dim, v in br["fixed"].items():
+            _check_param(f"{key}.fixed.{dim}", dim, v, model)
+        n = abs(br["stop"] - br["start"]) / br["step"]
+        if n > limits["max_branch_points"]:
+            raise ConfigError(f"{key}.step", f"{br['step']!r} needs {n:.3g} points from start to "
+                              f"stop (limits.max_branch_points = {limits['max_branch_points']})")
+
+
+def check_maps_and_points(config: dict, model: dict, limits: dict) -> None:
+    for name, sm in config["stability_maps"].items():
+        key = f"stability_maps.{name}"
+        n = _check_axis(f"{key}.eta", "eta", sm["eta"], model)
+        n *= _check_axis(f"{key}.omega", "omega", sm["omega"], model)
+        _check_param(f"{key}.F", "F", sm["F"], model)
+        _check_size(key, n, limits)
+    for name, th in config["timehistories"].items():
+        for i, p in enumerate(th["points"]):
+            _check_point(f"timehistories.{name}.points[{i}]", p, model)
+
+
+def check_studies(config: dict, model: dict, limits: dict) -> None:
+    wp = config["work_precision"]
+    for name, case in wp["cases"].items():
+        key = f"work_precision.cases.{name}"
+        _check_point(key, case, model)
+        _check_settings(key, {"t_end": case["t_end"], "t_transient": case["t_transient"]},
+                        limits)
+    conv = config["convergence"]
+    for study in ("window", "vstick"):
+        for i, p in enumerate(conv.get(study, {}).get("points", [])):
+            _check_point(f"convergence.{study}.points[{i}]", p, model)
+    for i, t in enumerate(conv.get("window", {}).get("t_ends", [])):
+        _check_t_end(f"convergence.window.t_ends[{i}]", t, limits)
+    grid = conv.get("grid")
+    if grid:
+        for dim, rng in (("eta", grid["eta_range"]), ("omega", grid["omega_range"])):
+            for v in rng:
+                _check_param(f"convergence.grid.{dim}_range", dim, v, model)
+        _check_param("convergence.grid.F", "F", grid["F"], model)
+        _check_size("convergence.grid.resolutions", max(grid["resolutions"]) ** 2, limits)
+
+
+def check_physical(config: dict) -> None:
+    """Every check of this module, in config order; raises the first ConfigError."""
+    _walk_finite(config)
+    m = config["model"]
+    try:
+        ModelParams(eta=0.1, omega=1.0, F=0.0, r=m["r"], d=0.0 if m["d"] is None else m["d"])
+    except ParameterError as err:
+        raise ConfigError(f"model.{err.name}", f"{err.value!r}: {err.allowed}") from None
+    model = {"r": m["r"], "d": 0.0 if m["d"] is None else m["d"]}
+    limits = config["limits"]
+    _check_settings("simulation", {k: config["simulation"][k] for k in
+                                   ("t_end", "t_transient", "v_stick", "max_impacts",
+                                    "root_tol")}, limits)
+    for check in (check_grids, check_sweeps, check_branches, check_maps_and_points,
+                  check_studies):
+        check(config, model, limits)

@@ -1,0 +1,93 @@
+"""Bad configs stop before any job: one ConfigError naming the key, the value and the rule."""
+import copy
+import math
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+import yaml
+
+from vines.pipeline.axes import ConfigError
+from vines.pipeline.config import load_schema, load_yaml, validate_config
+
+ROOT = Path(__file__).resolve().parents[1]
+SCHEMA = load_schema(ROOT / "workflow" / "schemas" / "config.schema.yaml")
+SMOKE = yaml.safe_load((ROOT / "config" / "smoke.yaml").read_text())
+
+
+def _first(section):
+    return sorted(SMOKE[section])[0]
+
+
+SW, BR, SM, TH = _first("sweeps"), _first("branches"), _first("stability_maps"), _first("timehistories")
+WP = sorted(SMOKE["work_precision"]["cases"])[0]
+
+BAD = [  # (path to set, keys joined by '/', value, expected key in the message, expected words)
+    ("simulation/t_end", math.nan, "t_end", "finite"),
+    ("simulation/t_end", math.inf, "t_end", "finite"),
+    ("simulation/t_end", 1e300, "simulation.t_end", "limits.max_t_end"),
+    (f"sweeps/{SW}/values", [0.0, 0.1], f"sweeps.{SW}.values", "eta"),
+    (f"sweeps/{SW}/outer_values", [-0.2], f"sweeps.{SW}.outer_values", "F"),
+    (f"branches/{BR}/start", 0.0, f"branches.{BR}.start", ""),
+    (f"branches/{BR}/stop", -1.0, f"branches.{BR}.stop", ""),
+    (f"branches/{BR}/step", 1e-300, f"branches.{BR}.step", "max_branch_points"),
+    (f"stability_maps/{SM}/eta", [0.0, 0.5], f"stability_maps.{SM}.eta", "eta"),
+    (f"stability_maps/{SM}/omega", {"start": -1.0, "stop": 1.0, "num": 3},
+     f"stability_maps.{SM}.omega", "omega"),
+    (f"stability_maps/{SM}/F", -0.1, f"stability_maps.{SM}.F", "F"),
+    (f"timehistories/{TH}/points", [{"eta": 0.05, "omega": 0.0, "F": 0.1}],
+     f"timehistories.{TH}.points.0.omega", "omega"),
+    (f"work_precision/cases/{WP}/F", -1.0, f"work_precision.cases.{WP}.F", "F"),
+    ("grids/big", {"axes": {"eta": {"start": 0.01, "stop": 1, "num": 1000},
+                            "omega": {"start": 0.5, "stop": 1.5, "num": 1000}},
+                   "fixed": {"F": 0.1}}, "grids.big", "limits.max_grid_points"),
+    ("model/r", 1.5, "model.r", ""),
+]
+
+
+def _set(cfg, path, value):
+    keys = path.split("/")
+    node = cfg
+    for k in keys[:-1]:
+        node = node.setdefault(k, {})
+    node[keys[-1]] = value
+
+
+@pytest.mark.parametrize("path,value,key,words", BAD, ids=[b[0] + "=" + repr(b[1])[:20] for b in BAD])
+def test_bad_value_is_refused_naming_its_key(path, value, key, words):
+    cfg = copy.deepcopy(SMOKE)
+    _set(cfg, path, value)
+    t0 = time.perf_counter()
+    with pytest.raises(ConfigError) as exc:
+        validate_config(cfg, SCHEMA)
+    assert time.perf_counter() - t0 < 30
+    msg = str(exc.value)
+    assert "\n" not in msg and key in msg and words in msg, msg
+
+
+def test_the_shipped_configs_pass():
+    for name in ("config.yaml", "smoke.yaml"):
+        validate_config(yaml.safe_load((ROOT / "config" / name).read_text()), SCHEMA)
+
+
+def test_limits_can_be_raised():
+    cfg = copy.deepcopy(SMOKE)
+    cfg["simulation"]["t_end"] = 2e6
+    with pytest.raises(ConfigError, match="max_t_end"):
+        validate_config(copy.deepcopy(cfg), SCHEMA)
+    cfg["limits"] = {"max_t_end": 3e6}
+    validate_config(cfg, SCHEMA)
+
+
+def test_yaml_syntax_error_names_file_and_line(tmp_path):
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("run: x\nsimulation:\n  t_end: [1, 2\n")
+    with pytest.raises(ConfigError) as exc:
+        load_yaml(bad)
+    assert f"{bad}:" in str(exc.value) and "YAML syntax error" in str(exc.value)
+    r = subprocess.run([sys.executable, "-m", "vines.pipeline.config", str(bad)],
+                       capture_output=True, text=True, timeout=60)
+    assert r.returncode == 2 and "Traceback" not in r.stderr
+    assert len(r.stderr.strip().splitlines()) == 1 and str(bad) in r.stderr
