@@ -1,7 +1,8 @@
 """Event-driven exact VINES kernel (numba, nogil).
 
 A trajectory is a sequence of *segments*, each starting at an absolute time t0 with a state
-(z_m, z_m', z_b, z_b') and a mode: free flight (0) or stuck at a wall (+1 = L, -1 = R).
+(z_m, z_m', z_b, z_b') and a mode: free flight (MODE_FREE = 0) or stuck at a wall (the mode
+is then that wall: WALL_L = +1, WALL_R = -1).
 Inside a segment the motion is the closed form of ``vines.flow`` in local time s = t - t0.
 Segments end at an impact, at the start or end of sticking, at t_transient (so that every
 segment lies wholly inside or outside the measurement window) or at t_end.
@@ -26,7 +27,7 @@ convergence) instead of taking a long, unsafe Newton step.
 After an impact the ball sticks when |w'+| <= max(v_stick, v_floor), where v_floor is the
 speed of a bounce only a few round-off units high (apex at least 4 x the floor above and
 16 ROUNDOFF (1 + |z_m| + |z_b|): such bounces cannot be resolved; v_floor is ~2e-7 at
-(eta, W, F) = (0.05, 1, 0.05), ~3e-6 in the chatter at (0.2, 0.9, 0.4) and ~1e-4 for F = 20
+(eta, omega, F) = (0.05, 1, 0.05), ~3e-6 in the chatter at (0.2, 0.9, 0.4) and ~1e-4 for F = 20
 at resonance, where |z_m| ~ 400 and the closed form's parts ~ 1700), and
 the relative acceleration presses the ball onto the wall. Leaving a wall with zero
 relative velocity (after sticking, or with r = 0) uses the first non-zero derivative of w
@@ -39,6 +40,13 @@ stuck body (mass 1 + eta), with a bound on z_m'''' (and the same kind of floor f
 Maximum of |z_m|: on each step interval [a, b] the value cannot exceed
 max(|z(a)|, |z(b)|) + B2 (b - a)^2 / 8; only intervals where this beats the running
 maximum are refined (z' = 0 by safeguarded Newton, or bisection).
+
+Layout of ``run_kernel``: per segment, ``_advance_segment`` steps to the first event (free
+flight: ``free_step_local`` / ``free_contact``; stuck: the same rules on the contact force),
+``_land_on_event`` places an impact or release by one Newton step,
+``_close_segment`` adds the segment's integrals, and ``_impact``, ``_start_sticking`` or
+``_start_release`` start the next segment. Times are dimensionless (t, local time s = t - t0), the
+forcing phase is omega t + phi, positions are in units of the half-clearance L.
 """
 from __future__ import annotations
 
@@ -59,6 +67,20 @@ N_ACC = 8
 # Counter slots.
 C_NIMP_TOTAL, C_NIMP_REC, C_NSEG_REC, C_NZERO = range(4)
 N_CNT = 4
+
+# Walls (w = z_m - z_b = +1 and -1; impacts' ``wall`` column, first_contact's result).
+WALL_L, WALL_R = 1, -1
+# Segment modes (cur[CUR_MODE], seg[:, 5]): free flight, or stuck on wall WALL_L / WALL_R
+# (the mode is the wall's sign).
+MODE_FREE = 0
+# How a segment ends (internal to run_kernel): at s_stop (t_transient or t_end), at an
+# impact, at a release from sticking, when the ball is found pressed on a wall with zero
+# relative velocity (it sticks), or stalled (step limit, or a step below ulp(s)).
+EV_STOP, EV_IMPACT, EV_RELEASE, EV_STICK, EV_STALLED = range(1, 6)
+# first_contact returns CONTACT_PRESSED * wall when the ball starts pressed on that wall.
+CONTACT_PRESSED = 2
+# Slots of the state vector ``cur`` of run_kernel.
+CUR_T, CUR_ZM, CUR_VM, CUR_ZB, CUR_VB, CUR_MODE, CUR_RELEASED = range(7)
 
 MAX_STEPS_PER_SEGMENT = 200_000
 ROUNDOFF = 8.0 * 2.220446049250313e-16   # a few ulps: contact/release at this gap is exact
@@ -249,11 +271,11 @@ def free_contact(osc, s, z, v, b1, zb, vb, B2, root_tol):
     if wd > 0.0:
         gap = max(1.0 - w, 0.0)
         closing = wd
-        wall = 1
+        wall = WALL_L
     else:
         gap = max(1.0 + w, 0.0)
         closing = -wd
-        wall = -1
+        wall = WALL_R
     floor = _floor(osc, b1, 0, s, abs(z) + abs(zb), closing)
     # a closing speed at round-off level is no impact (the departure rule handles it)
     if closing > _floor(osc, b1, 1, s, abs(v) + abs(vb), 0.0) and gap <= max(root_tol, floor) \
@@ -266,9 +288,10 @@ def free_contact(osc, s, z, v, b1, zb, vb, B2, root_tol):
 def first_contact(osc, zm0, vm0, zb0, vb0, sth0, cth0, s_max, root_tol):
     """First wall contact of a free flight within local time [0, s_max].
 
-    Same rule as the trajectory kernel. Returns (wall, s, z_m, z_m'): wall = +1 (L) or
-    -1 (R) for an impact, 0 when no contact happens before s_max (then s = s_max), and
-    +2/-2 when the ball starts pressed on wall L/R with zero relative velocity.
+    Same rule as the trajectory kernel. Returns (wall, s, z_m, z_m'): wall = WALL_L (+1) or
+    WALL_R (-1) for an impact, 0 when no contact happens before s_max (then s = s_max), and
+    CONTACT_PRESSED * wall (+2/-2) when the ball starts pressed on that wall with zero
+    relative velocity.
     """
     h_cap = 1.0 / osc[I_RATE]
     s = 0.0
@@ -277,7 +300,7 @@ def first_contact(osc, zm0, vm0, zb0, vb0, sth0, cth0, s_max, root_tol):
         h, pressed, B2 = free_step_local(osc, s, z, v, a, j, b1, zb0, vb0, h_cap, root_tol,
                                          False)
         if pressed != 0:
-            return 2 * pressed, s, z, v
+            return CONTACT_PRESSED * pressed, s, z, v
         h = min(h, h_cap)
         if s + h >= s_max:
             z, v, a, j, b1 = flow(osc, zm0, vm0, sth0, cth0, s_max)
@@ -294,217 +317,312 @@ def first_contact(osc, zm0, vm0, zb0, vb0, sth0, cth0, s_max, root_tol):
     return 0, math.nan, math.nan, math.nan
 
 
+# ---------------------------------------------------------------- segment helpers
+# Parts of run_kernel, inlined into it at numba-IR level (inline="always"): as separate
+# calls they made the kernel ~3% slower in instructions (~10% in time), inlined ~0.7%.
+
+@njit(cache=True, nogil=True, inline="always")
+def _record_row(buf, cnt, slot, t, zm, vm, zb, vb, last):
+    """Append (t, z_m, z_m', z_b, z_b', last) to ``buf`` at row cnt[slot]; cnt[slot] += 1."""
+    k = cnt[slot]
+    buf[k, 0], buf[k, 1], buf[k, 2], buf[k, 3], buf[k, 4], buf[k, 5] = t, zm, vm, zb, vb, last
+    cnt[slot] = k + 1
+
+
+@njit(cache=True, nogil=True, inline="always")
+def _set_state(cur, t, zm, vm, zb, vb, mode):
+    """Start of the next segment: cur[CUR_T:CUR_MODE + 1] = (t, z_m, z_m', z_b, z_b', mode)."""
+    cur[CUR_T], cur[CUR_ZM], cur[CUR_VM], cur[CUR_ZB], cur[CUR_VB], cur[CUR_MODE] = \
+        t, zm, vm, zb, vb, mode
+
+
+@njit(cache=True, nogil=True, inline="always")
+def _common_velocity(eta, vm, vb):
+    """Velocity of LO and ball moving as one body (momentum v_m + eta v_b conserved)."""
+    return (vm + eta * vb) / (1.0 + eta)
+
+
+@njit(cache=True, nogil=True, inline="always")
+def _clamp_step(s, h, h_cap, s_stop):
+    """(s_new, forced): s + min(h, h_cap), cut at s_stop (then forced = True)."""
+    if h >= h_cap:
+        h = h_cap
+    if s + h >= s_stop:
+        return s_stop, True
+    return s + h, False
+
+
+@njit(cache=True, nogil=True, inline="always")
+def _advance_segment(osc, mode, zm0, vm0, zb0, vb0, sth0, cth0, s_stop, released, root_tol,
+                     in_window, acc):
+    """Step one segment (closed form from (zm0, vm0) at phases sth0, cth0) to its first event.
+
+    Free flight: ``free_step_local`` steps, ``free_contact`` tests. Stuck (mode = wall):
+    the contact force ~ mode z'' of the stuck body (mass 1 + eta) is the gap, -mode z''' its
+    closing speed, with the same step and test rules (|z''''| <= B4). ``released``: the
+    segment starts at a release from sticking (first step only). Updates the |z_m| maxima
+    and the step count in ``acc``. Returns (event, wall, s, z, v, a, j, b1, gap, closing) at
+    the local time s of the event: EV_STICK (pressed on ``wall``), EV_IMPACT (at ``wall``),
+    EV_RELEASE (gap, closing: for the final Newton step), EV_STOP (s = s_stop), EV_STALLED.
+    The step loop stays in one function on purpose (hot path): per-step helpers taking
+    arrays cost ~1% more instructions even inlined (reference counting), 3% as calls.
+    """
+    h_cap = 1.0 / osc[I_RATE]
+    s = 0.0
+    z, v, a, j, b1 = flow(osc, zm0, vm0, sth0, cth0, 0.0)
+    B4 = 0.0
+    gap = 0.0
+    closing = 0.0
+    for steps in range(1, MAX_STEPS_PER_SEGMENT + 1):
+        if mode == MODE_FREE:
+            h, pressed, B2 = free_step_local(osc, s, z, v, a, j, b1, zb0, vb0, h_cap,
+                                             root_tol, released and steps == 1)
+            if pressed != 0:
+                return EV_STICK, pressed, s, z, v, a, j, b1, gap, closing
+        else:
+            B2 = deriv_bound(osc, b1, 2, s + h_cap)
+            gap = mode * a                    # contact force, > 0 while stuck
+            closing = -mode * j
+            B4 = deriv_bound(osc, b1, 4, s + h_cap)
+            h = _safe_step(gap, closing, B4)
+        s_new, forced = _clamp_step(s, h, h_cap, s_stop)
+        if s_new <= s:
+            break
+        z1, v1, a1, j1, b11 = flow(osc, zm0, vm0, sth0, cth0, s_new)
+        if in_window:
+            m = _interval_max(osc, zm0, vm0, sth0, cth0, s, z, v, s_new, z1, v1, B2,
+                              acc[A_XMAX_WIN])
+            acc[A_XMAX_WIN] = m
+            if m > acc[A_XMAX_ALL]:
+                acc[A_XMAX_ALL] = m
+        else:
+            acc[A_XMAX_ALL] = _interval_max(osc, zm0, vm0, sth0, cth0, s, z, v, s_new, z1,
+                                            v1, B2, acc[A_XMAX_ALL])
+        s, z, v, a, j, b1 = s_new, z1, v1, a1, j1, b11
+        acc[A_NEVAL] += 1.0
+        if mode == MODE_FREE:
+            wall, gap, closing = free_contact(osc, s, z, v, b1, zb0 + vb0 * s, vb0, B2,
+                                              root_tol)
+            if wall != 0:
+                return EV_IMPACT, wall, s, z, v, a, j, b1, gap, closing
+        else:                                 # release test on the contact force
+            gap = mode * a
+            closing = -mode * j
+            floor = _floor(osc, b1, 2, s, a, closing)
+            if closing > 0.0 and gap <= max(root_tol, floor) and (
+                    gap <= floor or closing * closing >= 2.0 * B4 * gap):
+                return EV_RELEASE, 0, s, z, v, a, j, b1, max(gap, 0.0), closing
+        if forced:
+            return EV_STOP, 0, s, z, v, a, j, b1, gap, closing
+    return EV_STALLED, 0, s, z, v, a, j, b1, gap, closing
+
+
+@njit(cache=True, nogil=True, inline="always")
+def _land_on_event(osc, zm0, vm0, sth0, cth0, t0, t_end, s, z, v, a, j, b1, gap, closing,
+                   in_window, acc):
+    """One Newton step s += gap/closing onto the event surface (error ~ gap^2), never past
+    t_end; the maxima in ``acc`` see the new point. Returns (s, z, v, a, j, b1)."""
+    ds = gap / closing
+    if s + ds > t_end - t0:
+        ds = max(t_end - t0 - s, 0.0)
+    if ds > 0.0:
+        s_new = s + ds
+        z1, v1, a1, j1, b11 = flow(osc, zm0, vm0, sth0, cth0, s_new)
+        m_ref = acc[A_XMAX_WIN] if in_window else acc[A_XMAX_ALL]
+        if abs(z1) > m_ref:
+            if in_window:
+                acc[A_XMAX_WIN] = abs(z1)
+            if abs(z1) > acc[A_XMAX_ALL]:
+                acc[A_XMAX_ALL] = abs(z1)
+        s, z, v, a, j, b1 = s_new, z1, v1, a1, j1, b11
+    return s, z, v, a, j, b1
+
+
+@njit(cache=True, nogil=True, inline="always")
+def _clear_of_contact(osc, mode, zm0, vm0, sth0, cth0, t0, t_end, s, z, v, a, j, b1):
+    """Move a release forward (doubling round-off steps) until the contact force mode z'' is
+    zero or pulling away, else the free flight would find the ball pressed again (a
+    stick-release loop). Returns (s, z, v, a, j, b1)."""
+    delta = ROUNDOFF * (1.0 + t0 + s)
+    for _ in range(64):
+        if mode * a <= 0.0 or s + delta > t_end - t0:
+            break
+        s = s + delta
+        z, v, a, j, b1 = flow(osc, zm0, vm0, sth0, cth0, s)
+        delta *= 2.0
+    return s, z, v, a, j, b1
+
+
+@njit(cache=True, nogil=True, inline="always")
+def _close_segment(osc, mode, zm0, vm0, zb0, vb0, sth0, cth0, t0, s, z, v, in_window, acc,
+                   cnt):
+    """Window integrals and time stuck over the segment [t0, t0 + s]; guard against
+    segments that do not advance the absolute time (C_NZERO). Returns (t_new, z_b, z_b')
+    at its end."""
+    if mode == MODE_FREE:
+        vb_end = vb0
+        zb_end = zb0 + vb0 * s
+    else:
+        vb_end = v
+        zb_end = z - mode
+    if in_window:
+        iv = v2_integral(osc, zm0, vm0, sth0, cth0, s)
+        acc[A_INT_VM2] += iv
+        if mode == MODE_FREE:
+            acc[A_INT_VB2] += vb0 * vb0 * s
+        else:
+            acc[A_INT_VB2] += iv
+            acc[A_TSTUCK_WIN] += s
+    if mode != MODE_FREE:
+        acc[A_TSTUCK_ALL] += s
+    t_new = t0 + s
+    cnt[C_NZERO] = cnt[C_NZERO] + 1 if t_new <= t0 else 0
+    return t_new, zb_end, vb_end
+
+
+@njit(cache=True, nogil=True, inline="always")
+def _stick_speed_floor(osc_f, g, z, zb, b1, dvm):
+    """Smallest resolvable rebound speed |w'+| at an impact (module docstring).
+
+    Bounces lower than a few round-off units of w cannot be resolved: they count as
+    sticking. Apex v^2/(2|g|) >= 16 ulps-scale of |z|, |z_b| and >= 4 contact floors,
+    whose round-off includes the parts of the closed form of the next flight (b1 changes
+    by at most dvm = |v_m+ - v_m-| at the impact). g: free LO acceleration.
+    """
+    zscale = 1.0 + abs(z) + abs(zb)
+    zparts = deriv_bound(osc_f, b1 + dvm, 0, 0.0)
+    return math.sqrt(2.0 * abs(g) * ROUNDOFF * max(16.0 * zscale, 4.0 * (zscale + zparts)))
+
+
+@njit(cache=True, nogil=True, inline="always")
+def _impact(cur, acc, cnt, imp, osc_f, eta, r, v_stick, record_from, sth0, cth0, s, t_new,
+            z, v, vb, b1, wall):
+    """Impact at ``wall`` at t_new = t0 + s (local s, phases sth0, cth0 of the segment).
+
+    Records it (pre-impact state, ball placed exactly on the wall) from record_from on,
+    applies the impact law and sets ``cur`` to the next segment: stuck on ``wall`` when
+    the rebound is below max(v_stick, ``_stick_speed_floor``) and the free LO acceleration
+    presses the ball on the wall, else free flight.
+    """
+    zb_imp = z - wall
+    if t_new >= record_from:
+        _record_row(imp, cnt, C_NIMP_REC, t_new, z, v, zb_imp, vb, wall)
+    cnt[C_NIMP_TOTAL] += 1
+    one_eta = 1.0 + eta                      # Newton's impact law, restitution r
+    vm_p = ((1.0 - r * eta) * v + eta * (1.0 + r) * vb) / one_eta
+    vb_p = ((1.0 + r) * v + (eta - r) * vb) / one_eta
+    mode_new = MODE_FREE
+    vc = _common_velocity(eta, v, vb)
+    g = forcing(osc_f, sth0, cth0, s) - osc_f[I_D] * vc - z    # free LO acceleration
+    v_floor = _stick_speed_floor(osc_f, g, z, zb_imp, b1, abs(vm_p - v))
+    if abs(vm_p - vb_p) <= max(v_stick, v_floor):
+        if wall * g > 0.0:
+            mode_new = wall
+            vm_p = vc
+            vb_p = vc
+            acc[A_NSTICK] += 1.0
+    _set_state(cur, t_new, z, vm_p, zb_imp, vb_p, mode_new)
+
+
+@njit(cache=True, nogil=True, inline="always")
+def _start_sticking(cur, acc, eta, t_new, z, v, vb, wall):
+    """Ball found pressed on ``wall`` with zero relative velocity: stick (one body)."""
+    vc = _common_velocity(eta, v, vb)
+    acc[A_NSTICK] += 1.0
+    _set_state(cur, t_new, z, vc, z - wall, vc, wall)
+
+
+@njit(cache=True, nogil=True, inline="always")
+def _start_release(cur, t_new, z, v, mode):
+    """Release from wall ``mode``: free flight from the wall with zero relative velocity."""
+    _set_state(cur, t_new, z, v, z - mode, v, MODE_FREE)
+    cur[CUR_RELEASED] = 1.0
+
+
+# ---------------------------------------------------------------- trajectory
+
 @njit(cache=True, nogil=True)
-def run_kernel(osc_f, osc_s, eta, r, W, phi, t_end, t_tr, v_stick, root_tol, max_impacts,
+def run_kernel(osc_f, osc_s, eta, r, omega, phi, t_end, t_tr, v_stick, root_tol, max_impacts,
                record_from, cur, acc, cnt, imp, seg):
     """Advance the trajectory in ``cur`` = [t, z_m, z_m', z_b, z_b', mode, released] to t_end.
 
     osc_f, osc_s   packed oscillators (``flow.make_osc``) of the free LO and the stuck body
+    omega, phi     forcing frequency ratio and phase (forcing phase omega t + phi)
     imp            (cap, 6) buffer of impacts: t, z_m, z_m', z_b, z_b' (pre-impact), wall
     seg            (cap, 6) buffer of segment starts: t0, z_m, z_m', z_b, z_b', mode
     Impacts and segments are recorded only from t >= record_from. ``cur``, ``acc`` and
     ``cnt`` are updated in place, so a call that returns RC_BUFFER_FULL can be resumed with
     larger buffers. Returns one of RC_DONE, RC_BUFFER_FULL, RC_MAX_IMPACTS, RC_STALLED.
     """
-    one_eta = 1.0 + eta
     while True:
-        t0 = cur[0]
+        t0 = cur[CUR_T]
         if cnt[C_NZERO] > 1000:
             return RC_STALLED
         if t0 >= t_end:
             return RC_DONE
         if cnt[C_NSEG_REC] >= seg.shape[0] or cnt[C_NIMP_REC] >= imp.shape[0]:
             return RC_BUFFER_FULL
-        zm0, vm0, zb0, vb0 = cur[1], cur[2], cur[3], cur[4]
-        mode = int(cur[5])
-        released = cur[6] != 0.0       # this free segment starts at a release from sticking
-        cur[6] = 0.0
+        zm0, vm0, zb0, vb0 = cur[CUR_ZM], cur[CUR_VM], cur[CUR_ZB], cur[CUR_VB]
+        mode = int(cur[CUR_MODE])
+        released = cur[CUR_RELEASED] != 0.0   # this free segment starts at a release
+        cur[CUR_RELEASED] = 0.0
         if t0 >= record_from:
-            k = cnt[C_NSEG_REC]
-            seg[k, 0], seg[k, 1], seg[k, 2], seg[k, 3], seg[k, 4] = t0, zm0, vm0, zb0, vb0
-            seg[k, 5] = mode
-            cnt[C_NSEG_REC] = k + 1
+            _record_row(seg, cnt, C_NSEG_REC, t0, zm0, vm0, zb0, vb0, mode)
         in_window = t0 >= t_tr
-        osc = osc_f if mode == 0 else osc_s
-        th0 = W * t0 + phi
+        osc = osc_f if mode == MODE_FREE else osc_s
+        th0 = omega * t0 + phi
         sth0 = math.sin(th0)
         cth0 = math.cos(th0)
-        h_cap = 1.0 / osc[I_RATE]
         s_stop = t_end - t0
         if t0 < t_tr:
             s_stop = min(s_stop, t_tr - t0)
-        s = 0.0
-        z, v, a, j, b1 = flow(osc, zm0, vm0, sth0, cth0, 0.0)
-        B4s = 0.0
-        event = 0        # 0 none, 1 forced stop, 2 impact, 3 release, 4 stick (pressed, w' = 0)
-        wall = 0
-        steps = 0
-        while True:
-            steps += 1
-            if steps > MAX_STEPS_PER_SEGMENT:
-                cur[0] = t0
-                return RC_STALLED
-            if mode == 0:
-                h, pressed, B2 = free_step_local(osc, s, z, v, a, j, b1, zb0, vb0, h_cap,
-                                                 root_tol, released and steps == 1)
-                if pressed != 0:
-                    event = 4
-                    wall = pressed
-                    break
-            else:
-                B2 = deriv_bound(osc, b1, 2, s + h_cap)
-                gap = mode * a           # contact force ~ z'' of the stuck body, > 0 while stuck
-                closing = -mode * j
-                B4s = deriv_bound(osc, b1, 4, s + h_cap)
-                h = _safe_step(gap, closing, B4s)
-            forced = False
-            if h >= h_cap:
-                h = h_cap
-            if s + h >= s_stop:
-                s_new = s_stop
-                forced = True
-            else:
-                s_new = s + h
-            if s_new <= s:
-                cur[0] = t0
-                return RC_STALLED
-            z1, v1, a1, j1, b11 = flow(osc, zm0, vm0, sth0, cth0, s_new)
-            if in_window:
-                m = _interval_max(osc, zm0, vm0, sth0, cth0, s, z, v, s_new, z1, v1, B2,
-                                  acc[A_XMAX_WIN])
-                acc[A_XMAX_WIN] = m
-                if m > acc[A_XMAX_ALL]:
-                    acc[A_XMAX_ALL] = m
-            else:
-                acc[A_XMAX_ALL] = _interval_max(osc, zm0, vm0, sth0, cth0, s, z, v, s_new, z1,
-                                                v1, B2, acc[A_XMAX_ALL])
-            s, z, v, a, j, b1 = s_new, z1, v1, a1, j1, b11
-            acc[A_NEVAL] += 1.0
-            if mode == 0:
-                wall, gap, closing = free_contact(osc, s, z, v, b1, zb0 + vb0 * s, vb0, B2,
-                                                  root_tol)
-                if wall != 0:
-                    event = 2
-                    break
-            else:
-                gap = mode * a
-                closing = -mode * j
-                floor = _floor(osc, b1, 2, s, a, closing)
-                if closing > 0.0 and gap <= max(root_tol, floor) and (
-                        gap <= floor or closing * closing >= 2.0 * B4s * gap):
-                    event = 3
-                    gap = max(gap, 0.0)
-                    break
-            if forced:
-                event = 1
-                break
-        if event == 2 or event == 3:
-            # one Newton step onto the event surface (error ~ gap^2), never past t_end
-            ds = gap / closing
-            if s + ds > t_end - t0:
-                ds = max(t_end - t0 - s, 0.0)
-            if ds > 0.0:
-                s_new = s + ds
-                z1, v1, a1, j1, b11 = flow(osc, zm0, vm0, sth0, cth0, s_new)
-                m_ref = acc[A_XMAX_WIN] if in_window else acc[A_XMAX_ALL]
-                if abs(z1) > m_ref:
-                    if in_window:
-                        acc[A_XMAX_WIN] = abs(z1)
-                    if abs(z1) > acc[A_XMAX_ALL]:
-                        acc[A_XMAX_ALL] = abs(z1)
-                s, z, v, a, j, b1 = s_new, z1, v1, a1, j1, b11
-            if event == 3:
-                # the release must leave the contact force at zero or pulling away, else the
-                # free flight would find the ball pressed again (a stick-release loop)
-                delta = ROUNDOFF * (1.0 + t0 + s)
-                for _ in range(64):
-                    if mode * a <= 0.0 or s + delta > t_end - t0:
-                        break
-                    s = s + delta
-                    z, v, a, j, b1 = flow(osc, zm0, vm0, sth0, cth0, s)
-                    delta *= 2.0
-        # window integrals and time stuck over this segment [t0, t0 + s]
-        if mode == 0:
-            vb_end = vb0
-            zb_end = zb0 + vb0 * s
-        else:
-            vb_end = v
-            zb_end = z - mode
-        if in_window:
-            iv = v2_integral(osc, zm0, vm0, sth0, cth0, s)
-            acc[A_INT_VM2] += iv
-            if mode == 0:
-                acc[A_INT_VB2] += vb0 * vb0 * s
-            else:
-                acc[A_INT_VB2] += iv
-                acc[A_TSTUCK_WIN] += s
-        if mode != 0:
-            acc[A_TSTUCK_ALL] += s
-        t_new = t0 + s
-        # segments that do not advance the (absolute) time: a guard against event loops
-        cnt[C_NZERO] = cnt[C_NZERO] + 1 if t_new <= t0 else 0
-        if event == 1:
-            cur[0], cur[1], cur[2], cur[3], cur[4], cur[5] = t_new, z, v, zb_end, vb_end, mode
+        event, wall, s, z, v, a, j, b1, gap, closing = _advance_segment(
+            osc, mode, zm0, vm0, zb0, vb0, sth0, cth0, s_stop, released, root_tol, in_window,
+            acc)
+        if event == EV_STALLED:
+            cur[CUR_T] = t0
+            return RC_STALLED
+        if event == EV_IMPACT or event == EV_RELEASE:
+            s, z, v, a, j, b1 = _land_on_event(osc, zm0, vm0, sth0, cth0, t0, t_end, s, z, v,
+                                               a, j, b1, gap, closing, in_window, acc)
+        if event == EV_RELEASE:
+            s, z, v, a, j, b1 = _clear_of_contact(osc, mode, zm0, vm0, sth0, cth0, t0, t_end,
+                                                  s, z, v, a, j, b1)
+        t_new, zb_end, vb_end = _close_segment(osc, mode, zm0, vm0, zb0, vb0, sth0, cth0, t0,
+                                               s, z, v, in_window, acc, cnt)
+        if event == EV_STOP:
+            _set_state(cur, t_new, z, v, zb_end, vb_end, mode)
             if t_new >= t_end:
-                cur[0] = t_end
+                cur[CUR_T] = t_end
                 return RC_DONE
-            continue
-        if event == 3:
-            # release: free flight from the wall with zero relative velocity
-            cur[0], cur[1], cur[2], cur[3], cur[4], cur[5] = t_new, z, v, z - mode, v, 0.0
-            cur[6] = 1.0
-            continue
-        if event == 4:
-            vc = (v + eta * vb_end) / one_eta
-            acc[A_NSTICK] += 1.0
-            cur[0], cur[1], cur[2], cur[3], cur[4], cur[5] = t_new, z, vc, z - wall, vc, wall
-            continue
-        # impact at `wall`: pre-impact state, ball placed exactly on the wall
-        zb_imp = z - wall
-        if t_new >= record_from:
-            k = cnt[C_NIMP_REC]
-            imp[k, 0], imp[k, 1], imp[k, 2], imp[k, 3], imp[k, 4], imp[k, 5] = \
-                t_new, z, v, zb_imp, vb_end, wall
-            cnt[C_NIMP_REC] = k + 1
-        cnt[C_NIMP_TOTAL] += 1
-        vm_p = ((1.0 - r * eta) * v + eta * (1.0 + r) * vb_end) / one_eta
-        vb_p = ((1.0 + r) * v + (eta - r) * vb_end) / one_eta
-        mode_new = 0
-        vc = (v + eta * vb_end) / one_eta
-        g = forcing(osc_f, sth0, cth0, s) - osc_f[I_D] * vc - z    # free LO acceleration
-        # bounces lower than a few round-off units of w cannot be resolved: they count as
-        # sticking. Apex v^2/(2|g|) >= 16 ulps-scale of |z|, |z_b| and >= 4 contact floors,
-        # whose round-off includes the parts of the closed form of the next flight (b1
-        # changes by at most |v_m+ - v_m-| at the impact).
-        zscale = 1.0 + abs(z) + abs(zb_imp)
-        zparts = deriv_bound(osc_f, b1 + abs(vm_p - v), 0, 0.0)
-        v_floor = math.sqrt(2.0 * abs(g) * ROUNDOFF * max(16.0 * zscale,
-                                                          4.0 * (zscale + zparts)))
-        if abs(vm_p - vb_p) <= max(v_stick, v_floor):
-            if wall * g > 0.0:
-                mode_new = wall
-                vm_p = vc
-                vb_p = vc
-                acc[A_NSTICK] += 1.0
-        cur[0], cur[1], cur[2], cur[3], cur[4], cur[5] = t_new, z, vm_p, zb_imp, vb_p, mode_new
-        if cnt[C_NIMP_TOTAL] >= max_impacts:
-            return RC_MAX_IMPACTS
+        elif event == EV_RELEASE:
+            _start_release(cur, t_new, z, v, mode)
+        elif event == EV_STICK:
+            _start_sticking(cur, acc, eta, t_new, z, v, vb_end, wall)
+        else:
+            _impact(cur, acc, cnt, imp, osc_f, eta, r, v_stick, record_from, sth0, cth0, s,
+                    t_new, z, v, vb_end, b1, wall)
+            if cnt[C_NIMP_TOTAL] >= max_impacts:
+                return RC_MAX_IMPACTS
 
 
 @njit(cache=True, nogil=True)
-def dense_states(seg, idx, times, osc_f, osc_s, W, phi, out):
-    """State (z_m, z_m', z_b, z_b') at ``times``; idx[k] is the segment holding times[k]."""
+def dense_states(seg, idx, times, osc_f, osc_s, omega, phi, out):
+    """State (z_m, z_m', z_b, z_b') at ``times``; idx[k] is the segment holding times[k].
+
+    seg as recorded by ``run_kernel``; omega, phi: forcing frequency ratio and phase.
+    """
     for k in range(times.shape[0]):
         i = idx[k]
         t0 = seg[i, 0]
         mode = int(seg[i, 5])
-        osc = osc_f if mode == 0 else osc_s
-        th0 = W * t0 + phi
+        osc = osc_f if mode == MODE_FREE else osc_s
+        th0 = omega * t0 + phi
         s = times[k] - t0
         z, v, _, _, _ = flow(osc, seg[i, 1], seg[i, 2], math.sin(th0), math.cos(th0), s)
         out[0, k] = z
         out[1, k] = v
-        if mode == 0:
+        if mode == MODE_FREE:
             out[2, k] = seg[i, 3] + seg[i, 4] * s
             out[3, k] = seg[i, 4]
         else:

@@ -1,0 +1,73 @@
+"""Named constants and small helpers of the event-driven kernel (vines.core.kernel)."""
+import math
+
+import numpy as np
+
+from vines.core import kernel as k
+from vines.core.exact import oscillators
+from vines.core.params import ModelParams, SolverSettings
+
+
+def test_named_codes_are_distinct_and_match_the_conventions():
+    assert k.MODE_FREE == 0 and (k.WALL_L, k.WALL_R) == (1, -1)   # stuck mode = wall
+    events = (k.EV_STOP, k.EV_IMPACT, k.EV_RELEASE, k.EV_STICK, k.EV_STALLED)
+    assert len(set(events)) == len(events) and k.MODE_FREE not in events
+    assert (k.CUR_T, k.CUR_ZM, k.CUR_VM, k.CUR_ZB, k.CUR_VB, k.CUR_MODE,
+            k.CUR_RELEASED) == tuple(range(7))
+    rcs = (k.RC_DONE, k.RC_BUFFER_FULL, k.RC_MAX_IMPACTS, k.RC_STALLED)
+    assert len(set(rcs)) == 4
+    assert abs(k.CONTACT_PRESSED * k.WALL_L) not in (0, 1)      # never an impact code
+
+
+def test_clamp_step_caps_at_h_cap_and_stops_at_s_stop():
+    assert k._clamp_step(1.0, 5.0, 0.5, 10.0) == (1.5, False)
+    assert k._clamp_step(1.0, 0.25, 0.5, 10.0) == (1.25, False)
+    assert k._clamp_step(9.9, 0.25, 0.5, 10.0) == (10.0, True)
+
+
+def test_common_velocity_conserves_momentum():
+    eta, vm, vb = 0.3, 0.7, -1.1
+    vc = k._common_velocity(eta, vm, vb)
+    assert math.isclose((1.0 + eta) * vc, vm + eta * vb, rel_tol=1e-15)
+
+
+def test_stick_speed_floor_is_a_round_off_bounce():
+    osc_f, _ = oscillators(ModelParams(eta=0.05, omega=1.0, F=0.05))
+    v1 = k._stick_speed_floor(osc_f, 1.0, 0.5, -0.5, 0.1, 0.0)
+    v4 = k._stick_speed_floor(osc_f, 4.0, 0.5, -0.5, 0.1, 0.0)
+    assert 0.0 < v1 < 1e-6
+    assert math.isclose(v4, 2.0 * v1, rel_tol=1e-14)            # apex v^2 / (2 |g|)
+    assert k._stick_speed_floor(osc_f, 0.0, 0.5, -0.5, 0.1, 0.0) == 0.0
+
+
+def _run(buf_rows, t_end=300.0):
+    p = ModelParams(eta=0.2, omega=0.9, F=0.4)                    # chatter with sticking
+    st = SolverSettings(t_end=t_end, t_transient=t_end / 2)
+    osc_f, osc_s = oscillators(p)
+    cur = np.zeros(7)
+    acc = np.zeros(k.N_ACC)
+    cnt = np.zeros(k.N_CNT, dtype=np.int64)
+    imp, seg = np.empty((buf_rows, 6)), np.empty((2 * buf_rows, 6))
+    n_full = 0
+    while True:
+        rc = k.run_kernel(osc_f, osc_s, p.eta, p.r, p.omega, p.phi, st.t_end, st.t_transient,
+                          st.v_stick, st.root_tol, st.max_impacts, 0.0, cur, acc, cnt, imp, seg)
+        if rc != k.RC_BUFFER_FULL:
+            break
+        n_full += 1
+        imp = np.concatenate([imp, np.empty_like(imp)])
+        seg = np.concatenate([seg, np.empty_like(seg)])
+    return rc, n_full, cur, acc, cnt, imp[:cnt[k.C_NIMP_REC]], seg[:cnt[k.C_NSEG_REC]]
+
+
+def test_run_kernel_resumes_after_buffer_full_with_identical_numbers():
+    rc_a, full_a, *a = _run(100_000)
+    rc_b, full_b, *b = _run(8)
+    assert rc_a == rc_b == k.RC_DONE and full_a == 0 and full_b > 0
+    for x, y in zip(a, b):
+        assert np.array_equal(x, y)
+    cur, acc, cnt, imp, seg = a
+    assert cur[k.CUR_T] == 300.0 and acc[k.A_NSTICK] > 0
+    assert set(np.unique(imp[:, 5])) <= {k.WALL_L, k.WALL_R}
+    assert set(np.unique(seg[:, 5])) <= {k.MODE_FREE, k.WALL_L, k.WALL_R}
+    assert np.any(seg[:, 5] != k.MODE_FREE)                        # stuck segments occur
