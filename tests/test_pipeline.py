@@ -363,3 +363,30 @@ def test_distributed_scheduler_gives_identical_numbers():
                             scheduler=cluster.scheduler_address)
     for k in BATCH_FIELDS:
         np.testing.assert_array_equal(got[k], ref[k], err_msg=k)
+
+
+@needs_snakemake
+def test_damaged_chunk_is_named_and_recomputed_after_removal(tmp_path):
+    _copy_workflow(tmp_path)
+    cfg = {k: v for k, v in TINY.items() if k in ("run", "chunk_size", "block_size", "threads",
+                                                   "simulation")}
+    cfg["grids"] = {"gA": TINY["grids"]["gA"]}
+    _smk(tmp_path, cfg=cfg)
+    out = tmp_path / "results" / "tiny"
+    measures = out / "measures" / "gA.nc"
+    before = read_dataset(measures)
+    chunk = sorted((out / "grid" / "gA").glob("chunk_*.nc"))[0]
+    data = chunk.read_bytes()
+    chunk.write_bytes(data[: len(data) // 2])
+    r = _smk(tmp_path, cfg=cfg, check=False)
+    msg = r.stdout + r.stderr
+    assert r.returncode != 0 and str(chunk.relative_to(tmp_path)) in msg and "rm " in msg
+    assert "Traceback" not in msg
+    assert measures.exists()                      # nothing valid was deleted
+    chunk.unlink()        # the command the message gives; the intact measures stay valid
+    _smk(tmp_path, "--rerun-incomplete", str(chunk.relative_to(tmp_path)), cfg=cfg)  # recomputed
+    assert read_dataset(chunk)["ke_ratio"].size == 3
+    _smk(tmp_path, "--forcerun", "extract_measures", cfg=cfg)
+    after = read_dataset(measures)
+    for k in BATCH_FIELDS:
+        np.testing.assert_array_equal(after[k].values, before[k].values)

@@ -1,5 +1,6 @@
 # Config validation (with defaults), grid chunks and code versions, all at parse time so
 # the DAG is static. Helpers live in vines.pipeline (tested without snakemake).
+import glob
 import os
 import sys
 
@@ -12,6 +13,7 @@ os.environ["PYTHONPATH"] = os.pathsep.join(
     [_SRC] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p and p != _SRC])
 
 from vines.core.params import D_DEFAULT
+from vines.data.netcdf import unreadable_datasets
 from vines.pipeline.axes import chunk_map, grid_axes
 from vines.pipeline.codeversion import COMPUTE, FIGURES, STUDIES, code_version
 from vines.pipeline.config import ConfigError, load_schema, validate_config
@@ -44,6 +46,14 @@ THIST = config["timehistories"]
 WPREC = config["work_precision"]
 WPREC_SETTINGS = {k: v for k, v in WPREC.items() if k != "cases"}
 CONV = config["convergence"]
+
+# A damaged dataset (a truncated chunk, a disk error) would look finished to Snakemake:
+# stop before any job, naming the file and the command that recomputes it.
+_DAMAGED = unreadable_datasets(sorted(glob.glob(f"{RES}/**/*.nc", recursive=True)))
+if _DAMAGED:
+    path, reason = _DAMAGED[0]
+    sys.exit(f"vines pipeline: {path} cannot be read {reason} ({len(_DAMAGED)} damaged "
+             f"file(s)); remove it to recompute it: rm {' '.join(p for p, _ in _DAMAGED)}")
 
 
 wildcard_constraints:

@@ -84,7 +84,31 @@ def write_dataset(ds: xr.Dataset, path, encoding: dict | None = None) -> Path:
     return path
 
 
+class UnreadableDatasetError(OSError):
+    """A dataset file exists but cannot be read (truncated, corrupted); names the file."""
+
+
 def read_dataset(path) -> xr.Dataset:
-    """Open and load a dataset fully (the file is closed on return)."""
-    with xr.open_dataset(path, engine="netcdf4") as ds:
-        return ds.load()
+    """Open and load a dataset fully (the file is closed on return).
+
+    Raises UnreadableDatasetError naming ``path`` when the file is damaged.
+    """
+    try:
+        with xr.open_dataset(path, engine="netcdf4") as ds:
+            return ds.load()
+    except FileNotFoundError:
+        raise
+    except (OSError, RuntimeError, ValueError, KeyError) as err:
+        raise UnreadableDatasetError(f"{path}: cannot be read ({err})") from None
+
+
+def unreadable_datasets(paths) -> list[tuple[str, str]]:
+    """(path, reason) of every existing file in ``paths`` that ``read_dataset`` refuses."""
+    bad = []
+    for p in paths:
+        if Path(p).is_file():
+            try:
+                read_dataset(p)
+            except UnreadableDatasetError as err:
+                bad.append((str(p), str(err).split(": cannot be read ", 1)[-1]))
+    return bad
