@@ -56,6 +56,7 @@ import numpy as np
 from numba import njit
 
 from .flow import I_D, I_RATE, deriv_bound, flow, forcing, v2_integral
+from .walls import WALL_L, WALL_R, impact_velocities
 
 # Return codes of run_kernel.
 RC_DONE, RC_BUFFER_FULL, RC_MAX_IMPACTS, RC_STALLED = 0, 1, 2, 3
@@ -69,7 +70,6 @@ C_NIMP_TOTAL, C_NIMP_REC, C_NSEG_REC, C_NZERO = range(4)
 N_CNT = 4
 
 # Walls (w = z_m - z_b = +1 and -1; impacts' ``wall`` column, first_contact's result).
-WALL_L, WALL_R = 1, -1
 # Segment modes (cur[CUR_MODE], seg[:, 5]): free flight, or stuck on wall WALL_L / WALL_R
 # (the mode is the wall's sign).
 MODE_FREE = 0
@@ -508,9 +508,7 @@ def _impact(cur, acc, cnt, imp, osc_f, eta, r, v_stick, record_from, sth0, cth0,
     if t_new >= record_from:
         _record_row(imp, cnt, C_NIMP_REC, t_new, z, v, zb_imp, vb, wall)
     cnt[C_NIMP_TOTAL] += 1
-    one_eta = 1.0 + eta                      # Newton's impact law, restitution r
-    vm_p = ((1.0 - r * eta) * v + eta * (1.0 + r) * vb) / one_eta
-    vb_p = ((1.0 + r) * v + (eta - r) * vb) / one_eta
+    vm_p, vb_p = impact_velocities(eta, r, v, vb)      # Newton's law, restitution r
     mode_new = MODE_FREE
     vc = _common_velocity(eta, v, vb)
     g = forcing(osc_f, sth0, cth0, s) - osc_f[I_D] * vc - z    # free LO acceleration
