@@ -16,14 +16,33 @@ def _job_name(sm) -> str:
     return f"{sm.rule}[{wc}]" if wc else str(sm.rule)
 
 
+def check_code_version(expected: str | None) -> None:
+    """Refuse to run when the imported vines is not the code the workflow hashed.
+
+    ``expected`` is the rule's ``code`` param (``vines.pipeline.codeversion``); the sources
+    actually imported must hash to it for one of the rule kinds, else the dataset would be
+    attributed to the wrong code.
+    """
+    if not expected:
+        return
+    from .codeversion import COMPUTE, FIGURES, PKG_DIR, STUDIES, code_version
+    if expected not in {code_version(kind) for kind in (COMPUTE, STUDIES, FIGURES)}:
+        raise RuntimeError(f"this job imports vines from {PKG_DIR}, whose sources differ from "
+                           f"the code version {expected} the workflow computed: run the "
+                           "workflow of the checkout whose sources should run")
+
+
 def run_job(sm, main) -> None:
-    """Call ``main()`` with output in ``sm.log[0]``; on failure log it and exit(1)."""
+    """Call ``main()`` with output in ``sm.log[0]``; on failure log it and exit(1).
+
+    Before ``main`` the job checks that it runs the code its ``code`` param names."""
     console, stdout = sys.stderr, sys.stdout
     log_path = Path(sm.log[0])
     log_path.parent.mkdir(parents=True, exist_ok=True)
     with open(log_path, "w", buffering=1) as log:
         sys.stdout = sys.stderr = log
         try:
+            check_code_version(getattr(sm.params, "code", None))
             main()
         except BaseException as exc:      # incl. KeyboardInterrupt: the log says why it stopped
             traceback.print_exc(file=log)

@@ -63,6 +63,21 @@ def simulate_grid(points: dict, *, model: dict, simulation: dict, code: str, tit
 
 # ------------------------------------------------------------------ extract-measures
 
+def _plain(v):
+    return v.item() if isinstance(v, np.generic) else v
+
+
+def _chunk_settings(chunks, paths) -> dict:
+    """Solver settings shared by all chunks (attributes ``solver_*``); they must agree."""
+    def settings(c):
+        return {k[len("solver_"):]: v for k, v in c.attrs.items() if k.startswith("solver_")}
+    first = settings(chunks[0])
+    for c, p in zip(chunks[1:], list(paths)[1:]):
+        if {k: _plain(v) for k, v in settings(c).items()} != {k: _plain(v) for k, v in first.items()}:
+            raise ValueError(f"{p}: solver settings differ from those of {list(paths)[0]}")
+    return first
+
+
 def extract_measures(chunk_paths, *, axes: dict, sections: dict, model: dict, code: str,
                      title: str):
     """Merge a grid's chunk files and add metres, the stuck-linear amplitude, masks and
@@ -70,10 +85,9 @@ def extract_measures(chunk_paths, *, axes: dict, sections: dict, model: dict, co
     from ..core.measures import derived_measures, section_marks
     chunks = [read_dataset(f) for f in chunk_paths]
     fields = builders.merge_chunks(chunks, axes)
+    settings = _chunk_settings(chunks, chunk_paths)
     subset = {"axes": axes, "sections": sections, "model": model,
-              "chunks_config_sha256": sorted(c.attrs["config_sha256"] for c in chunks)}
-    settings = {k[len("solver_"):]: v for k, v in chunks[0].attrs.items()
-                if k.startswith("solver_")}
+              "settings": {k: _plain(v) for k, v in settings.items()}}
     attrs = provenance_attrs(title=title, config_subset=subset, settings=settings,
                              code_version=code)
     grid = builders.grid_dataset(axes, fields, attrs)
