@@ -14,7 +14,7 @@ from ..core.params import PARAM_NAMES as DIMS  # noqa: E402
 
 COORD_ATTRS = {
     "eta": {"long_name": "ball-to-LO mass ratio eta = m/M", "units": "1"},
-    "omega": {"long_name": "forcing frequency ratio W = w/w0", "units": "1"},
+    "omega": {"long_name": "forcing frequency ratio omega = w/w0", "units": "1"},
     "F": {"long_name": "forcing amplitude F = A/L", "units": "1"},
 }
 
@@ -59,7 +59,7 @@ SWEEP_INSTANCE_ATTRS = {
 }
 SWEEP_SAMPLE_ATTRS = {
     "dw": ("relative velocity w' = z_m' - z_b' just before impact", "1"),
-    "phase": ("impact phase mod(W t + phi, 2 pi)", "rad"),
+    "phase": ("impact phase mod(omega t + phi, 2 pi)", "rad"),
     "wall": ("wall hit (+1 left end L, -1 right end R)", "1"),
 }
 
@@ -102,7 +102,7 @@ TIMEHISTORY_ATTRS = {
     "status": BATCH_ATTRS["status"],
     "impact_t": ("impact time", "1"),
     "impact_dw": ("relative velocity w' just before impact", "1"),
-    "impact_phase": ("impact phase mod(W t + phi, 2 pi)", "rad"),
+    "impact_phase": ("impact phase mod(omega t + phi, 2 pi)", "rad"),
     "impact_wall": ("wall hit (+1 L, -1 R)", "1"),
 }
 

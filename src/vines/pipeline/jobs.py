@@ -42,7 +42,7 @@ def run_job(sm, main) -> None:
     with open(log_path, "w", buffering=1) as log:
         sys.stdout = sys.stderr = log
         try:
-            check_code_version(getattr(sm.params, "code", None))
+            check_code_version(getattr(getattr(sm, "params", None), "code", None))
             main()
         except BaseException as exc:      # incl. KeyboardInterrupt: the log says why it stopped
             traceback.print_exc(file=log)

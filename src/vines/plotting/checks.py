@@ -82,7 +82,7 @@ def require(ds: xr.Dataset, *, coords=(), variables=(), finite=(), allow_nan=Non
 
 
 def fixed_value(ds: xr.Dataset, dim: str) -> float:
-    """The single value of a length-1 grid coordinate (e.g. W of a Fig 7 grid)."""
+    """The single value of a length-1 grid coordinate (e.g. omega of a Fig 7 grid)."""
     v = np.asarray(ds[dim].values, dtype=float)
     if v.size != 1:
         raise FigureInputError(f"{_where(ds)}: coordinate {dim!r} should hold one fixed "

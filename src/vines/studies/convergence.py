@@ -132,7 +132,7 @@ def _check_points(points) -> list[dict]:
         except (KeyError, TypeError, ValueError) as err:
             raise ValueError(f"point {i} ({p!r}) needs numbers eta, omega, F") from err
         q["label"] = str(p.get("label", "")) or (
-            f"eta={q['eta']:g} W={q['omega']:g} F={q['F']:g}")
+            f"eta={q['eta']:g} omega={q['omega']:g} F={q['F']:g}")
         out.append(q)
     if not out:
         raise ValueError("no parameter points given")
@@ -383,8 +383,8 @@ def grid_convergence(eta_range=(0.01, 1.0), omega_range=(0.5, 1.5), F=0.4,
         nested_axis(e0, e1, n_f, n)           # raises when not nested
     eta = np.linspace(e0, e1, n_f)
     omega = np.linspace(w0, w1, n_f)
-    E, W = np.meshgrid(eta, omega, indexing="ij")
-    f = simulate_batch(E, W, float(F), r=r, d=d, t_end=t_end, t_transient=t_transient,
+    E, OM = np.meshgrid(eta, omega, indexing="ij")
+    f = simulate_batch(E, OM, float(F), r=r, d=d, t_end=t_end, t_transient=t_transient,
                        v_stick=v_stick, max_impacts=max_impacts, root_tol=root_tol,
                        n_threads=n_threads)
     per_res = {"stride": np.array(strides),
