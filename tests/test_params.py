@@ -58,6 +58,36 @@ def test_model_params_invalid(name, value):
     assert isinstance(exc.value, ValueError)
 
 
+def test_model_params_upper_bounds_allowed():
+    """The largest allowed values (far beyond the tested extremes eta 50, W 8, F 20, d 3)."""
+    from vines.core.params import D_MAX, ETA_MAX, F_MAX, OMEGA_MAX, PHI_MAX
+    assert (ETA_MAX, OMEGA_MAX, F_MAX, D_MAX, PHI_MAX) == (1e3, 1e3, 1e4, 1e3, 1e3)
+    p = ModelParams(eta=ETA_MAX, omega=OMEGA_MAX, F=F_MAX, r=1.0, d=D_MAX, phi=-PHI_MAX)
+    assert (p.eta, p.omega, p.F, p.d, p.phi) == (1e3, 1e3, 1e4, 1e3, -1e3)
+    ModelParams(eta=50.0, omega=8.0, F=20.0, d=2.5, phi=PHI_MAX)
+
+
+@pytest.mark.parametrize("name, value, bound", [
+    ("eta", 1000.5, "<= 1000"), ("eta", 1e308, "<= 1000"),
+    ("omega", 1e160, "<= 1000"), ("omega", 1e308, "<= 1000"), ("omega", "1e308", "<= 1000"),
+    ("F", 10000.5, "<= 10000"), ("F", 1e308, "<= 10000"),
+    ("d", 1e308, "<= 1000"), ("d", 1000.5, "<= 1000"),
+    ("phi", 1e308, "<= 1000"), ("phi", -1e308, ">= -1000"),
+])
+def test_model_params_above_the_maximum(name, value, bound):
+    with pytest.raises(ParameterError) as exc:
+        ModelParams(**{**GOOD, name: value})
+    _assert_names(exc.value, name, value)
+    assert bound in str(exc.value)
+
+
+def test_from_xi_bounds_d():
+    with pytest.raises(ParameterError) as exc:
+        ModelParams.from_xi(eta=0.5, omega=1.0, F=0.1, xi=1e308)
+    _assert_names(exc.value, "xi", 1e308)
+    assert "<= 2000" in str(exc.value)
+
+
 def test_model_params_frozen():
     p = ModelParams(**GOOD)
     with pytest.raises(dataclasses.FrozenInstanceError):
@@ -163,6 +193,34 @@ def test_solver_settings_invalid(name, value):
     with pytest.raises(ParameterError) as exc:
         SolverSettings(**{name: value})
     _assert_names(exc.value, name, value)
+
+
+def test_solver_settings_upper_bounds():
+    from vines.core.params import MAX_IMPACTS_MAX, T_END_MAX, V_STICK_MAX
+    s = SolverSettings(t_end=T_END_MAX, t_transient=0.0, v_stick=V_STICK_MAX,
+                       max_impacts=MAX_IMPACTS_MAX, state0=(1e12, -1e12, 1e12, 1e12))
+    assert (s.t_end, s.v_stick, s.max_impacts) == (1e9, 1.0, 100_000_000)
+    assert SolverSettings(max_impacts="2e6").max_impacts == 2_000_000
+
+
+@pytest.mark.parametrize("name, value, bound", [
+    ("t_end", 1e308, "<= 1e+09"), ("t_end", 1.5e9, "<= 1e+09"),
+    ("v_stick", 1e308, "<= 1"), ("v_stick", 1.5, "<= 1"),
+    ("max_impacts", 10 ** 8 + 1, "<= 100000000"), ("max_impacts", 1e300, "<= 100000000"),
+    ("max_impacts", float("inf"), "integer"),
+])
+def test_solver_settings_above_the_maximum(name, value, bound):
+    with pytest.raises(ParameterError) as exc:
+        SolverSettings(**{name: value})
+    _assert_names(exc.value, name, value)
+    assert bound in str(exc.value)
+
+
+@pytest.mark.parametrize("state0", [(1e300, 0.0, 1e300, 0.0), (0.0, 1e13, 0.0, 0.0)])
+def test_solver_settings_state0_bounded(state0):
+    with pytest.raises(ParameterError) as exc:
+        SolverSettings(state0=state0)
+    assert "<= 1e+12" in str(exc.value)
 
 
 def test_t_transient_message_states_t_end():

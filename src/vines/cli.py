@@ -27,9 +27,12 @@ from typing import NoReturn, Sequence
 
 from . import __version__
 from .core.simulation import SOLVERS
-from .core.params import (PARAM_NAMES, RTOL_DEFAULT, D_DEFAULT, MAX_IMPACTS_DEFAULT, R_DEFAULT, T_END_DEFAULT,
-                     T_TRANSIENT_DEFAULT, V_STICK_DEFAULT, ModelParams, ParameterError,
-                     SolverSettings, check_real)
+from .core.params import (PARAM_BOUNDS, PARAM_NAMES, RTOL_DEFAULT, RTOL_MAX, RTOL_MIN, D_DEFAULT,
+                          MAX_IMPACTS_DEFAULT, MAX_IMPACTS_MAX, MAX_POINTS_DEFAULT,
+                          MAX_POINTS_MAX, R_DEFAULT, T_END_DEFAULT,
+                          T_END_MAX, T_TRANSIENT_DEFAULT, V_STICK_DEFAULT, V_STICK_MAX,
+                          ModelParams, ParameterError, SolverSettings, check_int, check_real,
+                          check_step_points)
 
 PROG = "vines"
 
@@ -56,6 +59,16 @@ class VinesArgumentParser(argparse.ArgumentParser):
         self.exit(2, f"{self.prog}: error: {message}\n")
 
 
+def _param_allowed(name: str) -> str:
+    """Allowed values of a model parameter, from ``PARAM_BOUNDS`` (e.g. 'a number > 0 and <= 1000')."""
+    lo, lo_open, hi = PARAM_BOUNDS[name]
+    if name == "phi":
+        return f"a number with |phi| <= {hi:g}"
+    if lo == 0.0 and hi == 1.0 and not lo_open:
+        return "a number in [0, 1]"
+    return f"a number {'>' if lo_open else '>='} {lo:g} and <= {hi:g}"
+
+
 def _flag_for(name: str) -> str:
     """Command-line flag of a parameter name used by ``vines.params`` (t_end -> --t-end)."""
     return "--" + name.replace("_", "-")
@@ -78,25 +91,26 @@ def _add_model_args(parser: VinesArgumentParser, *, phi: bool = False,
     required = optional_group is None
     req = parser.add_argument_group(optional_group or "model parameters (required)")
     for flag, allowed, help in (
-        ("--eta", "a number > 0", "ball-to-LO mass ratio m/M"),
-        ("--omega", "a number > 0", "forcing frequency ratio omega = w/w0"),
-        ("--F", "a number >= 0", "forcing amplitude A/L"),
+        ("--eta", _param_allowed("eta"), "ball-to-LO mass ratio m/M"),
+        ("--omega", _param_allowed("omega"), "forcing frequency ratio omega = w/w0"),
+        ("--F", _param_allowed("F"), "forcing amplitude A/L"),
     ):
         parser.allowed_values[flag] = allowed
         kw = {"required": True} if required else {"default": None}
         req.add_argument(flag, metavar=flag.lstrip("-").upper(), help=f"{help} [{allowed}]",
                          **kw)
     opt = parser.add_argument_group("model parameters (optional)") if required else req
-    parser.allowed_values["--r"] = "a number in [0, 1]"
+    parser.allowed_values["--r"] = _param_allowed("r")
     opt.add_argument("--r", metavar="R", default=R_DEFAULT,
                      help=f"coefficient of restitution [0 <= r <= 1; default {R_DEFAULT:g}]")
-    parser.allowed_values["--d"] = "a number >= 0"
+    parser.allowed_values["--d"] = _param_allowed("d")
     opt.add_argument("--d", metavar="D", default=D_DEFAULT,
-                     help=f"LO damping c/(M w0), fixed for every eta [>= 0; default {D_DEFAULT:.6f}]")
+                     help=f"LO damping c/(M w0), fixed for every eta "
+                          f"[{_param_allowed('d')}; default {D_DEFAULT:.6f}]")
     if phi:
-        parser.allowed_values["--phi"] = "a finite number"
+        parser.allowed_values["--phi"] = _param_allowed("phi")
         opt.add_argument("--phi", metavar="P", default=0.0,
-                         help="forcing phase at t = 0 in rad [finite number; default 0]")
+                         help=f"forcing phase at t = 0 in rad [{_param_allowed('phi')}; default 0]")
 
 
 def _model_params(args: argparse.Namespace) -> ModelParams:
@@ -116,7 +130,8 @@ def _add_simulate(subparsers) -> VinesArgumentParser:
     _add_model_args(p, phi=True)
     run = p.add_argument_group("run and solver settings")
     run.add_argument("--t-end", metavar="T", default=T_END_DEFAULT,
-                     help=f"end of the run, dimensionless time [> 0; default {T_END_DEFAULT:g}]")
+                     help=f"end of the run, dimensionless time [> 0 and <= {T_END_MAX:g}; "
+                          f"default {T_END_DEFAULT:g}]")
     run.add_argument("--t-transient", metavar="T0", default=T_TRANSIENT_DEFAULT,
                      help="start of the measurement window [>= 0 and < t-end; "
                           f"default {T_TRANSIENT_DEFAULT:g}]")
@@ -124,16 +139,21 @@ def _add_simulate(subparsers) -> VinesArgumentParser:
                      help="exact: closed-form event-driven flow (default); rk: general-purpose "
                           "ODE solver with event location (reference)")
     run.add_argument("--rtol", metavar="X", default=RTOL_DEFAULT,
-                     help=f"relative tolerance of the rk solver [> 0 and < 1; default {RTOL_DEFAULT:g}]")
+                     help=f"relative tolerance of the rk solver [{RTOL_MIN:g} <= X <= {RTOL_MAX:g}; "
+                          f"default {RTOL_DEFAULT:g}]")
     run.add_argument("--v-stick", metavar="V", default=V_STICK_DEFAULT,
                      help="chatter threshold on the post-impact relative velocity below which "
-                          f"ball and LO stick [>= 0; default {V_STICK_DEFAULT:g}]")
+                          f"ball and LO stick [>= 0 and <= {V_STICK_MAX:g}; default {V_STICK_DEFAULT:g}]")
     run.add_argument("--max-impacts", metavar="N", default=MAX_IMPACTS_DEFAULT,
-                     help=f"stop after this many impacts [integer >= 1; default {MAX_IMPACTS_DEFAULT}]")
+                     help=f"stop after this many impacts (the run is then reported with status "
+                          f"max_impacts and regime unfinished) [integer >= 1 and <= "
+                          f"{MAX_IMPACTS_MAX}; default {MAX_IMPACTS_DEFAULT}]")
     p.allowed_values.update({
-        "--t-end": "a number > 0", "--t-transient": "a number >= 0 and < t-end",
-        "--rtol": "a number > 0 and < 1", "--v-stick": "a number >= 0",
-        "--max-impacts": "an integer >= 1",
+        "--t-end": f"a number > 0 and <= {T_END_MAX:g}",
+        "--t-transient": "a number >= 0 and < t-end",
+        "--rtol": f"a number >= {RTOL_MIN:g} and <= {RTOL_MAX:g}",
+        "--v-stick": f"a number >= 0 and <= {V_STICK_MAX:g}",
+        "--max-impacts": f"an integer >= 1 and <= {MAX_IMPACTS_MAX}",
     })
     p.add_argument("--json", action="store_true",
                    help="print one JSON object on stdout (keys: see the README)")
@@ -146,27 +166,12 @@ def _simulate_inputs(args: argparse.Namespace) -> dict:
     params = _model_params(args)
     settings = SolverSettings(t_end=args.t_end, t_transient=args.t_transient,
                               v_stick=args.v_stick,
-                              max_impacts=_int_like(args.max_impacts))
-    rtol = check_real("rtol", args.rtol, lo=0.0, lo_open=True, hi=1.0, hi_open=True)
+                              max_impacts=args.max_impacts)
+    rtol = check_real("rtol", args.rtol, lo=RTOL_MIN, hi=RTOL_MAX)   # as vines.simulate
     return dict(eta=params.eta, omega=params.omega, F=params.F, r=params.r, d=params.d,
                 phi=params.phi, t_end=settings.t_end, t_transient=settings.t_transient,
                 solver=args.solver, rtol=rtol, v_stick=settings.v_stick,
                 max_impacts=settings.max_impacts)
-
-
-def _int_like(value):
-    """Accept '2000000' and also '2e6' for integer options (validation happens later)."""
-    if isinstance(value, str):
-        try:
-            return int(value)
-        except ValueError:
-            try:
-                x = float(value)
-            except ValueError:
-                return value
-            if math.isfinite(x) and x.is_integer():
-                return int(x)
-    return value
 
 
 def _cmd_simulate(args: argparse.Namespace) -> int:
@@ -295,9 +300,14 @@ def _add_continue(subparsers) -> VinesArgumentParser:
         p.allowed_values[flag] = allowed
         p.add_argument(flag, metavar=flag.lstrip("-").upper(), required=True,
                        help=f"{help} [{allowed}]")
-    p.allowed_values["--step"] = "a number > 0"
+    p.allowed_values["--step"] = "a number > 0 with |stop - start|/step <= max-points"
     p.add_argument("--step", metavar="H", default=None,
-                   help="parameter step [> 0; default (stop - start)/100]")
+                   help="parameter step [> 0 and >= |stop - start|/max-points; "
+                        "default (stop - start)/100]")
+    p.allowed_values["--max-points"] = f"an integer >= 1 and <= {MAX_POINTS_MAX}"
+    p.add_argument("--max-points", metavar="N", default=MAX_POINTS_DEFAULT,
+                   help="refuse a step that needs more than N continuation points "
+                        f"[integer >= 1 and <= {MAX_POINTS_MAX}; default {MAX_POINTS_DEFAULT}]")
     _add_model_args(p, optional_group="model parameters (the two not continued are required)")
     p.add_argument("--json", action="store_true",
                    help="print one JSON object on stdout (keys: branch, events)")
@@ -307,6 +317,12 @@ def _add_continue(subparsers) -> VinesArgumentParser:
 
 def _cmd_continue(args: argparse.Namespace) -> int:
     sub = args._parser
+    given = getattr(args, args.param)
+    if given is not None:
+        others = " and ".join(f"--{q}" for q in _CONT_PARAMS if q != args.param)
+        sub.error(f"argument --{args.param}: invalid {args.param} = {given!r}: not allowed "
+                  f"with --param {args.param} (the continued parameter runs from --start to "
+                  f"--stop); give only {others}")
     others = [q for q in _CONT_PARAMS if q != args.param]
     missing = [f"--{q}" for q in others if getattr(args, q) is None]
     if missing:
@@ -325,15 +341,18 @@ def _cmd_continue(args: argparse.Namespace) -> int:
                 raise ParameterError(name, raw, f"{err.allowed} ({args.param})") from None
             raise
         values[name] = getattr(params, args.param)
+    max_points = check_int("max_points", args.max_points, lo=1, hi=MAX_POINTS_MAX)
     step = None
     if args.step is not None:
         step = check_real("step", args.step, lo=0.0, lo_open=True)
+        check_step_points(args.step, abs(values["stop"] - values["start"]), step, max_points,
+                          "--max-points")
     fixed = {q: getattr(params, q) for q in others}
     from .orbits.continuation import continue_branch
 
     with contextlib.redirect_stdout(sys.stderr):
         br = continue_branch(args.param, values["start"], values["stop"], step, fixed,
-                             r=params.r, d=params.d)
+                             r=params.r, d=params.d, max_points=max_points)
     d = br.to_dict()
     if args.json:
         out = {"branch": d["branch"], "events": d["events"], "param": args.param,

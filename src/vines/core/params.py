@@ -35,6 +35,35 @@ MAX_IMPACTS_DEFAULT = 2_000_000
 ROOT_TOL_DEFAULT = 1e-13
 RTOL_DEFAULT = 1e-12          # rtol of the RK reference solver
 
+# Upper bounds of every numeric input (API and CLI alike). Each is far beyond any legitimate
+# use (the solver is tested at eta 1e-6..50, omega 0.05..8, F 0..20, d 0..3, runs to 1e5) and
+# small enough that no intermediate of the closed form can overflow: the largest denominator
+# (1 - (1 + eta) omega^2)^2 + (d omega)^2 stays below 1e19, forcing-frequency products
+# F omega^2 below 1e10.
+ETA_MAX = 1e3                 # ball-to-LO mass ratio m/M
+OMEGA_MAX = 1e3               # forcing frequency ratio w/w0
+F_MAX = 1e4                   # forcing amplitude A/L
+D_MAX = 1e3                   # LO damping c/(M w0) (d = 2 is already critical damping)
+PHI_MAX = 1e3                 # |phi| in rad (a phase: reduce it mod 2 pi)
+T_END_MAX = 1e9               # dimensionless time (1.6e8 forcing periods at omega = 1)
+V_STICK_MAX = 1.0             # chatter threshold, in units of L w0
+MAX_IMPACTS_MAX = 100_000_000  # impact records cost ~150 bytes each
+STATE_MAX = 1e12              # |z_m0|, |v_m0|, |z_b0|, |v_b0| of the initial state
+RTOL_MIN, RTOL_MAX = 1e-14, 1e-2   # rtol of the RK reference solver
+MAX_POINTS_DEFAULT = 100_000  # continuation points a step may need (``continue_branch``) ...
+MAX_POINTS_MAX = 10_000_000   # ... and the largest max_points allowed
+
+#: (lo, lo_open, hi) of each model parameter: lo < x (lo_open) or lo <= x, and x <= hi;
+#: phi is bounded in absolute value
+PARAM_BOUNDS = {
+    "eta": (0.0, True, ETA_MAX),
+    "omega": (0.0, True, OMEGA_MAX),
+    "F": (0.0, False, F_MAX),
+    "r": (0.0, False, 1.0),
+    "d": (0.0, False, D_MAX),
+    "phi": (-PHI_MAX, False, PHI_MAX),
+}
+
 # Conditioning of the exact solver's closed form (see ``check_conditioning``).
 RESONANCE_SNAP = 16.0 * 2.220446049250313e-16   # d = 0, |1 - m omega^2| <= this: exact resonance
 MAX_GAIN = 1e4                                   # largest 1/|1 - m omega^2 + i d omega| for d > 0
@@ -81,7 +110,14 @@ def check_real(name, value, *, lo=None, hi=None, lo_open=False, hi_open=False) -
     return x
 
 
-def check_int(name, value, *, lo=None) -> int:
+def check_param(name: str, value) -> float:
+    """Validate one model parameter (a key of PARAM_BOUNDS) and return it as a float."""
+    lo, lo_open, hi = PARAM_BOUNDS[name]
+    return check_real(name, value, lo=lo, lo_open=lo_open, hi=hi)
+
+
+def check_int(name, value, *, lo=None, hi=None) -> int:
+    """Return ``value`` as an int (also '10', 2e6 or '2e6') or raise ParameterError naming ``name``."""
     if isinstance(value, bool):
         raise ParameterError(name, value, "must be an integer")
     try:
@@ -89,10 +125,34 @@ def check_int(name, value, *, lo=None) -> int:
         if x != float(value):
             raise ValueError
     except (TypeError, ValueError, OverflowError):
-        raise ParameterError(name, value, "must be an integer") from None
-    if lo is not None and x < lo:
-        raise ParameterError(name, value, f"must be an integer >= {lo}")
+        try:                                    # a float with an integral value ('2e6')
+            f = float(value)
+        except (TypeError, ValueError):
+            raise ParameterError(name, value, "must be an integer") from None
+        if not (math.isfinite(f) and f.is_integer()):
+            raise ParameterError(name, value, "must be an integer") from None
+        x = int(f)
+    if (lo is not None and x < lo) or (hi is not None and x > hi):
+        parts = ([f">= {lo}"] if lo is not None else []) + ([f"<= {hi}"] if hi is not None else [])
+        raise ParameterError(name, value, "must be an integer " + " and ".join(parts))
     return x
+
+
+def check_step_points(step_given, span: float, step: float, max_points: int,
+                      max_points_name: str = "max_points") -> None:
+    """Refuse a continuation step that needs more than ``max_points`` points.
+
+    ``span`` = |stop - start| and ``step`` > 0 (validated); ``step_given`` is the value as the
+    user wrote it (for the message). A relative slack of 1e-9 absorbs the round-off of
+    span/step (0.02/0.005 = 4.000000000000001).
+    """
+    n = span / step
+    if n > max_points * (1.0 + 1e-9):
+        raise ParameterError(
+            "step", step_given,
+            f"needs |stop - start|/step = {n:.3g} points > {max_points_name} = {max_points}: "
+            f"use a step >= {span / max_points:.6g} (or raise {max_points_name}, at most "
+            f"{MAX_POINTS_MAX})")
 
 
 def check_conditioning(eta: float, omega: float, F: float, d: float) -> None:
@@ -127,12 +187,12 @@ def check_conditioning(eta: float, omega: float, F: float, d: float) -> None:
 class ModelParams:
     """Dimensionless VINES parameters (validated on construction).
 
-    eta   ball-to-LO mass ratio m/M (> 0)
-    omega forcing frequency ratio omega = w/w0 (> 0)
-    F     forcing amplitude A/L (>= 0)
+    eta   ball-to-LO mass ratio m/M (0 < eta <= ETA_MAX = 1e3)
+    omega forcing frequency ratio omega = w/w0 (0 < omega <= OMEGA_MAX = 1e3)
+    F     forcing amplitude A/L (0 <= F <= F_MAX = 1e4)
     r     coefficient of restitution (0 <= r <= 1)
-    d     LO damping c/(M w0) (>= 0), fixed for every eta by default
-    phi   forcing phase at t = 0 [rad]
+    d     LO damping c/(M w0) (0 <= d <= D_MAX = 1e3), fixed for every eta by default
+    phi   forcing phase at t = 0 [rad] (|phi| <= PHI_MAX = 1e3)
     """
 
     eta: float
@@ -144,18 +204,14 @@ class ModelParams:
 
     def __post_init__(self):
         set_ = object.__setattr__
-        set_(self, "eta", check_real("eta", self.eta, lo=0.0, lo_open=True))
-        set_(self, "omega", check_real("omega", self.omega, lo=0.0, lo_open=True))
-        set_(self, "F", check_real("F", self.F, lo=0.0))
-        set_(self, "r", check_real("r", self.r, lo=0.0, hi=1.0))
-        set_(self, "d", check_real("d", self.d, lo=0.0))
-        set_(self, "phi", check_real("phi", self.phi))
+        for name in PARAM_BOUNDS:
+            set_(self, name, check_param(name, getattr(self, name)))
 
     @classmethod
     def from_xi(cls, eta, omega, F, xi, r=R_DEFAULT, phi=0.0) -> "ModelParams":
         """Paper's parameterisation with xi = c/(m w0) held fixed: d = eta * xi."""
-        eta = check_real("eta", eta, lo=0.0, lo_open=True)
-        xi = check_real("xi", xi, lo=0.0)
+        eta = check_param("eta", eta)
+        xi = check_real("xi", xi, lo=0.0, hi=D_MAX / eta)     # d = eta xi <= D_MAX
         return cls(eta=eta, omega=omega, F=F, r=r, d=eta * xi, phi=phi)
 
     @classmethod
@@ -191,16 +247,17 @@ class ModelParams:
 class SolverSettings:
     """Settings of one simulation run (validated on construction).
 
-    t_end        end of the run (dimensionless time)
-    t_transient  start of the measurement window [t_transient, t_end]
-    v_stick      chatter threshold: after an impact with |w'+| <= v_stick while the
+    t_end        end of the run (dimensionless time, 0 < t_end <= T_END_MAX = 1e9)
+    t_transient  start of the measurement window [t_transient, t_end] (0 <= t_transient < t_end)
+    v_stick      chatter threshold (0 <= v_stick <= V_STICK_MAX = 1): after an impact with |w'+| <= v_stick while the
                  relative acceleration presses the ball on the wall, ball and LO stick
                  (the exact solver also sticks below the speed of a bounce only a few
                  round-off units high, see ``vines._engine``)
     max_impacts  guard: the run stops with status "max_impacts" after this many impacts
+                 (1 <= max_impacts <= MAX_IMPACTS_MAX = 1e8)
     root_tol     distance to the wall (in units of L) at which contact is declared (or
                  the round-off level of w when larger)
-    state0       initial (z_m, z_m', z_b, z_b') at t = 0, |z_m - z_b| <= 1
+    state0       initial (z_m, z_m', z_b, z_b') at t = 0, |z_m - z_b| <= 1, each |.| <= 1e12
     """
 
     t_end: float = T_END_DEFAULT
@@ -212,15 +269,16 @@ class SolverSettings:
 
     def __post_init__(self):
         set_ = object.__setattr__
-        t_end = check_real("t_end", self.t_end, lo=0.0, lo_open=True)
+        t_end = check_real("t_end", self.t_end, lo=0.0, lo_open=True, hi=T_END_MAX)
         set_(self, "t_end", t_end)
         tt = check_real("t_transient", self.t_transient, lo=0.0)
         if tt >= t_end:
             raise ParameterError("t_transient", self.t_transient,
                                  f"must be >= 0 and < t_end = {t_end:g}")
         set_(self, "t_transient", tt)
-        set_(self, "v_stick", check_real("v_stick", self.v_stick, lo=0.0))
-        set_(self, "max_impacts", check_int("max_impacts", self.max_impacts, lo=1))
+        set_(self, "v_stick", check_real("v_stick", self.v_stick, lo=0.0, hi=V_STICK_MAX))
+        set_(self, "max_impacts", check_int("max_impacts", self.max_impacts, lo=1,
+                                            hi=MAX_IMPACTS_MAX))
         set_(self, "root_tol", check_real("root_tol", self.root_tol, lo=0.0, lo_open=True,
                                           hi=1e-3))
         try:
@@ -230,7 +288,7 @@ class SolverSettings:
         if len(s0) != 4:
             raise ParameterError("state0", self.state0, "must be 4 numbers (z_m, z_m', z_b, z_b')")
         names = ("z_m0", "v_m0", "z_b0", "v_b0")
-        s0 = tuple(check_real(n, v) for n, v in zip(names, s0))
+        s0 = tuple(check_real(n, v, lo=-STATE_MAX, hi=STATE_MAX) for n, v in zip(names, s0))
         if abs(s0[0] - s0[2]) > 1.0:
             raise ParameterError("state0", self.state0, "needs |z_m0 - z_b0| <= 1 (ball inside the cavity)")
         set_(self, "state0", s0)

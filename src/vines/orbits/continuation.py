@@ -27,7 +27,9 @@ import numpy as np
 
 from ..core.exact import oscillators
 from ..core.walls import WALL_L, WALL_R
-from ..core.params import PARAM_NAMES, D_DEFAULT, R_DEFAULT, ModelParams, ParameterError, check_real
+from ..core.params import (MAX_POINTS_DEFAULT, MAX_POINTS_MAX, PARAM_NAMES, D_DEFAULT,
+                           R_DEFAULT, ModelParams, ParameterError, check_int, check_param,
+                           check_real, check_step_points)
 from .periodic import PeriodicOrbit, find_1to1, solve_orbit
 
 PARAMS = PARAM_NAMES
@@ -143,27 +145,45 @@ def _interp(v, va, oa, vb, ob):
 
 def continue_branch(param: str, start, stop, step=None, fixed: dict | None = None,
                     orbit: PeriodicOrbit | None = None, r=R_DEFAULT, d=D_DEFAULT, phi=0.0,
-                    min_step=1e-6, event_tol=1e-6) -> Branch:
+                    min_step=1e-6, event_tol=1e-6,
+                    max_points=MAX_POINTS_DEFAULT) -> Branch:
     """Follow a 1:1 orbit from param = start to stop (both included when reached).
 
-    ``fixed`` gives the two other parameters of eta/omega/F. ``orbit`` is the starting orbit
-    (default: the preferred orbit of ``find_1to1`` at start: stable and admissible first).
-    ``step`` defaults to (stop - start)/100; its sign is taken from stop - start.
+    ``fixed`` gives the two other parameters of eta/omega/F (not ``param`` itself).
+    ``orbit`` is the starting orbit (default: the preferred orbit of ``find_1to1`` at start:
+    stable and admissible first). ``step`` defaults to (stop - start)/100; its sign is taken
+    from stop - start. A step that needs more than ``max_points`` points (|stop - start|/step
+    > max_points, default 100000, at most 1e7) is refused; ``min_step`` and ``event_tol``
+    lie in [1e-12, 1].
     """
-    if param not in PARAMS:
+    if not isinstance(param, str) or param not in PARAMS:
         raise ParameterError("param", param, "must be one of eta, omega, F")
     fixed = dict(fixed or {})
+    if param in fixed:
+        raise ParameterError(param, fixed[param],
+                             f"must not be fixed when continuing in {param} (it runs from "
+                             f"start to stop; fix only {' and '.join(q for q in PARAMS if q != param)})")
     others = [q for q in PARAMS if q != param]
     for q in others:
         if q not in fixed:
             raise ParameterError(q, None, f"is required when continuing in {param}")
-    start = check_real(param, start)
-    stop = check_real("stop", stop)
+    unknown = sorted(set(fixed) - set(others))
+    if unknown:
+        raise ParameterError("fixed", unknown[0], f"is not a parameter; fix only {' and '.join(others)}")
+    start = check_param(param, start)
+    try:
+        stop = check_param(param, stop)
+    except ParameterError as err:
+        raise ParameterError("stop", stop, f"{err.allowed} ({param})") from None
+    max_points = check_int("max_points", max_points, lo=1, hi=MAX_POINTS_MAX)
+    min_step = check_real("min_step", min_step, lo=1e-12, hi=1.0)
+    event_tol = check_real("event_tol", event_tol, lo=1e-12, hi=1.0)
     if step is None:
         step = (stop - start) / 100.0 if stop != start else 1.0
     step = abs(check_real("step", step))
     if step == 0.0:
         raise ParameterError("step", step, "must be a number != 0")
+    check_step_points(step, abs(stop - start), step, max_points)
     sign = 1.0 if stop >= start else -1.0
     cont = _Continuer(param, {q: fixed[q] for q in others}, r, d, phi)
     p0 = cont.params(start)                 # validates every parameter
