@@ -68,11 +68,11 @@ def _check_t_end(key: str, t_end, limits: dict) -> None:
 
 
 def _check_settings(key: str, settings: dict, limits: dict) -> None:
+    _check_t_end(f"{key}.t_end", settings["t_end"], limits)
     try:
         SolverSettings(**settings)
     except ParameterError as err:
         raise ConfigError(f"{key}.{err.name}", f"{err.value!r}: {err.allowed}") from None
-    _check_t_end(f"{key}.t_end", settings["t_end"], limits)
 
 
 def _check_point(key: str, point: dict, model: dict) -> None:
