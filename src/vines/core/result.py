@@ -56,7 +56,8 @@ class SimulationResult:
     xmax, xmax_m    max |z_m| over the window, dimensionless and in metres (x L)
     xmax_whole_run(_m)  the same over the whole run [0, t_end]
     n_impacts       impacts in the whole run; impacts_per_period: in the window per T
-    regime          "1:1", "2:2", "2:1", "period-p", "chatter", "irregular", "no-impact"
+    regime          "1:1", "2:2", "2:1", "period-p", "chatter", "irregular", "no-impact";
+                    "unfinished" (stopped at max_impacts), "failed" (solver stalled)
     t_stuck         time spent stuck (ball and LO moving as one body) in the window
     impacts         structured array (t, z_m, v_m, z_b, v_b, wall), pre-impact values
     status          "ok", or why the run stopped early ("max_impacts", ...)
