@@ -1,6 +1,11 @@
 # work-precision: error against cost of the exact and the RK solvers on the cases of
 # `work_precision.cases` (one job per case), measured against the high-precision reference
-# (vines.reference.hiprec). The job takes all cores so that no other job disturbs its timings.
+# (vines.reference.hiprec). The job takes all cores so that no other job disturbs its timings:
+# the N of `-c N` (`-c all`: every core of the machine). Commands without a core count
+# (`--report`, `--lint`, `--profile profiles/slurm` before it set `cores:`) read no
+# `workflow.cores` (it raises there) and give 1 thread; they never run the job locally, and on
+# a cluster the profile's `set-threads` replaces this value. A callable: read per job, not
+# while the workflow is parsed.
 
 
 rule work_precision:
@@ -12,7 +17,7 @@ rule work_precision:
         model=MODEL,
         v_stick=SIMULATION["v_stick"],
         code=CODE_STUDY,
-    threads: workflow.cores
+    threads: lambda wildcards: workflow.resource_settings.cores or 1
     conda:
         "../envs/vines.yaml"
     log:

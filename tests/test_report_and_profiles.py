@@ -1,0 +1,97 @@
+"""`snakemake --report` and the SLURM profile (no SLURM needed).
+
+`work_precision` takes every core of a local run; commands without a core count (--report,
+--profile profiles/slurm) must still parse. Runs on a copy of the workflow in tmp_path (the
+helpers of tests/test_pipeline.py), never in results/.
+"""
+import re
+import shutil
+import subprocess
+
+import pytest
+
+from test_pipeline import ROOT, SNAKEMAKE, TINY, _copy_workflow, _smk, needs_snakemake
+
+# one figure (fig2) and one tiny work-precision case: the report holds their captions
+REPORT_CFG = dict(
+    TINY, run="report", grids={"fig2_F0.05": {"axes": {"eta": [0.05, 0.1]},
+                                              "fixed": {"omega": 1.0, "F": 0.05}}},
+    sweeps={}, timehistories={},
+    work_precision={"cases": {"tiny": {"eta": 0.05, "omega": 1.0, "F": 0.05, "t_end": 20.0,
+                                       "t_transient": 10.0}},
+                    "root_tols": [1e-9], "rk_methods": ["RK45"], "rtols": [1e-6],
+                    "min_time": 0.001, "dps": 20})
+
+
+def _threads(out: str, rule: str) -> set:
+    """Thread counts a dry-run prints for the jobs of `rule` (1 is not printed)."""
+    blocks = re.findall(rf"\nrule {rule}:\n(.*?)(?:\n\n|\Z)", out, re.S)
+    assert blocks, out
+    return {int(m.group(1)) if (m := re.search(r"threads: (\d+)", b)) else 1 for b in blocks}
+
+
+def _copy_with_profiles(dst):
+    _copy_workflow(dst)
+    shutil.copytree(ROOT / "profiles", dst / "profiles")
+
+
+def _run(cwd, *args):
+    return subprocess.run([SNAKEMAKE, "--directory", str(cwd), "--snakefile",
+                           str(cwd / "Snakefile"), *args],
+                          capture_output=True, text=True, cwd=cwd, timeout=600)
+
+
+@needs_snakemake
+def test_work_precision_takes_the_cores_of_a_local_run(tmp_path):
+    _copy_workflow(tmp_path)
+    smoke = str(tmp_path / "config" / "smoke.yaml")
+    r = _smk(tmp_path, "-n", "--configfile", smoke)               # _smk runs with -c2
+    assert _threads(r.stdout, "work_precision") == {2}
+    r = _run(tmp_path, "-n", "-c1", "--configfile", smoke)
+    assert r.returncode == 0, r.stderr
+    assert _threads(r.stdout, "work_precision") == {1}
+
+
+@needs_snakemake
+def test_profile_dry_run_without_cores(tmp_path):
+    """`--profile profiles/slurm` needs no -c; here with the local executor (no plugin)."""
+    _copy_with_profiles(tmp_path)
+    smoke = str(tmp_path / "config" / "smoke.yaml")
+    r = _run(tmp_path, "-n", "--profile", str(tmp_path / "profiles" / "slurm"),
+             "--executor", "local", "--configfile", smoke)
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert _threads(r.stdout, "work_precision") == {8}            # profile set-threads
+    assert _threads(r.stdout, "simulate_grid") == {8}
+
+
+@needs_snakemake
+def test_slurm_profile_dry_run(tmp_path):
+    pytest.importorskip("snakemake_executor_plugin_slurm")
+    _copy_with_profiles(tmp_path)
+    smoke = str(tmp_path / "config" / "smoke.yaml")
+    profile = str(tmp_path / "profiles" / "slurm")
+    r = _run(tmp_path, "-n", "--profile", profile, "--configfile", smoke)
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert _threads(r.stdout, "work_precision") == {8}
+    # --cores caps every job (a small node), as in tests/slurm/run_single_node.sh
+    r = _run(tmp_path, "-n", "--profile", profile, "--cores", "2",
+             "--slurm-status-command", "squeue", "--configfile", smoke)
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert _threads(r.stdout, "work_precision") == {2}
+    assert _threads(r.stdout, "simulate_grid") == {2}
+
+
+@needs_snakemake
+def test_report_of_a_finished_run(tmp_path):
+    _copy_workflow(tmp_path)
+    _smk(tmp_path, cfg=REPORT_CFG)
+    assert (tmp_path / "results" / "report" / "figures" / "workprecision.png").exists()
+    report = tmp_path / "report.html"
+    # exactly the README's command: no -c
+    r = _run(tmp_path, "--report", str(report), "--configfile", str(tmp_path / "cfg.yaml"))
+    assert r.returncode == 0, r.stdout + r.stderr
+    html = report.read_text()
+    # the captions state the run's initial condition and window from its config
+    assert "from rest" in html
+    assert "[t_transient, t_end] = [60.0, 120.0]" in html                   # fig2
+    assert "[t_transient, t_end] = [10.0, 20.0]" in html                    # work precision
