@@ -9,8 +9,8 @@ import sys
 # code versions below are hashes of exactly the sources that run.
 _SRC = os.path.join(workflow.basedir, "src")
 sys.path.insert(0, _SRC)
-os.environ["PYTHONPATH"] = os.pathsep.join(
-    [_SRC] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p and p != _SRC])
+os.environ.update(PYTHONPATH=os.pathsep.join(
+    [_SRC] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p and p != _SRC]))
 
 from vines.core.params import D_DEFAULT
 from vines.data.netcdf import unreadable_datasets

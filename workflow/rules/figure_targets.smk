@@ -87,3 +87,25 @@ def all_figures():
 
 def all_targets():
     return all_datasets() + all_figures()
+
+
+# The rules are defined in a function called in a loop: a rule's script path is evaluated
+# again when its job runs, so it must bind the figure of its own call (a bare loop variable
+# would give every rule the last figure's script).
+def figure_rule_for(fig):
+
+    rule:
+        name:
+            figure_rule(fig)
+        input:
+            **FIG_INPUTS[fig],
+        output:
+            **fig_out(fig),
+        params:
+            code=CODE_FIGURES,
+        log:
+            f"{RES}/logs/figures/{fig}.log",
+        conda:
+            "../envs/vines.yaml"
+        script:
+            f"../scripts/figures/{figure_script(fig)}.py"

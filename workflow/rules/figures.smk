@@ -17,27 +17,6 @@ rule figures:
         all_figures(),
 
 
-# The rules are defined in a function called in a loop: a rule's script path is evaluated
-# again when its job runs, so it must bind the figure of its own call (a bare loop variable
-# would give every rule the last figure's script).
-def _figure_rule(fig):
-
-    rule:
-        name:
-            figure_rule(fig)
-        input:
-            **FIG_INPUTS[fig],
-        output:
-            **fig_out(fig),
-        params:
-            code=CODE_FIGURES,
-        log:
-            f"{RES}/logs/figures/{fig}.log",
-        conda:
-            "../envs/vines.yaml"
-        script:
-            f"../scripts/figures/{figure_script(fig)}.py"
-
-
+# One rule per figure (``figure_rule_for`` in figure_targets.smk binds each its own script).
 for _fig in FIG_INPUTS:
-    _figure_rule(_fig)
+    figure_rule_for(_fig)
