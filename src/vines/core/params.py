@@ -13,6 +13,7 @@ Conventions (see docs/model.md and the spec):
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import asdict, dataclass, field
 
 #: the parameters a study varies, in the order of grid dimensions
@@ -93,6 +94,16 @@ def check_int(name, value, *, lo=None) -> int:
     if lo is not None and x < lo:
         raise ParameterError(name, value, f"must be an integer >= {lo}")
     return x
+
+
+def check_bool(name, value) -> bool:
+    """True or False (also numpy booleans and the integers 0 and 1); else ParameterError."""
+    numpy_bool = getattr(getattr(value, "dtype", None), "kind", "") == "b" \
+        and getattr(value, "ndim", 1) == 0
+    if isinstance(value, bool) or numpy_bool or (
+            isinstance(value, numbers.Integral) and value in (0, 1)):
+        return bool(value)
+    raise ParameterError(name, value, "must be true or false")
 
 
 def check_conditioning(eta: float, omega: float, F: float, d: float) -> None:
