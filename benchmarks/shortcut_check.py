@@ -48,6 +48,11 @@ def compare(a: dict, b: dict) -> dict:
         "impacts_per_period": float(np.max(np.abs(a["impacts_per_period"]
                                                   - b["impacts_per_period"]), initial=0.0)),
         "regime_mismatch": int(np.sum(a["regime"] != b["regime"])),
+        "xmax_whole_run_rel": float(np.max(np.abs(a["xmax_whole_run"] - b["xmax_whole_run"])
+                                           / np.maximum(b["xmax_whole_run"], 1e-300),
+                                           initial=0.0)),
+        "n_impacts_mismatch": int(np.sum(a["n_impacts"] != b["n_impacts"])),
+        "t_stuck": float(np.max(np.abs(a["t_stuck"] - b["t_stuck"]), initial=0.0)),
         "status_mismatch": int(np.sum(a["status"] != b["status"])),
         "not_ok": int(np.sum(~ok)),
         "shortcut_taken": int(np.sum(np.isfinite(a["shortcut_time"]))),

@@ -147,7 +147,29 @@ def test_drifting_ball_is_never_periodic():
     assert math.isnan(a.shortcut_time) and a.n_impacts == 0
     assert a.ke_ratio == b.ke_ratio > 0.0
     rest = vines.simulate(0.1, 1.0, F=0.0, t_end=3000.0, t_transient=1000.0)
-    assert rest.shortcut_time < 100.0 and rest.ke_ratio == 0.0 and rest.xmax == 0.0
+    assert rest.shortcut_time == 1000.0 and rest.ke_ratio == 0.0 and rest.xmax == 0.0
+
+
+@pytest.mark.parametrize("t_transient", [4000.0, 100.0])
+def test_ball_at_rest_out_of_reach(t_transient):
+    """No impact ever (W = 0.7, F = 0.1): the flight up to t_transient is one closed form;
+    with t_transient = 100 the transient there is too large and the run goes on until the
+    section detects the orbit inside the window."""
+    kw = dict(t_end=7000.0, t_transient=t_transient)
+    a = vines.simulate(0.3, 0.7, 0.1, **kw)
+    b = vines.simulate(0.3, 0.7, 0.1, periodic_shortcut=False, **kw)
+    assert a.n_impacts == b.n_impacts == 0
+    if t_transient == 4000.0:
+        assert a.shortcut_time == 4000.0
+    else:
+        assert 3000.0 < a.shortcut_time < 6000.0
+    _agree(a, b)
+    assert a.xmax_whole_run == b.xmax_whole_run
+    t = np.linspace(0.0, 7000.0, 30001)
+    sa, sb = a.state_at(t), b.state_at(t)
+    early = t <= a.shortcut_time
+    assert np.array_equal(sa[:, early], sb[:, early])
+    assert np.max(np.abs(sa - sb)) <= 1e-10 * np.max(np.abs(sb))
 
 
 def test_sweep_with_and_without_shortcut():

@@ -145,15 +145,21 @@ def _run_with_shortcut(run: KernelRun) -> RawRun:
     det = sc.new_detector(p.period, st.t_transient, float(run.cur[0]), st.t_end)
     sec = np.full(eng.N_SEC, math.nan)
     sec[eng.S_TREACHED] = -math.inf
+    hist, dr, ist, fst = det
     while True:
         rc = run.run(sc.run_detect, sec, *det)
-        if rc != sc.RC_PERIODIC:
+        if rc == sc.RC_PERIODIC:
+            orbit = _detected_orbit(run, det)
+        elif rc == sc.RC_AT_REST:
+            orbit = _orbit_at_rest(run, sec)
+        else:
             return run.raw(rc)
-        orbit = _confirmed_orbit(run, det)
         if orbit is not None:
             return _periodic_raw(run, sec, orbit)
-        hist, dr, ist, fst = det
-        ist[1, ist[0, sc.I_FOUND]] = ist[0, sc.I_K]     # start counting returns anew
+        if rc == sc.RC_AT_REST:
+            ist[0, sc.I_REST] = 0
+        else:
+            ist[1, ist[0, sc.I_FOUND]] = ist[0, sc.I_K]     # count returns anew
 
 
 class _Orbit:
@@ -164,9 +170,9 @@ class _Orbit:
         self.t_s, self.x_s, self.mode, self.pp, self.P, self.one = t_s, x_s, mode, pp, P, one
 
 
-def _confirmed_orbit(run: KernelRun, det) -> _Orbit | None:
-    """Integrate one period from the detected section and check that it returns to the
-    same state (SEC_TOL) with the same events; None if not (or if it would not pay)."""
+def _detected_orbit(run: KernelRun, det) -> _Orbit | None:
+    """The orbit found by ``run_detect`` at its last section, confirmed (``_confirm``);
+    None if not confirmed or if it would not pay (then no further detection)."""
     p, st = run.p, run.st
     hist, dr, ist, fst = det
     pp, k = int(ist[0, sc.I_FOUND]), int(ist[0, sc.I_K]) - 1
@@ -179,6 +185,25 @@ def _confirmed_orbit(run: KernelRun, det) -> _Orbit | None:
         fst[0, sc.F_TSTOP] = -math.inf          # no shortcut for this run
         return None
     x_s, mode = hist[row, sc.H_X:sc.H_X + 4].copy(), int(hist[row, sc.H_MODE])
+    return _confirm(run, t_s, x_s, mode, pp, per)
+
+
+def _orbit_at_rest(run: KernelRun, sec: np.ndarray) -> _Orbit | None:
+    """``shortcut.at_rest``: the run is the snapshot segment up to t_transient (its closed
+    form there is the kernel's state, bit for bit), then periodic with period T and no
+    events, to ERR_TOL; confirmed like any orbit."""
+    p, st = run.p, run.st
+    t_s = st.t_transient
+    x_s = np.array(sc.section_state(*run.osc, p.omega, p.phi, sec, t_s))
+    return _confirm(run, t_s, x_s, eng.MODE_FREE, 1, np.zeros(4))
+
+
+def _confirm(run: KernelRun, t_s, x_s, mode, pp, per) -> _Orbit | None:
+    """Integrate one period pp T from (x_s, mode) at t_s; the orbit if it returns to x_s
+    (SEC_TOL) with the events ``per`` (impacts, on L, stick starts, time stuck), else
+    None."""
+    p, st = run.p, run.st
+    P = pp * p.period
     one = KernelRun(p, st, run.osc, x_s, t_s, t_s + P, t_s, t_s, mode)
     if one.run() != eng.RC_DONE:
         return None

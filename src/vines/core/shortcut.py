@@ -38,8 +38,8 @@ import math
 import numpy as np
 from numba import njit
 
-from .flow import flow, v2_integral
-from .kernel import (MODE_FREE, RC_PAUSED, S_MODE, S_NIMP, S_NIMP_L, S_NSTICK, S_T0,
+from .flow import I_D, I_NRES, I_OM, I_PAMP, I_RES, flow, v2_integral
+from .kernel import (A_XMAX_ALL, MODE_FREE, RC_PAUSED, S_MODE, S_NIMP, S_NIMP_L, S_NSTICK, S_T0,
                      S_TREACHED, S_TSTUCK_ALL, S_VB, S_VM, S_ZB, S_ZM, run_kernel_until)
 from .regime import MAX_PERIOD
 
@@ -63,6 +63,7 @@ FAR = 1e-3
 SKIP = 32
 
 RC_PERIODIC = 5   # run_detect: a periodic orbit was detected (kernel.RC_* otherwise)
+RC_AT_REST = 6    # run_detect: the ball rests out of the LO's reach until t_end
 
 # hist columns (one row per section, ring buffer of H_ROWS rows)
 H_X, H_MODE, H_NIMP, H_NIMP_L, H_NSTICK, H_TSTUCK, H_T, H_VALID = 0, 4, 5, 6, 7, 8, 9, 10
@@ -70,10 +71,10 @@ N_HIST = 11
 H_ROWS = P_MAX + 2
 # ist: row 0 = (section count k, index j of the next section t_tr + j T, period found,
 # p_max, n_confirm, k of the first section after the last skip, consecutive far
-# sections); row 1 = first index of the current run of agreeing returns per p;
+# sections, 1 while the at-rest test is on); row 1 = first index of the current run of agreeing returns per p;
 # row 2 = index of the reference difference per p. fst: row 0 = (T, t_transient, t_stop,
 # sec_tol, err_tol, decay_ref); row 1 = reference difference per p.
-I_K, I_J, I_FOUND, I_PMAX, I_NCONF, I_KSTART, I_NFAR = range(7)
+I_K, I_J, I_FOUND, I_PMAX, I_NCONF, I_KSTART, I_NFAR, I_REST = range(8)
 F_T, F_TTR, F_TSTOP, F_SECTOL, F_ERRTOL, F_REF, F_FAR = range(7)
 
 
@@ -90,6 +91,7 @@ def new_detector(T: float, t_transient: float, t_start: float, t_end: float,
     ist[0, I_J] = math.floor((t_start - t_transient) / T) + 1
     ist[0, I_PMAX] = min(int(p_max), P_MAX)
     ist[0, I_NCONF] = N_CONFIRM
+    ist[0, I_REST] = 1
     ist[2, :] = -1
     fst[0, F_T], fst[0, F_TTR] = T, t_transient
     fst[0, F_TSTOP] = t_end - END_MARGIN * T
@@ -232,15 +234,47 @@ def observe(hist, dr, ist, fst, x, mode, mask):
 
 
 @njit(cache=True, nogil=True, inline="always")
-def _pending_sections(osc_f, osc_s, omega, phi, sec, hist, dr, ist, fst, x, counts):
+def at_rest(osc_f, omega, phi, sec, t_k, t_tr, xmax_so_far, err_tol):
+    """Ball at rest out of reach: 1 when, from the free segment ``sec`` at t_k < t_tr with
+    z_b' = 0, the LO can never reach a wall (|z_b| + max |z_m| < 1 for all later times, by
+    the energy bound of ``flow``: damped, non-resonant form), |z_m| never again exceeds
+    ``xmax_so_far``, and at t_tr the decaying homogeneous part is at most err_tol relative
+    to the state. Then the run until t_transient is this one segment (the kernel's state
+    at t_tr is its closed form) and from there periodic to err_tol. 0: not yet (the
+    bounds may hold at a later section); -1: never (undamped, or transient too large at
+    t_tr)."""
+    if osc_f[I_RES] > 0.5 or osc_f[I_NRES] > 0.5 or not osc_f[I_D] > 0.0:
+        return -1
+    th0 = omega * sec[S_T0] + phi
+    sth0, cth0 = math.sin(th0), math.cos(th0)
+    z, v, _, _, b1 = flow(osc_f, sec[S_ZM], sec[S_VM], sth0, cth0, t_k - sec[S_T0])
+    zmax = b1 / osc_f[I_OM] + osc_f[I_PAMP]          # bound on |z_m| from t_k on
+    if abs(sec[S_ZB]) + zmax >= 1.0 - 1e-9 or xmax_so_far < zmax:
+        return 0
+    z, v, _, _, b1 = flow(osc_f, sec[S_ZM], sec[S_VM], sth0, cth0, t_tr - sec[S_T0])
+    h = b1 * max(1.0, 1.0 / osc_f[I_OM])             # bound on |z_h|, |z_h'| at t_tr
+    return 1 if h <= err_tol * max(abs(z), abs(v)) else -1
+
+
+@njit(cache=True, nogil=True, inline="always")
+def _pending_sections(osc_f, osc_s, omega, phi, sec, hist, dr, ist, fst, x, counts,
+                      xmax_so_far):
     """Observe every section time the snapshot segment has reached; returns the period
-    found (the section is then hist row (ist[0, I_K] - 1) % H) or 0. x, counts: work
-    arrays of 4."""
+    found (the section is then hist row (ist[0, I_K] - 1) % H), -1 when the ball rests out
+    of reach (``at_rest``), or 0. x, counts: work arrays of 4."""
     while True:
         t_k = fst[0, F_TTR] + ist[0, I_J] * fst[0, F_T]
         if t_k > sec[S_TREACHED] or t_k > fst[0, F_TSTOP]:
             return 0
         mode = int(sec[S_MODE])
+        if ist[0, I_REST] == 1 and mode == MODE_FREE and sec[S_VB] == 0.0 \
+                and t_k < fst[0, F_TTR]:
+            rest = at_rest(osc_f, omega, phi, sec, t_k, fst[0, F_TTR], xmax_so_far,
+                           fst[0, F_ERRTOL])
+            if rest == 1:
+                return -1
+            if rest == -1:
+                ist[0, I_REST] = 0
         counts[0], counts[1], counts[2] = sec[S_NIMP], sec[S_NIMP_L], sec[S_NSTICK]
         counts[3] = sec[S_TSTUCK_ALL] + (t_k - sec[S_T0] if mode != MODE_FREE else 0.0)
         k = ist[0, I_K]
@@ -268,12 +302,17 @@ def run_detect(osc_f, osc_s, eta, r, omega, phi, t_end, t_tr, v_stick, root_tol,
                max_impacts, record_from, cur, acc, cnt, imp, seg, sec, hist, dr, ist, fst):
     """Run the kernel section by section until a periodic orbit is detected (RC_PERIODIC,
     period in ist[0, I_FOUND], the kernel paused inside the segment ``sec``) or the kernel
-    returns (RC_DONE, RC_BUFFER_FULL, ...). Resumable: call again to continue."""
+    returns (RC_DONE, RC_BUFFER_FULL, ...); RC_AT_REST when the ball rests out of the LO's
+    reach (``at_rest``). Resumable: call again to continue."""
     x = np.empty(4)
     counts = np.empty(4)
     while True:
-        if _pending_sections(osc_f, osc_s, omega, phi, sec, hist, dr, ist, fst, x, counts) > 0:
+        found = _pending_sections(osc_f, osc_s, omega, phi, sec, hist, dr, ist, fst, x,
+                                  counts, acc[A_XMAX_ALL])
+        if found > 0:
             return RC_PERIODIC
+        if found < 0:
+            return RC_AT_REST
         t_next = fst[0, F_TTR] + ist[0, I_J] * fst[0, F_T]
         t_pause = t_next if t_next <= fst[0, F_TSTOP] else math.inf
         rc = run_kernel_until(osc_f, osc_s, eta, r, omega, phi, t_end, t_tr, v_stick,
