@@ -29,8 +29,9 @@ def sweep_point(params: ModelParams, state, t_run: float, n_record: int, v_stick
     """One point of a sweep: run ``params`` for ``t_run`` from ``state`` (z_m, z_m', z_b,
     z_b'), recording the impacts of the last ``n_record`` forcing periods.
 
-    Returns (raw, next_state, theta): the RawRun, the state to start the next point from
-    (rest if this run failed) and the forcing phase omega t + phi reached.
+    Returns (raw, settings, next_state, theta): the RawRun and its SolverSettings, the
+    state to start the next point from (rest if this run failed) and the forcing phase
+    omega t + phi reached.
     """
     p = params
     t_record = n_record * p.period
@@ -42,7 +43,7 @@ def sweep_point(params: ModelParams, state, t_run: float, n_record: int, v_stick
     nxt = (float(fs[0]), float(fs[1]), float(fs[2]), float(fs[3]))
     if raw.status != "ok" or not np.all(np.isfinite(fs)):
         nxt = (0.0, 0.0, 0.0, 0.0)
-    return raw, nxt, p.omega * raw.t_last + p.phi
+    return raw, st, nxt, p.omega * raw.t_last + p.phi
 
 
 def bifurcation_sweep(param, values, *, eta=None, omega=None, F=None, r=R_DEFAULT, d=D_DEFAULT,
@@ -82,8 +83,8 @@ def bifurcation_sweep(param, values, *, eta=None, omega=None, F=None, r=R_DEFAUL
         p = ModelParams(eta=kw["eta"], omega=kw["omega"], F=kw["F"], r=r, d=d,
                         phi=math.fmod(theta, 2.0 * math.pi))
         t_run = (t_settle if k == 0 else t_step) + n_record * p.period
-        raw, state, theta = sweep_point(p, state, t_run, n_record, v_stick,
-                                        max_impacts_per_period, shortcut)
+        raw, _, state, theta = sweep_point(p, state, t_run, n_record, v_stick,
+                                           max_impacts_per_period, shortcut)
         imp = raw.impacts
         dws.append(imp["v_m"] - imp["v_b"])
         phases.append(np.mod(p.omega * imp["t"] + p.phi, 2.0 * math.pi))
