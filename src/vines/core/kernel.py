@@ -47,6 +47,11 @@ flight: ``free_step_local`` / ``free_contact``; stuck: the same rules on the con
 ``_close_segment`` adds the segment's integrals, and ``_impact``, ``_start_sticking`` or
 ``_start_release`` start the next segment. Times are dimensionless (t, local time s = t - t0), the
 forcing phase is omega t + phi, positions are in units of the half-clearance L.
+
+Pauses (``run_kernel_until``, used by the periodic shortcut's section-by-section driver):
+the run returns once it reaches t_pause, before a step inside a segment (the step state is
+kept in ``acc``) or after the event closing the segment that holds t_pause, with a snapshot
+of that segment in ``sec``; resuming gives the numbers of an uninterrupted run, bit for bit.
 """
 from __future__ import annotations
 
