@@ -140,7 +140,8 @@ def run_exact(params: ModelParams, settings: SolverSettings, record_from: float 
 
 def _run_with_shortcut(run: KernelRun) -> RawRun:
     """Run with section-by-section detection (``shortcut.run_detect``); on a confirmed
-    periodic orbit, complete the run from one period of it (``_periodic_raw``)."""
+    periodic orbit (or a ball at rest out of reach: ``_orbit_at_rest``), complete the run
+    from one period of it (``_periodic_raw``). A rejected candidate lets the run go on."""
     p, st = run.p, run.st
     det = sc.new_detector(p.period, st.t_transient, float(run.cur[0]), st.t_end)
     sec = np.full(eng.N_SEC, math.nan)
