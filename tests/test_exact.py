@@ -161,7 +161,7 @@ def test_batch_matches_single_runs_and_thread_count():
     b1 = vines.simulate_batch(eta, omega, F, n_threads=1, **kw)
     b2 = vines.simulate_batch(eta, omega, F, n_threads=2, **kw)
     for k in b1:
-        assert np.array_equal(b1[k], b2[k]), k
+        np.testing.assert_array_equal(b1[k], b2[k], err_msg=k)   # NaN == NaN
     for i in range(3):
         r = vines.simulate(eta[i], omega[i], F[i], **kw)
         assert b1["ke_ratio"][i] == r.ke_ratio

@@ -48,7 +48,8 @@ def test_config_files_validate_and_fill_defaults():
         assert cfg["model"]["r"] == 0.65
     full = _validated(yaml.safe_load((ROOT / "config" / "config.yaml").read_text()))
     assert full["simulation"] == {"t_end": 7000.0, "t_transient": 4000.0, "v_stick": 1e-6,
-                                  "max_impacts": 2000000, "root_tol": 1e-13}
+                                  "max_impacts": 2000000, "root_tol": 1e-13,
+                                  "periodic_shortcut": True}
     ax = grid_axes(full["grids"]["fig7_W1"])
     assert 0.3077 in ax["F"].tolist() and 0.4 in ax["F"].tolist()
     assert ax["eta"].max() == 1.0 and ax["F"].max() == 0.5

@@ -148,6 +148,11 @@ def _add_simulate(subparsers) -> VinesArgumentParser:
                      help=f"stop after this many impacts (the run is then reported with status "
                           f"max_impacts and regime unfinished) [integer >= 1 and <= "
                           f"{MAX_IMPACTS_MAX}; default {MAX_IMPACTS_DEFAULT}]")
+    run.add_argument("--no-periodic-shortcut", dest="periodic_shortcut", action="store_false",
+                     help="integrate to t-end even after the motion has settled on a periodic "
+                          "orbit (default: complete the run from one period of the orbit, "
+                          "exact to ~1e-10; JSON key shortcut_time says when; exact solver "
+                          "only)")
     p.allowed_values.update({
         "--t-end": f"a number > 0 and <= {T_END_MAX:g}",
         "--t-transient": "a number >= 0 and < t-end",
@@ -171,7 +176,7 @@ def _simulate_inputs(args: argparse.Namespace) -> dict:
     return dict(eta=params.eta, omega=params.omega, F=params.F, r=params.r, d=params.d,
                 phi=params.phi, t_end=settings.t_end, t_transient=settings.t_transient,
                 solver=args.solver, rtol=rtol, v_stick=settings.v_stick,
-                max_impacts=settings.max_impacts)
+                max_impacts=settings.max_impacts, periodic_shortcut=args.periodic_shortcut)
 
 
 def _cmd_simulate(args: argparse.Namespace) -> int:
@@ -208,6 +213,7 @@ def _simulate_table(d: dict) -> str:
         ("impacts per period", num(d.get("impacts_per_period"), ".4g")),
         ("t_stuck", num(d.get("t_stuck"), ".6g")),
         ("status", str(d.get("status"))),
+        ("periodic shortcut from t", num(d.get("shortcut_time"), ".6g")),
     ]
     width = max(len(k) for k, _ in rows)
     return head + "\n" + "".join(f"  {k:<{width}}  {v}\n" for k, v in rows)

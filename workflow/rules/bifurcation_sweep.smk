@@ -9,6 +9,7 @@ rule bifurcation_sweep:
     params:
         spec=lambda w: SWEEPS[w.sweep],
         model=MODEL,
+        periodic_shortcut=SIMULATION["periodic_shortcut"],
         code=CODE,
     threads: config["threads"]
     conda:

@@ -8,6 +8,7 @@ sm = snakemake  # noqa: F821  (injected by Snakemake)
 
 def main():
     ds = stages.bifurcation_sweep(dict(sm.params.spec), model=dict(sm.params.model),
+                                  periodic_shortcut=sm.params.periodic_shortcut,
                                   code=sm.params.code,
                                   title=f"vines bifurcation sweep {sm.wildcards.sweep}",
                                   n_workers=sm.threads, scheduler=sm.config["dask_scheduler"])

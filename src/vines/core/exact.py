@@ -1,4 +1,9 @@
-"""Python driver of the exact event-driven kernel: buffers, resumption, dense output."""
+"""Python driver of the exact event-driven kernel: buffers, resumption, dense output.
+
+``run_exact`` integrates one trajectory; with ``periodic_shortcut`` it stops once the
+motion has settled on a periodic orbit and completes the run from one period of it
+(``vines.core.shortcut``, ``_periodic_run``).
+"""
 from __future__ import annotations
 
 import math
@@ -6,6 +11,7 @@ import math
 import numpy as np
 
 from . import kernel as eng
+from . import shortcut as sc
 from .flow import make_osc
 from .params import ModelParams, SolverSettings, check_conditioning
 from .result import IMPACT_DTYPE, RawRun
@@ -43,59 +49,292 @@ class Trajectory:
         return out
 
 
+class KernelRun:
+    """One kernel trajectory: its state (cur, acc, cnt) and growing impact/segment buffers.
+
+    Starts at t0 in ``state0`` = (z_m, z_m', z_b, z_b') with segment ``mode`` (0 free, +-1
+    stuck on that wall); window [t_tr, t_end]; records from ``record_from``.
+    """
+
+    def __init__(self, p: ModelParams, st: SolverSettings, osc, state0, t0: float,
+                 t_end: float, t_tr: float, record_from: float, mode: int = 0):
+        self.p, self.st, self.osc = p, st, osc
+        self.t_end, self.t_tr, self.record_from = t_end, t_tr, record_from
+        self.cur = np.array([t0, state0[0], state0[1], state0[2], state0[3], mode, 0.0])
+        self.acc = np.zeros(eng.N_ACC)
+        self.acc[eng.A_XMAX_ALL] = abs(state0[0])
+        self.acc[eng.A_XMAX_WIN] = abs(state0[0]) if t0 >= t_tr else 0.0
+        self.cnt = np.zeros(eng.N_CNT, dtype=np.int64)
+        n_periods = (t_end - max(record_from, t0)) / p.period
+        cap = int(min(st.max_impacts + 1, 6 * max(n_periods, 0.0) + 64))
+        self.imp = np.empty((cap, 6))
+        self.seg = np.empty((2 * cap + 16, 6))
+
+    def run(self, fn=eng.run_kernel, *extra) -> int:
+        """Call ``fn(kernel arguments, imp, seg, *extra)`` (run_kernel, run_kernel_until,
+        shortcut.run_detect) until it returns anything but RC_BUFFER_FULL; grows buffers."""
+        p, st = self.p, self.st
+        while True:
+            rc = fn(*self.osc, p.eta, p.r, p.omega, p.phi, self.t_end, self.t_tr, st.v_stick,
+                    st.root_tol, st.max_impacts, self.record_from, self.cur, self.acc,
+                    self.cnt, self.imp, self.seg, *extra)
+            if rc != eng.RC_BUFFER_FULL:
+                return rc
+            if self.seg.shape[0] > 4 * st.max_impacts + 100_000:
+                return eng.RC_STALLED    # segments without impacts: never grow without bound
+            if self.cnt[eng.C_NIMP_REC] >= self.imp.shape[0]:
+                self.imp = np.concatenate([self.imp, np.empty_like(self.imp)])
+            if self.cnt[eng.C_NSEG_REC] >= self.seg.shape[0]:
+                self.seg = np.concatenate([self.seg, np.empty_like(self.seg)])
+
+    def impacts(self, n: int | None = None) -> np.ndarray:
+        """The first n (default all) recorded impacts as an IMPACT_DTYPE array."""
+        n = int(self.cnt[eng.C_NIMP_REC]) if n is None else int(n)
+        out = np.empty(n, dtype=IMPACT_DTYPE)
+        for k, name in enumerate(("t", "z_m", "v_m", "z_b", "v_b")):
+            out[name] = self.imp[:n, k]
+        out["wall"] = self.imp[:n, 5].astype(np.int8)
+        return out
+
+    def segments(self, n: int | None = None) -> np.ndarray:
+        n = int(self.cnt[eng.C_NSEG_REC]) if n is None else int(n)
+        return self.seg[:n].copy()
+
+    def raw(self, rc: int) -> RawRun:
+        """RawRun of a finished run (return code rc of the kernel)."""
+        acc, cnt = self.acc, self.cnt
+        t_last = float(self.cur[0])
+        return RawRun(
+            impacts=self.impacts(), int_vm2=float(acc[eng.A_INT_VM2]),
+            int_vb2=float(acc[eng.A_INT_VB2]), xmax_window=float(acc[eng.A_XMAX_WIN]),
+            xmax_whole_run=float(acc[eng.A_XMAX_ALL]),
+            t_stuck_window=float(acc[eng.A_TSTUCK_WIN]),
+            t_stuck_total=float(acc[eng.A_TSTUCK_ALL]), n_impacts=int(cnt[eng.C_NIMP_TOTAL]),
+            status=eng.STATUS_TEXT[rc], t_last=t_last,
+            # the stroboscopic section and dense output need the segment active at the end
+            state_at=Trajectory(self.p, self.segments(), t_last),
+            n_sticks=int(acc[eng.A_NSTICK]),
+            solver_info={"root_tol": self.st.root_tol, "n_steps": int(acc[eng.A_NEVAL]),
+                         "final_state": self.cur[1:5].copy(), "final_mode": int(self.cur[5])},
+        )
+
+
 def run_exact(params: ModelParams, settings: SolverSettings, record_from: float = 0.0,
-              state0=None, t0: float = 0.0) -> RawRun:
+              state0=None, t0: float = 0.0, periodic_shortcut: bool = False) -> RawRun:
     """Integrate one trajectory exactly from ``state0`` (default settings.state0) at t0.
 
     Impacts and segments are kept from ``record_from`` on (0: everything; t_transient:
-    what the measures and the regime need).
+    what the measures and the regime need). ``periodic_shortcut``: stop integrating once
+    the motion has settled on a periodic orbit and take the rest of the run from one period
+    of it (``vines.core.shortcut``); the RawRun then has ``shortcut_time`` (else NaN).
     """
     p, st = params, settings
-    osc_f, osc_s = oscillators(p)
     s0 = st.state0 if state0 is None else state0
-    cur = np.array([t0, s0[0], s0[1], s0[2], s0[3], 0.0, 0.0])
-    acc = np.zeros(eng.N_ACC)
-    acc[eng.A_XMAX_ALL] = abs(s0[0])
-    acc[eng.A_XMAX_WIN] = abs(s0[0]) if t0 >= st.t_transient else 0.0
-    cnt = np.zeros(eng.N_CNT, dtype=np.int64)
-    n_periods = (st.t_end - max(record_from, t0)) / p.period
-    cap = int(min(st.max_impacts + 1, 6 * n_periods + 64))
-    imp = np.empty((cap, 6))
-    seg = np.empty((2 * cap + 16, 6))
+    run = KernelRun(p, st, oscillators(p), s0, t0, st.t_end, st.t_transient, record_from)
+    if not periodic_shortcut:
+        return run.raw(run.run())
+    return _run_with_shortcut(run)
+
+
+# ------------------------------------------------------------------ periodic shortcut
+
+def _run_with_shortcut(run: KernelRun) -> RawRun:
+    """Run with section-by-section detection (``shortcut.run_detect``); on a confirmed
+    periodic orbit (or a ball at rest out of reach: ``_orbit_at_rest``), complete the run
+    from one period of it (``_periodic_raw``). A rejected candidate lets the run go on."""
+    p, st = run.p, run.st
+    det = sc.new_detector(p.period, st.t_transient, float(run.cur[0]), st.t_end)
+    sec = np.full(eng.N_SEC, math.nan)
+    sec[eng.S_TREACHED] = -math.inf
+    hist, dr, ist, fst = det
     while True:
-        rc = eng.run_kernel(osc_f, osc_s, p.eta, p.r, p.omega, p.phi, st.t_end, st.t_transient,
-                            st.v_stick, st.root_tol, st.max_impacts, record_from, cur, acc, cnt,
-                            imp, seg)
-        if rc != eng.RC_BUFFER_FULL:
-            break
-        if seg.shape[0] > 4 * st.max_impacts + 100_000:
-            rc = eng.RC_STALLED          # segments without impacts: never grow without bound
-            break
-        if cnt[eng.C_NIMP_REC] >= imp.shape[0]:
-            imp = np.concatenate([imp, np.empty_like(imp)])
-        if cnt[eng.C_NSEG_REC] >= seg.shape[0]:
-            seg = np.concatenate([seg, np.empty_like(seg)])
-    n_imp = int(cnt[eng.C_NIMP_REC])
-    impacts = np.empty(n_imp, dtype=IMPACT_DTYPE)
+        rc = run.run(sc.run_detect, sec, *det)
+        if rc == sc.RC_PERIODIC:
+            orbit = _detected_orbit(run, det)
+        elif rc == sc.RC_AT_REST:
+            orbit = _orbit_at_rest(run, sec)
+        else:
+            return run.raw(rc)
+        if orbit is not None:
+            return _periodic_raw(run, sec, orbit)
+        if rc == sc.RC_AT_REST:
+            ist[0, sc.I_REST] = 0
+        else:
+            ist[1, ist[0, sc.I_FOUND]] = ist[0, sc.I_K]     # count returns anew
+
+
+class _Orbit:
+    """A confirmed periodic orbit: section time t_s, state x_s and mode there, period
+    P = pp T, and the kernel run over one period [t_s, t_s + P] from (x_s, mode)."""
+
+    def __init__(self, t_s, x_s, mode, pp, P, one):
+        self.t_s, self.x_s, self.mode, self.pp, self.P, self.one = t_s, x_s, mode, pp, P, one
+
+
+def _detected_orbit(run: KernelRun, det) -> _Orbit | None:
+    """The orbit found by ``run_detect`` at its last section, confirmed (``_confirm``);
+    None if not confirmed or if it would not pay (then no further detection)."""
+    p, st = run.p, run.st
+    hist, dr, ist, fst = det
+    pp, k = int(ist[0, sc.I_FOUND]), int(ist[0, sc.I_K]) - 1
+    H = hist.shape[0]
+    row, row_p = k % H, (k - pp) % H
+    t_s, P = float(hist[row, sc.H_T]), pp * p.period
+    per = hist[row, sc.H_NIMP:sc.H_TSTUCK + 1] - hist[row_p, sc.H_NIMP:sc.H_TSTUCK + 1]
+    n_left = per[0] * math.ceil((st.t_end - t_s) / P)
+    if st.t_end - t_s < sc.END_MARGIN * P or hist[row, sc.H_NIMP] + n_left >= st.max_impacts:
+        fst[0, sc.F_TSTOP] = -math.inf          # no shortcut for this run
+        return None
+    x_s, mode = hist[row, sc.H_X:sc.H_X + 4].copy(), int(hist[row, sc.H_MODE])
+    return _confirm(run, t_s, x_s, mode, pp, per)
+
+
+def _orbit_at_rest(run: KernelRun, sec: np.ndarray) -> _Orbit | None:
+    """``shortcut.at_rest``: the run is the snapshot segment up to t_transient (its closed
+    form there is the kernel's state, bit for bit), then periodic with period T and no
+    events, to ERR_TOL; confirmed like any orbit."""
+    p, st = run.p, run.st
+    t_s = st.t_transient
+    x_s = np.array(sc.section_state(*run.osc, p.omega, p.phi, sec, t_s))
+    return _confirm(run, t_s, x_s, eng.MODE_FREE, 1, np.zeros(4))
+
+
+def _confirm(run: KernelRun, t_s, x_s, mode, pp, per) -> _Orbit | None:
+    """Integrate one period pp T from (x_s, mode) at t_s; the orbit if it returns to x_s
+    (SEC_TOL) with the events ``per`` (impacts, on L, stick starts, time stuck), else
+    None."""
+    p, st = run.p, run.st
+    P = pp * p.period
+    one = KernelRun(p, st, run.osc, x_s, t_s, t_s + P, t_s, t_s, mode)
+    if one.run() != eng.RC_DONE:
+        return None
+    back = sc.rel_diff(one.cur[1:5], x_s) <= sc.SEC_TOL
+    same = (int(one.cur[5]) == mode and one.cnt[eng.C_NIMP_TOTAL] == per[0]
+            and one.cnt[eng.C_NIMP_L] == per[1] and one.acc[eng.A_NSTICK] == per[2]
+            and abs(one.acc[eng.A_TSTUCK_ALL] - per[3]) <= sc.SEC_TOL * p.period)
+    return _Orbit(t_s, x_s, mode, pp, P, one) if back and same else None
+
+
+def _pieces(a: float, b: float, t_s: float, P: float) -> list:
+    """[(tau1, tau2, count)]: [a, b] (t_s <= a <= b) on a trajectory of period P from t_s
+    is ``count`` copies of [t_s + tau1, t_s + tau2] each (whole periods and the ends)."""
+    na, ta = divmod(a - t_s, P)
+    nb, tb = divmod(b - t_s, P)
+    if na == nb:
+        return [(ta, tb, 1)] if tb > ta else []
+    out = [(ta, P, 1)]
+    if nb - na > 1:
+        out.append((0.0, P, int(nb - na - 1)))
+    if tb > 0.0:
+        out.append((0.0, tb, 1))
+    return out
+
+
+def _before_shortcut(run: KernelRun, sec: np.ndarray, t_s: float) -> dict:
+    """Integrals and counts of the actual run over [0, t_s] (window part from t_transient):
+    the pause snapshot at the start of the segment holding t_s plus that segment's part up
+    to t_s. (The maxima may include the last step beyond t_s: it lies on the orbit.)"""
+    p, st = run.p, run.st
+    t0, mode = sec[eng.S_T0], int(sec[eng.S_MODE])
+    in_win = t0 >= st.t_transient
+    vm2, vb2 = sc.segment_integrals(*run.osc, p.omega, p.phi, sec, t_s)
+    stuck = (t_s - t0) if mode != eng.MODE_FREE else 0.0
+    return dict(
+        int_vm2=sec[eng.S_INT_VM2] + (vm2 if in_win else 0.0),
+        int_vb2=sec[eng.S_INT_VB2] + (vb2 if in_win else 0.0),
+        t_stuck_win=sec[eng.S_TSTUCK_WIN] + (stuck if in_win else 0.0),
+        t_stuck_all=sec[eng.S_TSTUCK_ALL] + stuck, n_impacts=int(sec[eng.S_NIMP]),
+        n_sticks=int(sec[eng.S_NSTICK]), xmax_win=float(run.acc[eng.A_XMAX_WIN]),
+        xmax_all=float(run.acc[eng.A_XMAX_ALL]), n_steps=int(run.acc[eng.A_NEVAL]))
+
+
+def _piece_sums(run: KernelRun, orbit: _Orbit, pieces: list, cache: dict) -> dict:
+    """Sums over ``pieces`` (``_pieces``) of the window integrals, time stuck, impacts and
+    stick starts, and the largest |z_m|; each distinct piece is one kernel run from x_s
+    (window from t_s + tau1, cached)."""
+    out = dict(int_vm2=0.0, int_vb2=0.0, t_stuck=0.0, n_impacts=0, n_sticks=0, xmax=0.0)
+    for tau1, tau2, count in pieces:
+        key = (tau1, tau2)
+        if key not in cache:
+            t_s = orbit.t_s
+            g = KernelRun(run.p, run.st, run.osc, orbit.x_s, t_s, t_s + tau2, t_s + tau1,
+                          t_s + tau1, orbit.mode)
+            if g.run() != eng.RC_DONE:
+                raise RuntimeError(f"periodic shortcut: piece [{tau1}, {tau2}] of the orbit "
+                                   f"from t = {t_s} did not finish")
+            cache[key] = g
+        g = cache[key]
+        out["int_vm2"] += count * g.acc[eng.A_INT_VM2]
+        out["int_vb2"] += count * g.acc[eng.A_INT_VB2]
+        out["t_stuck"] += count * g.acc[eng.A_TSTUCK_WIN]
+        out["n_impacts"] += count * int(g.cnt[eng.C_NIMP_REC])
+        out["n_sticks"] += count * int(g.acc[eng.A_NSTICK])
+        out["xmax"] = max(out["xmax"], float(g.acc[eng.A_XMAX_WIN]))
+    return out
+
+
+def _replicate(rows: np.ndarray, t_s: float, P: float, t_end: float) -> np.ndarray:
+    """Copies of ``rows`` (time in column 0, within [t_s, t_s + P)) shifted by j P,
+    j = 0, 1, ..., up to t_end, in time order."""
+    if rows.shape[0] == 0:
+        return rows
+    rel = rows[:, 0] - t_s
+    j = np.arange(int((t_end - t_s) // P) + 1)
+    out = np.repeat(rows[None], j.size, axis=0)
+    out[:, :, 0] = t_s + j[:, None] * P + rel[None, :]
+    out = out.reshape(-1, rows.shape[1])
+    return out[out[:, 0] <= t_end]
+
+
+def _periodic_records(run: KernelRun, sec, orbit: _Orbit) -> tuple:
+    """(impacts, segments) from record_from to t_end: the actual run's before t_s, then the
+    orbit's period repeated (the same records an uninterrupted run would produce, to the
+    detection tolerance)."""
+    t_s, P, t_end = orbit.t_s, orbit.P, run.t_end
+    imp = run.imp[:int(run.cnt[eng.C_NIMP_REC])]
+    seg = run.seg[:int(run.cnt[eng.C_NSEG_REC])]
+    one_imp = orbit.one.imp[:int(orbit.one.cnt[eng.C_NIMP_REC])]
+    one_seg = orbit.one.seg[:int(orbit.one.cnt[eng.C_NSEG_REC])]
+    rep_imp = _replicate(one_imp[one_imp[:, 0] < t_s + P], t_s, P, t_end)
+    rep_seg = _replicate(one_seg[one_seg[:, 0] < t_s + P], t_s, P, t_end)
+    lo = run.record_from
+    rep_imp = rep_imp[rep_imp[:, 0] >= lo]
+    rep_seg = rep_seg[max(np.searchsorted(rep_seg[:, 0], lo, side="right") - 1, 0):]
+    imp_all = np.concatenate([imp[imp[:, 0] < t_s], rep_imp])
+    seg_all = np.concatenate([seg[seg[:, 0] < t_s], rep_seg])
+    impacts = np.empty(imp_all.shape[0], dtype=IMPACT_DTYPE)
     for k, name in enumerate(("t", "z_m", "v_m", "z_b", "v_b")):
-        impacts[name] = imp[:n_imp, k]
-    impacts["wall"] = imp[:n_imp, 5].astype(np.int8)
-    # The stroboscopic section and dense output need the segment active at the end.
-    segments = seg[: int(cnt[eng.C_NSEG_REC])].copy()
-    t_last = float(cur[0])
+        impacts[name] = imp_all[:, k]
+    impacts["wall"] = imp_all[:, 5].astype(np.int8)
+    return impacts, seg_all
+
+
+def _periodic_raw(run: KernelRun, sec: np.ndarray, orbit: _Orbit) -> RawRun:
+    """RawRun of the whole run [t0, t_end]: the actual run up to t_s, then whole periods of
+    the orbit and the exact partial periods at the window's ends."""
+    st, t_s, P, t_end = run.st, orbit.t_s, orbit.P, run.t_end
+    pre = _before_shortcut(run, sec, t_s)
+    cache = {(0.0, P): orbit.one}
+    win = _piece_sums(run, orbit, _pieces(max(st.t_transient, t_s), t_end, t_s, P), cache)
+    whole = _piece_sums(run, orbit, _pieces(t_s, t_end, t_s, P), cache)
+    tb = divmod(t_end - t_s, P)[1]
+    end = cache[(0.0, tb)] if tb > 0.0 else None
+    final = end.cur[1:5].copy() if end is not None else orbit.x_s.copy()
+    impacts, segments = _periodic_records(run, sec, orbit)
     return RawRun(
-        impacts=impacts,
-        int_vm2=float(acc[eng.A_INT_VM2]),
-        int_vb2=float(acc[eng.A_INT_VB2]),
-        xmax_window=float(acc[eng.A_XMAX_WIN]),
-        xmax_whole_run=float(acc[eng.A_XMAX_ALL]),
-        t_stuck_window=float(acc[eng.A_TSTUCK_WIN]),
-        t_stuck_total=float(acc[eng.A_TSTUCK_ALL]),
-        n_impacts=int(cnt[eng.C_NIMP_TOTAL]),
-        status=eng.STATUS_TEXT[rc],
-        t_last=t_last,
-        state_at=Trajectory(p, segments, t_last),
-        n_sticks=int(acc[eng.A_NSTICK]),
-        solver_info={"root_tol": st.root_tol, "n_steps": int(acc[eng.A_NEVAL]),
-                     "final_state": cur[1:5].copy(), "final_mode": int(cur[5])},
+        impacts=impacts, int_vm2=pre["int_vm2"] + win["int_vm2"],
+        int_vb2=pre["int_vb2"] + win["int_vb2"],
+        xmax_window=max(pre["xmax_win"], win["xmax"]),
+        xmax_whole_run=max(pre["xmax_all"], whole["xmax"]),
+        t_stuck_window=pre["t_stuck_win"] + win["t_stuck"],
+        t_stuck_total=pre["t_stuck_all"] + whole["t_stuck"],
+        n_impacts=pre["n_impacts"] + whole["n_impacts"], status="ok", t_last=t_end,
+        state_at=Trajectory(run.p, segments, t_end),
+        n_sticks=pre["n_sticks"] + whole["n_sticks"],
+        solver_info={"root_tol": st.root_tol,
+                     "n_steps": pre["n_steps"] + sum(int(g.acc[eng.A_NEVAL])
+                                                     for g in cache.values()),
+                     "final_state": final, "final_mode": int(end.cur[5]) if end else orbit.mode,
+                     "shortcut_time": t_s, "shortcut_period": orbit.pp},
+        shortcut_time=t_s, shortcut_period=orbit.pp,
     )

@@ -47,6 +47,11 @@ flight: ``free_step_local`` / ``free_contact``; stuck: the same rules on the con
 ``_close_segment`` adds the segment's integrals, and ``_impact``, ``_start_sticking`` or
 ``_start_release`` start the next segment. Times are dimensionless (t, local time s = t - t0), the
 forcing phase is omega t + phi, positions are in units of the half-clearance L.
+
+Pauses (``run_kernel_until``, used by the periodic shortcut's section-by-section driver):
+the run returns once it reaches t_pause, before a step inside a segment (the step state is
+kept in ``acc``) or after the event closing the segment that holds t_pause, with a snapshot
+of that segment in ``sec``; resuming gives the numbers of an uninterrupted run, bit for bit.
 """
 from __future__ import annotations
 
@@ -58,16 +63,26 @@ from numba import njit
 from .flow import I_D, I_RATE, deriv_bound, flow, forcing, v2_integral
 from .walls import WALL_L, WALL_R, impact_velocities
 
-# Return codes of run_kernel.
-RC_DONE, RC_BUFFER_FULL, RC_MAX_IMPACTS, RC_STALLED = 0, 1, 2, 3
+# Return codes of run_kernel. RC_PAUSED (``run_kernel_until`` only): the trajectory reached
+# t_pause; ``sec`` holds the segment that contains t_pause and the counters at its start.
+RC_DONE, RC_BUFFER_FULL, RC_MAX_IMPACTS, RC_STALLED, RC_PAUSED = 0, 1, 2, 3, 4
 STATUS_TEXT = {RC_DONE: "ok", RC_MAX_IMPACTS: "max_impacts", RC_STALLED: "stalled"}
 
-# Accumulator slots.
-A_INT_VM2, A_INT_VB2, A_XMAX_WIN, A_XMAX_ALL, A_TSTUCK_WIN, A_TSTUCK_ALL, A_NSTICK, A_NEVAL = range(8)
-N_ACC = 8
-# Counter slots.
-C_NIMP_TOTAL, C_NIMP_REC, C_NSEG_REC, C_NZERO = range(4)
-N_CNT = 4
+# Accumulator slots. A_SEG_S ... A_SEG_B1: local time reached in a segment interrupted by a
+# pause and the closed form's (z, z', z'', z''', b1) there (``_advance_segment``).
+A_INT_VM2, A_INT_VB2, A_XMAX_WIN, A_XMAX_ALL, A_TSTUCK_WIN, A_TSTUCK_ALL, A_NSTICK, A_NEVAL, \
+    A_SEG_S, A_SEG_Z, A_SEG_V, A_SEG_A, A_SEG_J, A_SEG_B1 = range(14)
+N_ACC = 14
+# Counter slots. C_NIMP_L: impacts on wall L (whole run). C_SEG_STEP: > 0 while a segment
+# is interrupted by a pause (the step index at which it resumes).
+C_NIMP_TOTAL, C_NIMP_REC, C_NSEG_REC, C_NZERO, C_NIMP_L, C_SEG_STEP = range(6)
+N_CNT = 6
+# Slots of the pause snapshot ``sec`` (``run_kernel_until``): the start of the segment that
+# contains t_pause (t0, z_m, z_m', z_b, z_b', mode), the time the segment had reached, and
+# the counters and window integrals as they were at the segment start.
+(S_T0, S_ZM, S_VM, S_ZB, S_VB, S_MODE, S_TREACHED, S_NIMP, S_NIMP_L, S_NSTICK, S_TSTUCK_ALL,
+ S_TSTUCK_WIN, S_INT_VM2, S_INT_VB2, S_NIMP_REC, S_NSEG_REC) = range(16)
+N_SEC = 16
 
 # Walls (w = z_m - z_b = +1 and -1; impacts' ``wall`` column, first_contact's result).
 # Segment modes (cur[CUR_MODE], seg[:, 5]): free flight, or stuck on wall WALL_L / WALL_R
@@ -76,7 +91,7 @@ MODE_FREE = 0
 # How a segment ends (internal to run_kernel): at s_stop (t_transient or t_end), at an
 # impact, at a release from sticking, when the ball is found pressed on a wall with zero
 # relative velocity (it sticks), or stalled (step limit, or a step below ulp(s)).
-EV_STOP, EV_IMPACT, EV_RELEASE, EV_STICK, EV_STALLED = range(1, 6)
+EV_STOP, EV_IMPACT, EV_RELEASE, EV_STICK, EV_STALLED, EV_PAUSE = range(1, 7)
 # first_contact returns CONTACT_PRESSED * wall when the ball starts pressed on that wall.
 CONTACT_PRESSED = 2
 # Slots of the state vector ``cur`` of run_kernel.
@@ -354,7 +369,7 @@ def _clamp_step(s, h, h_cap, s_stop):
 
 @njit(cache=True, nogil=True, inline="always")
 def _advance_segment(osc, mode, zm0, vm0, zb0, vb0, sth0, cth0, s_stop, released, root_tol,
-                     in_window, acc):
+                     in_window, acc, step0, s_pause):
     """Step one segment (closed form from (zm0, vm0) at phases sth0, cth0) to its first event.
 
     Free flight: ``free_step_local`` steps, ``free_contact`` tests. Stuck (mode = wall):
@@ -363,22 +378,33 @@ def _advance_segment(osc, mode, zm0, vm0, zb0, vb0, sth0, cth0, s_stop, released
     segment starts at a release from sticking (first step only). Updates the |z_m| maxima
     and the step count in ``acc``. Returns (event, wall, s, z, v, a, j, b1, gap, closing) at
     the local time s of the event: EV_STICK (pressed on ``wall``), EV_IMPACT (at ``wall``),
-    EV_RELEASE (gap, closing: for the final Newton step), EV_STOP (s = s_stop), EV_STALLED.
+    EV_RELEASE (gap, closing: for the final Newton step), EV_STOP (s = s_stop), EV_STALLED,
+    and the index of the step that would come next (last item).
+    Pauses: before a step from s >= s_pause it returns EV_PAUSE; the caller stores s and
+    the closed form there in acc[A_SEG_S:A_SEG_B1 + 1], and calling again with step0 = the
+    returned index (1 for a new segment) resumes with bit-identical numbers (every other
+    quantity of the loop is recomputed each step). s_pause = inf: no pause.
     The step loop stays in one function on purpose (hot path): per-step helpers taking
     arrays cost ~1% more instructions even inlined (reference counting), 3% as calls.
     """
     h_cap = 1.0 / osc[I_RATE]
-    s = 0.0
-    z, v, a, j, b1 = flow(osc, zm0, vm0, sth0, cth0, 0.0)
+    if step0 > 1:
+        s, z, v, a, j, b1 = acc[A_SEG_S], acc[A_SEG_Z], acc[A_SEG_V], acc[A_SEG_A], \
+            acc[A_SEG_J], acc[A_SEG_B1]
+    else:
+        s = 0.0
+        z, v, a, j, b1 = flow(osc, zm0, vm0, sth0, cth0, 0.0)
     B4 = 0.0
     gap = 0.0
     closing = 0.0
-    for steps in range(1, MAX_STEPS_PER_SEGMENT + 1):
+    for steps in range(step0, MAX_STEPS_PER_SEGMENT + 1):
+        if s >= s_pause:
+            return EV_PAUSE, 0, s, z, v, a, j, b1, gap, closing, steps
         if mode == MODE_FREE:
             h, pressed, B2 = free_step_local(osc, s, z, v, a, j, b1, zb0, vb0, h_cap,
                                              root_tol, released and steps == 1)
             if pressed != 0:
-                return EV_STICK, pressed, s, z, v, a, j, b1, gap, closing
+                return EV_STICK, pressed, s, z, v, a, j, b1, gap, closing, steps
         else:
             B2 = deriv_bound(osc, b1, 2, s + h_cap)
             gap = mode * a                    # contact force, > 0 while stuck
@@ -404,17 +430,17 @@ def _advance_segment(osc, mode, zm0, vm0, zb0, vb0, sth0, cth0, s_stop, released
             wall, gap, closing = free_contact(osc, s, z, v, b1, zb0 + vb0 * s, vb0, B2,
                                               root_tol)
             if wall != 0:
-                return EV_IMPACT, wall, s, z, v, a, j, b1, gap, closing
+                return EV_IMPACT, wall, s, z, v, a, j, b1, gap, closing, steps
         else:                                 # release test on the contact force
             gap = mode * a
             closing = -mode * j
             floor = _floor(osc, b1, 2, s, a, closing)
             if closing > 0.0 and gap <= max(root_tol, floor) and (
                     gap <= floor or closing * closing >= 2.0 * B4 * gap):
-                return EV_RELEASE, 0, s, z, v, a, j, b1, max(gap, 0.0), closing
+                return EV_RELEASE, 0, s, z, v, a, j, b1, max(gap, 0.0), closing, steps
         if forced:
-            return EV_STOP, 0, s, z, v, a, j, b1, gap, closing
-    return EV_STALLED, 0, s, z, v, a, j, b1, gap, closing
+            return EV_STOP, 0, s, z, v, a, j, b1, gap, closing, steps
+    return EV_STALLED, 0, s, z, v, a, j, b1, gap, closing, MAX_STEPS_PER_SEGMENT + 1
 
 
 @njit(cache=True, nogil=True, inline="always")
@@ -508,6 +534,8 @@ def _impact(cur, acc, cnt, imp, osc_f, eta, r, v_stick, record_from, sth0, cth0,
     if t_new >= record_from:
         _record_row(imp, cnt, C_NIMP_REC, t_new, z, v, zb_imp, vb, wall)
     cnt[C_NIMP_TOTAL] += 1
+    if wall == WALL_L:
+        cnt[C_NIMP_L] += 1
     vm_p, vb_p = impact_velocities(eta, r, v, vb)      # Newton's law, restitution r
     mode_new = MODE_FREE
     vc = _common_velocity(eta, v, vb)
@@ -539,6 +567,20 @@ def _start_release(cur, t_new, z, v, mode):
 
 # ---------------------------------------------------------------- trajectory
 
+@njit(cache=True, nogil=True, inline="always")
+def _snapshot(sec, cur, acc, cnt, t_reached):
+    """Pause snapshot (slots S_*): the segment starting at ``cur`` (not yet closed), the time
+    it has reached, and the counters and integrals as they are at its start."""
+    for k in range(6):
+        sec[k] = cur[k]
+    sec[S_TREACHED] = t_reached
+    sec[S_NIMP], sec[S_NIMP_L] = cnt[C_NIMP_TOTAL], cnt[C_NIMP_L]
+    sec[S_NSTICK], sec[S_TSTUCK_ALL] = acc[A_NSTICK], acc[A_TSTUCK_ALL]
+    sec[S_TSTUCK_WIN], sec[S_INT_VM2], sec[S_INT_VB2] = \
+        acc[A_TSTUCK_WIN], acc[A_INT_VM2], acc[A_INT_VB2]
+    sec[S_NIMP_REC], sec[S_NSEG_REC] = cnt[C_NIMP_REC], cnt[C_NSEG_REC]
+
+
 @njit(cache=True, nogil=True)
 def run_kernel(osc_f, osc_s, eta, r, omega, phi, t_end, t_tr, v_stick, root_tol, max_impacts,
                record_from, cur, acc, cnt, imp, seg):
@@ -552,6 +594,22 @@ def run_kernel(osc_f, osc_s, eta, r, omega, phi, t_end, t_tr, v_stick, root_tol,
     ``cnt`` are updated in place, so a call that returns RC_BUFFER_FULL can be resumed with
     larger buffers. Returns one of RC_DONE, RC_BUFFER_FULL, RC_MAX_IMPACTS, RC_STALLED.
     """
+    sec = np.empty(N_SEC)
+    return run_kernel_until(osc_f, osc_s, eta, r, omega, phi, t_end, t_tr, v_stick, root_tol,
+                            max_impacts, record_from, cur, acc, cnt, imp, seg, math.inf, sec)
+
+
+@njit(cache=True, nogil=True)
+def run_kernel_until(osc_f, osc_s, eta, r, omega, phi, t_end, t_tr, v_stick, root_tol,
+                     max_impacts, record_from, cur, acc, cnt, imp, seg, t_pause, sec):
+    """``run_kernel`` that also returns RC_PAUSED once the trajectory reaches t_pause.
+
+    The pause comes either inside a segment, before the first step from a time >= t_pause,
+    or after the event that closes the segment containing t_pause; ``sec`` then holds that
+    segment's start and the counters at its start (``_snapshot``), so the state at t_pause
+    follows from the closed form. Calling again (with a later t_pause, or inf) continues
+    with exactly the numbers of an uninterrupted run: pausing never changes the trajectory.
+    """
     while True:
         t0 = cur[CUR_T]
         if cnt[C_NZERO] > 1000:
@@ -564,8 +622,12 @@ def run_kernel(osc_f, osc_s, eta, r, omega, phi, t_end, t_tr, v_stick, root_tol,
         mode = int(cur[CUR_MODE])
         released = cur[CUR_RELEASED] != 0.0   # this free segment starts at a release
         cur[CUR_RELEASED] = 0.0
-        if t0 >= record_from:
-            _record_row(seg, cnt, C_NSEG_REC, t0, zm0, vm0, zb0, vb0, mode)
+        step0 = cnt[C_SEG_STEP]               # > 0: resume a segment interrupted by a pause
+        if step0 == 0:
+            step0 = 1
+            if t0 >= record_from:
+                _record_row(seg, cnt, C_NSEG_REC, t0, zm0, vm0, zb0, vb0, mode)
+        cnt[C_SEG_STEP] = 0
         in_window = t0 >= t_tr
         osc = osc_f if mode == MODE_FREE else osc_s
         th0 = omega * t0 + phi
@@ -574,9 +636,16 @@ def run_kernel(osc_f, osc_s, eta, r, omega, phi, t_end, t_tr, v_stick, root_tol,
         s_stop = t_end - t0
         if t0 < t_tr:
             s_stop = min(s_stop, t_tr - t0)
-        event, wall, s, z, v, a, j, b1, gap, closing = _advance_segment(
+        event, wall, s, z, v, a, j, b1, gap, closing, steps = _advance_segment(
             osc, mode, zm0, vm0, zb0, vb0, sth0, cth0, s_stop, released, root_tol, in_window,
-            acc)
+            acc, step0, t_pause - t0)
+        if event == EV_PAUSE:
+            _snapshot(sec, cur, acc, cnt, t0 + s)
+            acc[A_SEG_S], acc[A_SEG_Z], acc[A_SEG_V], acc[A_SEG_A], acc[A_SEG_J], \
+                acc[A_SEG_B1] = s, z, v, a, j, b1
+            cnt[C_SEG_STEP] = steps
+            cur[CUR_RELEASED] = 1.0 if released else 0.0
+            return RC_PAUSED
         if event == EV_STALLED:
             cur[CUR_T] = t0
             return RC_STALLED
@@ -586,6 +655,9 @@ def run_kernel(osc_f, osc_s, eta, r, omega, phi, t_end, t_tr, v_stick, root_tol,
         if event == EV_RELEASE:
             s, z, v, a, j, b1 = _clear_of_contact(osc, mode, zm0, vm0, sth0, cth0, t0, t_end,
                                                   s, z, v, a, j, b1)
+        paused = t0 + s >= t_pause
+        if paused:
+            _snapshot(sec, cur, acc, cnt, t0 + s)
         t_new, zb_end, vb_end = _close_segment(osc, mode, zm0, vm0, zb0, vb0, sth0, cth0, t0,
                                                s, z, v, in_window, acc, cnt)
         if event == EV_STOP:
@@ -602,6 +674,8 @@ def run_kernel(osc_f, osc_s, eta, r, omega, phi, t_end, t_tr, v_stick, root_tol,
                     t_new, z, v, vb_end, b1, wall)
             if cnt[C_NIMP_TOTAL] >= max_impacts:
                 return RC_MAX_IMPACTS
+        if paused:
+            return RC_PAUSED
 
 
 @njit(cache=True, nogil=True)

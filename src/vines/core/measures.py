@@ -49,13 +49,14 @@ def time_histories(points: list[dict], *, model: dict, simulation: dict,
                    n_periods: int, samples_per_period: int) -> dict:
     """Single runs at ``points``: the last ``n_periods`` forcing periods sampled densely
     (``samples_per_period`` each, from the exact trajectory), their impacts (concatenated,
-    ``row_size`` per point) and the scalar measures of each run."""
+    ``row_size`` per point) and the scalar measures of each run (``shortcut_time``: after
+    it, samples and impacts repeat one period of the settled orbit, see ``simulate``)."""
     n_s = int(n_periods) * int(samples_per_period) + 1
     P = len(points)
     out = {"t": np.empty((P, n_s)), "z_m": np.empty((P, n_s)), "v_m": np.empty((P, n_s)),
            "z_b": np.empty((P, n_s)), "v_b": np.empty((P, n_s)), "ke_ratio": np.empty(P),
            "xmax": np.empty(P), "regime": np.empty(P, dtype="U16"),
-           "status": np.empty(P, dtype="U16")}
+           "status": np.empty(P, dtype="U16"), "shortcut_time": np.empty(P)}
     imp_t, imp_dw, imp_phase, imp_wall, row_size = [], [], [], [], np.zeros(P, dtype=np.int64)
     for i, pt in enumerate(points):
         res = simulate(pt["eta"], pt["omega"], pt["F"], **model, **simulation)
@@ -71,6 +72,7 @@ def time_histories(points: list[dict], *, model: dict, simulation: dict,
         out["xmax"][i] = res.xmax
         out["regime"][i] = res.regime
         out["status"][i] = res.status
+        out["shortcut_time"][i] = res.shortcut_time
         sel = res.impacts["t"] >= t0
         imp_t.append(res.impacts["t"][sel])
         imp_dw.append(res.impact_dw[sel])

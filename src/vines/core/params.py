@@ -13,6 +13,7 @@ Conventions (see docs/model.md and the spec):
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import asdict, dataclass, field
 
 #: the parameters a study varies, in the order of grid dimensions
@@ -153,6 +154,16 @@ def check_step_points(step_given, span: float, step: float, max_points: int,
             f"needs |stop - start|/step = {n:.3g} points > {max_points_name} = {max_points}: "
             f"use a step >= {span / max_points:.6g} (or raise {max_points_name}, at most "
             f"{MAX_POINTS_MAX})")
+
+
+def check_bool(name, value) -> bool:
+    """True or False (also numpy booleans and the integers 0 and 1); else ParameterError."""
+    numpy_bool = getattr(getattr(value, "dtype", None), "kind", "") == "b" \
+        and getattr(value, "ndim", 1) == 0
+    if isinstance(value, bool) or numpy_bool or (
+            isinstance(value, numbers.Integral) and value in (0, 1)):
+        return bool(value)
+    raise ParameterError(name, value, "must be true or false")
 
 
 def check_conditioning(eta: float, omega: float, F: float, d: float) -> None:

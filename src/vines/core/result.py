@@ -30,6 +30,9 @@ class RawRun:
     t_stuck_window     time spent stuck inside the window; t_stuck_total over the run
     t_last             time reached (t_end unless status != "ok")
     state_at           callable: array of times -> array (4, n) of (z_m, z_m', z_b, z_b')
+    shortcut_time      time t_s from which the run was completed from one period of a
+                       settled periodic orbit (``vines.core.shortcut``); NaN: integrated
+                       to the end. shortcut_period: that period in forcing periods (0: none)
     """
 
     impacts: np.ndarray
@@ -45,6 +48,8 @@ class RawRun:
     state_at: Callable[[np.ndarray], np.ndarray]
     n_sticks: int = 0
     solver_info: dict = field(default_factory=dict)
+    shortcut_time: float = math.nan
+    shortcut_period: int = 0
 
 
 @dataclass
@@ -61,6 +66,10 @@ class SimulationResult:
     t_stuck         time spent stuck (ball and LO moving as one body) in the window
     impacts         structured array (t, z_m, v_m, z_b, v_b, wall), pre-impact values
     status          "ok", or why the run stopped early ("max_impacts", ...)
+    shortcut_time   time from which the run was completed from one period of a settled
+                    periodic orbit (``vines.core.shortcut``; NaN: integrated to t_end);
+                    shortcut_period: that period in forcing periods (0 when not taken).
+                    Impacts and ``state_at`` after shortcut_time repeat that period.
     """
 
     params: ModelParams
@@ -84,6 +93,8 @@ class SimulationResult:
     status: str
     t_last: float
     _state_at: Callable = field(repr=False, default=None)
+    shortcut_time: float = math.nan
+    shortcut_period: int = 0
 
     @property
     def xmax_m(self) -> float:
@@ -127,6 +138,8 @@ class SimulationResult:
             "t_stuck": self.t_stuck,
             "t_stuck_whole_run": self.t_stuck_whole_run,
             "status": self.status,
+            "shortcut_time": self.shortcut_time,
+            "shortcut_period": self.shortcut_period,
             "solver": self.solver,
             "params": {**self.params.as_dict(), **self.settings.as_dict(), **self.solver_options},
         }

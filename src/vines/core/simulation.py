@@ -11,7 +11,7 @@ from .exact import run_exact
 from .params import (RTOL_DEFAULT, D_DEFAULT, MAX_IMPACTS_DEFAULT, R_DEFAULT, ROOT_TOL_DEFAULT,
                      T_END_DEFAULT, T_TRANSIENT_DEFAULT, V_STICK_DEFAULT, PARAM_BOUNDS,
                      RTOL_MAX, RTOL_MIN, ModelParams, ParameterError, SolverSettings,
-                     check_conditioning, check_int, check_param, check_real)
+                     check_bool, check_conditioning, check_int, check_param, check_real)
 from .regime import classify, strobe_times
 from .result import RawRun, SimulationResult
 
@@ -61,7 +61,8 @@ def _measures(p: ModelParams, st: SolverSettings, raw: RawRun) -> dict:
                 xmax_whole_run=raw.xmax_whole_run, n_impacts=raw.n_impacts,
                 n_impacts_window=n_win, impacts_per_period=n_win * p.period / t_win,
                 regime=regime, period=period, t_stuck=raw.t_stuck_window,
-                t_stuck_whole_run=raw.t_stuck_total, n_sticks=raw.n_sticks)
+                t_stuck_whole_run=raw.t_stuck_total, n_sticks=raw.n_sticks,
+                shortcut_time=raw.shortcut_time, shortcut_period=raw.shortcut_period)
 
 
 def _settings(t_end, t_transient, v_stick, max_impacts, root_tol, state0) -> SolverSettings:
@@ -72,14 +73,17 @@ def _settings(t_end, t_transient, v_stick, max_impacts, root_tol, state0) -> Sol
 def simulate(eta, omega, F, r=R_DEFAULT, d=D_DEFAULT, phi=0.0, *, t_end=T_END_DEFAULT,
              t_transient=T_TRANSIENT_DEFAULT, solver="exact", rtol=RTOL_DEFAULT, atol=None,
              method="DOP853", v_stick=V_STICK_DEFAULT, max_impacts=MAX_IMPACTS_DEFAULT,
-             root_tol=ROOT_TOL_DEFAULT, state0=(0.0, 0.0, 0.0, 0.0)) -> SimulationResult:
+             root_tol=ROOT_TOL_DEFAULT, state0=(0.0, 0.0, 0.0, 0.0),
+             periodic_shortcut=True) -> SimulationResult:
     """Simulate the VINES from ``state0`` at t = 0 to ``t_end`` (dimensionless time).
 
     solver="exact" uses the closed-form event-driven kernel (``root_tol``: contact is
     declared within this distance of the wall, in units of L); solver="rk" integrates the
     same model with scipy's ``method`` at ``rtol``/``atol`` (the independent reference).
-    Measures are exact time averages over [t_transient, t_end]. Raises ParameterError for
-    bad input.
+    Measures are exact time averages over [t_transient, t_end]. ``periodic_shortcut``
+    (exact solver only): once the motion has settled on a periodic orbit, complete the run
+    from one period of it (``vines.core.shortcut``; the result's ``shortcut_time`` says
+    when, NaN if never). Raises ParameterError for bad input.
     """
     p = ModelParams(eta=eta, omega=omega, F=F, r=r, d=d, phi=phi)
     st = _settings(t_end, t_transient, v_stick, max_impacts, root_tol, state0)
@@ -90,8 +94,9 @@ def simulate(eta, omega, F, r=R_DEFAULT, d=D_DEFAULT, phi=0.0, *, t_end=T_END_DE
     if atol is not None:
         atol = check_real("atol", atol, lo=0.0, lo_open=True, hi=RTOL_MAX)
     if solver == "exact":
-        raw = SOLVERS[solver](p, st)
-        options = {"root_tol": st.root_tol}
+        periodic_shortcut = check_bool("periodic_shortcut", periodic_shortcut)
+        raw = SOLVERS[solver](p, st, periodic_shortcut=periodic_shortcut)
+        options = {"root_tol": st.root_tol, "periodic_shortcut": periodic_shortcut}
     else:
         if not isinstance(method, str) or method not in RK_METHODS:
             raise ParameterError("method", method, f"must be one of {', '.join(RK_METHODS)}")
@@ -108,13 +113,13 @@ def simulate(eta, omega, F, r=R_DEFAULT, d=D_DEFAULT, phi=0.0, *, t_end=T_END_DE
 BATCH_FIELDS = {
     "ke_ratio": "f8", "xmax": "f8", "xmax_whole_run": "f8", "n_impacts": "i8",
     "impacts_per_period": "f8", "t_stuck": "f8", "period": "i8", "regime": "U16",
-    "status": "U16",
+    "status": "U16", "shortcut_time": "f8",
 }
 
 
-def _batch_point(eta, omega, F, r, d, phi, st: SolverSettings) -> tuple:
+def _batch_point(eta, omega, F, r, d, phi, st: SolverSettings, shortcut: bool) -> tuple:
     p = ModelParams(eta=eta, omega=omega, F=F, r=r, d=d, phi=phi)
-    raw = run_exact(p, st, record_from=st.t_transient)
+    raw = run_exact(p, st, record_from=st.t_transient, periodic_shortcut=shortcut)
     m = _measures(p, st, raw)
     m["status"] = raw.status
     return tuple(m[k] for k in BATCH_FIELDS)
@@ -123,15 +128,17 @@ def _batch_point(eta, omega, F, r, d, phi, st: SolverSettings) -> tuple:
 def simulate_batch(eta, omega, F, *, r=R_DEFAULT, d=D_DEFAULT, phi=0.0, t_end=T_END_DEFAULT,
                    t_transient=T_TRANSIENT_DEFAULT, v_stick=V_STICK_DEFAULT,
                    max_impacts=MAX_IMPACTS_DEFAULT, root_tol=ROOT_TOL_DEFAULT,
-                   n_threads=None, progress=None) -> dict:
+                   periodic_shortcut=True, n_threads=None, progress=None) -> dict:
     """Exact measures at many parameter points (eta, omega, F broadcast together).
 
     Points run on ``n_threads`` threads (default: all cores) over the nogil kernel; every
     point is computed independently from the same initial state, so the numbers do not
-    depend on the split. ``progress(n_done, n_total)`` is called as points finish.
-    Returns a dict of arrays with the broadcast shape (keys: BATCH_FIELDS).
+    depend on the split. ``periodic_shortcut``: as in ``simulate`` (field
+    ``shortcut_time``, NaN where not taken). ``progress(n_done, n_total)`` is called as
+    points finish. Returns a dict of arrays with the broadcast shape (keys: BATCH_FIELDS).
     """
     st = _settings(t_end, t_transient, v_stick, max_impacts, root_tol, (0.0, 0.0, 0.0, 0.0))
+    shortcut = check_bool("periodic_shortcut", periodic_shortcut)
     e, w, f = np.broadcast_arrays(np.asarray(eta, float), np.asarray(omega, float),
                                   np.asarray(F, float))
     shape = e.shape
@@ -151,7 +158,7 @@ def simulate_batch(eta, omega, F, *, r=R_DEFAULT, d=D_DEFAULT, phi=0.0, t_end=T_
     out = {k: np.empty(n, dtype=dt) for k, dt in BATCH_FIELDS.items()}
 
     def work(i):
-        vals = _batch_point(e[i], w[i], f[i], r, d, phi, st)
+        vals = _batch_point(e[i], w[i], f[i], r, d, phi, st, shortcut)
         for k, v in zip(BATCH_FIELDS, vals):
             out[k][i] = v
         return i

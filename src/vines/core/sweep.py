@@ -19,20 +19,46 @@ import numpy as np
 
 from .exact import run_exact
 from .params import (PARAM_NAMES, D_DEFAULT, R_DEFAULT, V_STICK_DEFAULT, ModelParams, ParameterError,
-                     SolverSettings, check_int, check_real)
+                     SolverSettings, check_bool, check_int, check_real)
 
 SWEEP_PARAMS = PARAM_NAMES
 
 
+def sweep_point(params: ModelParams, state, t_run: float, n_record: int, v_stick: float,
+                max_impacts_per_period: float, periodic_shortcut: bool):
+    """One point of a sweep: run ``params`` for ``t_run`` from ``state`` (z_m, z_m', z_b,
+    z_b'), recording the impacts of the last ``n_record`` forcing periods.
+
+    Returns (raw, settings, next_state, theta): the RawRun and its SolverSettings, the
+    state to start the next point from (rest if this run failed) and the forcing phase
+    omega t + phi reached.
+    """
+    p = params
+    t_record = n_record * p.period
+    st = SolverSettings(t_end=t_run, t_transient=t_run - t_record, v_stick=v_stick,
+                        max_impacts=int(max_impacts_per_period * t_run / p.period) + 100,
+                        state0=state)
+    raw = run_exact(p, st, record_from=st.t_transient, periodic_shortcut=periodic_shortcut)
+    fs = raw.solver_info["final_state"]
+    nxt = (float(fs[0]), float(fs[1]), float(fs[2]), float(fs[3]))
+    if raw.status != "ok" or not np.all(np.isfinite(fs)):
+        nxt = (0.0, 0.0, 0.0, 0.0)
+    return raw, st, nxt, p.omega * raw.t_last + p.phi
+
+
 def bifurcation_sweep(param, values, *, eta=None, omega=None, F=None, r=R_DEFAULT, d=D_DEFAULT,
                       t_settle=4000.0, t_step=1000.0, n_record=50, v_stick=V_STICK_DEFAULT,
-                      max_impacts_per_period=400) -> dict:
+                      max_impacts_per_period=400, periodic_shortcut=True) -> dict:
     """Sweep ``param`` through ``values`` (in the given order) with the other two fixed.
 
     Returns dict with 1-D arrays over the values: value, row_size, phi (phase used at the
-    start of each point), status; and over the impacts: dw (relative velocity w' = z_m' -
-    z_b' just before impact), phase (impact phase mod(omega t + phi, 2 pi) with t counted from
-    the start of the sweep so phases are comparable), wall (+1 L, -1 R).
+    start of each point), status, shortcut_time (time of the point's run, from its start,
+    from which it was completed from one period of a settled orbit; NaN: not taken, see
+    ``simulate``); and over the impacts: dw (relative velocity w' = z_m' - z_b' just
+    before impact), phase (impact phase mod(omega t + phi, 2 pi) with t counted from the
+    start of the sweep so phases are comparable), wall (+1 L, -1 R). With the shortcut the
+    next point starts from the periodic orbit's state at the end of the run (equal to the
+    full run's to ~1e-10; a chaotic point amplifies such differences).
     """
     if param not in SWEEP_PARAMS:
         raise ParameterError("param", param, f"must be one of {', '.join(SWEEP_PARAMS)}")
@@ -44,23 +70,21 @@ def bifurcation_sweep(param, values, *, eta=None, omega=None, F=None, r=R_DEFAUL
     t_settle = check_real("t_settle", t_settle, lo=0.0, lo_open=True)
     t_step = check_real("t_step", t_step, lo=0.0, lo_open=True)
     n_record = check_int("n_record", n_record, lo=1)
+    shortcut = check_bool("periodic_shortcut", periodic_shortcut)
     state = (0.0, 0.0, 0.0, 0.0)
     theta = 0.0           # forcing phase omega t + phi carried from point to point
     dws, phases, walls = [], [], []
     row_size = np.zeros(values.size, dtype=np.int64)
     phis = np.zeros(values.size)
     status = np.empty(values.size, dtype="U16")
+    shortcut_time = np.full(values.size, np.nan)
     for k, val in enumerate(values):
-        kw = dict(fixed)
-        kw[param] = val
+        kw = {**fixed, param: val}
         p = ModelParams(eta=kw["eta"], omega=kw["omega"], F=kw["F"], r=r, d=d,
                         phi=math.fmod(theta, 2.0 * math.pi))
-        t_record = n_record * p.period
-        t_run = (t_settle if k == 0 else t_step) + t_record
-        st = SolverSettings(t_end=t_run, t_transient=t_run - t_record, v_stick=v_stick,
-                            max_impacts=int(max_impacts_per_period * t_run / p.period) + 100,
-                            state0=state)
-        raw = run_exact(p, st, record_from=st.t_transient)
+        t_run = (t_settle if k == 0 else t_step) + n_record * p.period
+        raw, _, state, theta = sweep_point(p, state, t_run, n_record, v_stick,
+                                           max_impacts_per_period, shortcut)
         imp = raw.impacts
         dws.append(imp["v_m"] - imp["v_b"])
         phases.append(np.mod(p.omega * imp["t"] + p.phi, 2.0 * math.pi))
@@ -68,14 +92,11 @@ def bifurcation_sweep(param, values, *, eta=None, omega=None, F=None, r=R_DEFAUL
         row_size[k] = imp.size
         phis[k] = p.phi
         status[k] = raw.status
-        fs = raw.solver_info["final_state"]
-        state = (float(fs[0]), float(fs[1]), float(fs[2]), float(fs[3]))
-        if raw.status != "ok" or not np.all(np.isfinite(fs)):
-            state = (0.0, 0.0, 0.0, 0.0)
-        theta = p.omega * raw.t_last + p.phi
+        shortcut_time[k] = raw.shortcut_time
     cat = (lambda xs, dt: np.concatenate(xs).astype(dt) if xs else np.zeros(0, dt))
     return {"value": values, "row_size": row_size, "phi": phis, "status": status,
-            "dw": cat(dws, float), "phase": cat(phases, float), "wall": cat(walls, np.int8)}
+            "shortcut_time": shortcut_time, "dw": cat(dws, float),
+            "phase": cat(phases, float), "wall": cat(walls, np.int8)}
 
 
 def bifurcation_sweeps(param, values, outer, outer_values, *, n_threads=None, progress=None,

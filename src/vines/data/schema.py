@@ -37,6 +37,8 @@ BATCH_ATTRS = {
     "period": ("period of the stroboscopic section in forcing periods (0: none)", "1"),
     "regime": ("regime of the post-transient motion", ""),
     "status": ("solver status", ""),
+    "shortcut_time": ("time from which the run was completed from one period of a settled "
+                      "periodic orbit (NaN: integrated to t_end)", "1"),
 }
 
 #: variables derived from the batch fields by ``vines.core.measures.derived_measures``
@@ -56,6 +58,8 @@ SWEEP_INSTANCE_ATTRS = {
     "line": ("index of the sweep line (outer value, direction)", "1"),
     "phi": ("forcing phase at the start of the point", "rad"),
     "status": ("solver status of the point", ""),
+    "shortcut_time": ("time of the point's run (from its start) from which it was completed "
+                      "from one period of a settled periodic orbit (NaN: not taken)", "1"),
 }
 SWEEP_SAMPLE_ATTRS = {
     "dw": ("relative velocity w' = z_m' - z_b' just before impact", "1"),
@@ -100,6 +104,7 @@ TIMEHISTORY_ATTRS = {
     "xmax": BATCH_ATTRS["xmax"],
     "regime": BATCH_ATTRS["regime"],
     "status": BATCH_ATTRS["status"],
+    "shortcut_time": BATCH_ATTRS["shortcut_time"],
     "impact_t": ("impact time", "1"),
     "impact_dw": ("relative velocity w' just before impact", "1"),
     "impact_phase": ("impact phase mod(omega t + phi, 2 pi)", "rad"),

@@ -115,29 +115,31 @@ def _sweep_lines(spec: dict) -> list:
     return lines
 
 
-def compute_sweep(spec: dict, *, model: dict, n_workers: int = 1,
-                  scheduler: str | None = None, progress: bool = False) -> dict:
+def compute_sweep(spec: dict, *, model: dict, periodic_shortcut: bool = True,
+                  n_workers: int = 1, scheduler: str | None = None,
+                  progress: bool = False) -> dict:
     """Bifurcation sweeps of one config entry: every outer value, up and down.
 
     Returns instance arrays (one entry per (line, direction, value)) and concatenated
     impact arrays, ordered line by line (outer values ascending, 'up' before 'down').
+    ``periodic_shortcut``: the config's ``simulation.periodic_shortcut``.
     """
     import dask
     kw = dict(t_settle=spec["t_settle"], t_step=spec["t_step"], n_record=spec["n_record"],
-              v_stick=spec["v_stick"], **model)
+              v_stick=spec["v_stick"], periodic_shortcut=periodic_shortcut, **model)
     lines = _sweep_lines(spec)
     tasks = [dask.delayed(_sweep_line, pure=True)(spec["param"], vals, fixed, kw)
              for (_, _, vals, fixed) in lines]
     res = compute(tasks, max(1, int(n_workers)), scheduler, progress)
     inst = {k: [] for k in ("value", "outer_value", "direction", "line", "phi", "status",
-                            "row_size")}
+                            "shortcut_time", "row_size")}
     samp = {k: [] for k in ("dw", "phase", "wall")}
     for li, ((ov, direction, _, _), r) in enumerate(zip(lines, res)):
         n = r["value"].size
         inst["outer_value"].append(np.full(n, ov))
         inst["direction"].append(np.full(n, 1 if direction == "up" else -1, dtype="i1"))
         inst["line"].append(np.full(n, li, dtype="i4"))
-        for k in ("value", "phi", "status", "row_size"):
+        for k in ("value", "phi", "status", "shortcut_time", "row_size"):
             inst[k].append(r[k])
         for k in samp:
             samp[k].append(r[k])
@@ -147,12 +149,15 @@ def compute_sweep(spec: dict, *, model: dict, n_workers: int = 1,
 
 
 def bifurcation_sweep(spec: dict, *, model: dict, code: str, title: str, n_workers: int = 1,
-                      scheduler: str | None = None):
+                      scheduler: str | None = None, periodic_shortcut: bool = True):
     """Dataset of one sweep entry: impacts of the last ``n_record`` periods per value."""
-    sweep = compute_sweep(spec, model=model, n_workers=n_workers, scheduler=scheduler,
-                          progress=True)
-    settings = {**model, **{k: spec[k] for k in ("t_settle", "t_step", "n_record", "v_stick")}}
-    attrs = provenance_attrs(title=title, config_subset={"spec": spec, "model": model},
+    sweep = compute_sweep(spec, model=model, periodic_shortcut=periodic_shortcut,
+                          n_workers=n_workers, scheduler=scheduler, progress=True)
+    settings = {**model, **{k: spec[k] for k in ("t_settle", "t_step", "n_record", "v_stick")},
+                "periodic_shortcut": bool(periodic_shortcut)}
+    attrs = provenance_attrs(title=title,
+                             config_subset={"spec": spec, "model": model,
+                                            "periodic_shortcut": bool(periodic_shortcut)},
                              settings=settings, code_version=code)
     attrs.update(swept_parameter=spec["param"], outer_parameter=spec["outer"],
                  fixed=", ".join(f"{k}={v!r}" for k, v in sorted(spec["fixed"].items())))

@@ -234,7 +234,7 @@ def window_convergence(points, t_ends=(7000.0, 10000.0, 14000.0, 20000.0, 28000.
                        t_end=T_END_DEFAULT, t_transient=T_TRANSIENT_DEFAULT,
                        v_stick=V_STICK_DEFAULT, r=R_DEFAULT, d=D_DEFAULT,
                        max_impacts=MAX_IMPACTS_DEFAULT, root_tol=ROOT_TOL_DEFAULT,
-                       n_threads=None) -> WindowConvergence:
+                       periodic_shortcut=True, n_threads=None) -> WindowConvergence:
     """Measures at ``points`` (dicts eta, omega, F, optional label) over run lengths and windows.
 
     Axes: ``t_ends`` (dimensionless run lengths) x window rules: each of ``window_lengths``
@@ -258,9 +258,11 @@ def window_convergence(points, t_ends=(7000.0, 10000.0, 14000.0, 20000.0, 28000.
                   t_transient=float(t_tr[i, j, k]))
              for i, p in enumerate(pts) for j in range(n_w) for k in range(n_t)]
     solver = dict(v_stick=float(v_stick), r=float(r), d=float(d),
-                  max_impacts=int(max_impacts), root_tol=float(root_tol))
+                  max_impacts=int(max_impacts), root_tol=float(root_tol),
+                  periodic_shortcut=int(bool(periodic_shortcut)))
     f, _ = _run_cases(cases, dict(v_stick=v_stick, r=r, d=d, max_impacts=max_impacts,
-                                  root_tol=root_tol), n_threads)
+                                  root_tol=root_tol, periodic_shortcut=periodic_shortcut),
+                      n_threads)
     m = _measures(f, (n_p, n_w, n_t))
     # reference: longest run, widest window (smallest t_transient of the last t_end column)
     j_ref = np.argmin(t_tr[:, :, -1], axis=1)
@@ -289,7 +291,7 @@ def vstick_convergence(points, v_sticks=tuple(10.0 ** -np.arange(3, 11)), *, ke_
                        xmax_rtol=1e-2, t_end=T_END_DEFAULT, t_transient=T_TRANSIENT_DEFAULT,
                        v_stick=V_STICK_DEFAULT, r=R_DEFAULT, d=D_DEFAULT,
                        max_impacts=MAX_IMPACTS_DEFAULT, root_tol=ROOT_TOL_DEFAULT,
-                       n_threads=None) -> VStickConvergence:
+                       periodic_shortcut=True, n_threads=None) -> VStickConvergence:
     """Measures at ``points`` (dicts eta, omega, F, optional label) against ``v_sticks``.
 
     ``v_sticks``: sticking thresholds on the relative velocity after an impact
@@ -307,10 +309,11 @@ def vstick_convergence(points, v_sticks=tuple(10.0 ** -np.arange(3, 11)), *, ke_
     cases = [dict(eta=p["eta"], omega=p["omega"], F=p["F"], v_stick=float(v))
              for p in pts for v in vs]
     solver = dict(t_end=float(t_end), t_transient=float(t_transient), r=float(r),
-                  d=float(d), max_impacts=int(max_impacts), root_tol=float(root_tol))
+                  d=float(d), max_impacts=int(max_impacts), root_tol=float(root_tol),
+                  periodic_shortcut=int(bool(periodic_shortcut)))
     f, run_time = _run_cases(cases, dict(t_end=t_end, t_transient=t_transient, r=r, d=d,
-                                         max_impacts=max_impacts, root_tol=root_tol),
-                             n_threads)
+                                         max_impacts=max_impacts, root_tol=root_tol,
+                                         periodic_shortcut=periodic_shortcut), n_threads)
     shape = (len(pts), vs.size)
     m = _measures(f, shape)
     diff = _differences(m, m["ke_ratio"][:, :1], m["xmax"][:, :1], m["regime"][:, :1],
@@ -357,7 +360,7 @@ def grid_convergence(eta_range=(0.01, 1.0), omega_range=(0.5, 1.5), F=0.4,
                      resolutions=(11, 21, 41, 81), level=0.5, *, t_end=T_END_DEFAULT,
                      t_transient=T_TRANSIENT_DEFAULT, v_stick=V_STICK_DEFAULT, r=R_DEFAULT,
                      d=D_DEFAULT, max_impacts=MAX_IMPACTS_DEFAULT, root_tol=ROOT_TOL_DEFAULT,
-                     n_threads=None) -> GridConvergence:
+                     periodic_shortcut=True, n_threads=None) -> GridConvergence:
     """KE ratio = ``level`` contour over (eta, omega) at ``resolutions`` points per axis.
 
     Grids are linspace over ``eta_range`` x ``omega_range`` at fixed F; every coarse grid is
@@ -386,7 +389,7 @@ def grid_convergence(eta_range=(0.01, 1.0), omega_range=(0.5, 1.5), F=0.4,
     E, OM = np.meshgrid(eta, omega, indexing="ij")
     f = simulate_batch(E, OM, float(F), r=r, d=d, t_end=t_end, t_transient=t_transient,
                        v_stick=v_stick, max_impacts=max_impacts, root_tol=root_tol,
-                       n_threads=n_threads)
+                       periodic_shortcut=periodic_shortcut, n_threads=n_threads)
     per_res = {"stride": np.array(strides),
                "spacing_eta": (e1 - e0) / (np.array(res) - 1.0),
                "spacing_omega": (w1 - w0) / (np.array(res) - 1.0),
@@ -394,7 +397,7 @@ def grid_convergence(eta_range=(0.01, 1.0), omega_range=(0.5, 1.5), F=0.4,
                                   (e1 - e0) * (w1 - w0))}
     solver = dict(t_end=float(t_end), t_transient=float(t_transient), v_stick=float(v_stick),
                   r=float(r), d=float(d), max_impacts=int(max_impacts),
-                  root_tol=float(root_tol))
+                  root_tol=float(root_tol), periodic_shortcut=int(bool(periodic_shortcut)))
     return GridConvergence(eta=eta, omega=omega,
                            fields={k: f[k] for k in ("ke_ratio", "xmax", "regime")},
                            resolution=np.array(res), per_resolution=per_res, F=float(F),
