@@ -5,9 +5,10 @@ Targets: 2 threads >= 1.8 x faster than 1 thread and <= 2 s for 150 x 150 at F =
 2 free cores, with identical arrays for 1 and 2 threads.
 
 The runs alternate 1 and 2 threads ``repeats`` times (default 3) and the best wall time of
-each is compared, which filters out most interference from other jobs; the load average
-and the CPU time of the process (which other jobs hardly change) are printed too: CPU time
-/ wall time is the number of cores the map actually got.
+each is compared, which filters out most interference from other jobs. Also printed: the
+CPU time of the process (which other jobs hardly change), CPU time / wall time (the cores
+the map actually got), the cores other processes used meanwhile (from /proc/stat) and the
+load average: a 2-thread run can only be ~2x faster when the others left a core free.
 """
 import os
 import sys
@@ -20,10 +21,23 @@ from vines.orbits.stability_map import stability_map
 KEYS = ("lambda_max", "cls", "dw_L", "symmetric")
 
 
+def _busy_seconds():
+    """CPU seconds all processes of the machine have used so far (Linux; else nan)."""
+    try:
+        with open("/proc/stat") as f:
+            ticks = [int(v) for v in f.readline().split()[1:]]
+    except (OSError, ValueError):
+        return float("nan")
+    idle = ticks[3] + (ticks[4] if len(ticks) > 4 else 0)
+    return (sum(ticks[:8]) - idle) / os.sysconf("SC_CLK_TCK")
+
+
 def _run(eta, omega, F, nt):
-    w0, c0 = time.perf_counter(), time.process_time()
+    """(result, wall s, CPU s of this process, cores used meanwhile by other processes)."""
+    b0, w0, c0 = _busy_seconds(), time.perf_counter(), time.process_time()
     res = stability_map(eta, omega, F, n_threads=nt)
-    return res, time.perf_counter() - w0, time.process_time() - c0
+    wall, cpu = time.perf_counter() - w0, time.process_time() - c0
+    return res, wall, cpu, max(0.0, (_busy_seconds() - b0 - cpu) / wall)
 
 
 def main():
@@ -40,9 +54,10 @@ def main():
     results = {}
     for rep in range(repeats):
         for nt in (1, 2):
-            results[nt], wall, cpu = _run(eta, omega, F, nt)
+            results[nt], wall, cpu, others = _run(eta, omega, F, nt)
             print(f"  run {rep + 1}, {nt} thread(s): {wall:.2f} s wall, {cpu:.2f} s CPU "
-                  f"({cpu / wall:.2f} cores), load {os.getloadavg()[0]:.2f}", flush=True)
+                  f"({cpu / wall:.2f} cores; other processes meanwhile {others:.2f} cores), "
+                  f"load {os.getloadavg()[0]:.2f}", flush=True)
             best[nt] = min(best[nt], (wall, cpu))
     for nt in (1, 2):
         wall, cpu = best[nt]
