@@ -156,30 +156,22 @@ def map_kernel(osc, eta, r, omega, phi, x, from_wall, to_wall, s_guess, y, J):
     y[2] = zb + vbp * s
     y[3] = t + s
     # explicit partials of G = z - zb - vbp s - to_wall, of z', and of the outputs
-    dG = np.empty(4)
-    dG[0] = S * a11 - a21 * s
-    dG[1] = S * a12 - a22 * s
-    dG[2] = C - 1.0
-    dG[3] = zt
+    # (scalars, not small arrays: no allocation per call)
     wd = v - vbp
-    ds = np.empty(4)
-    for k in range(4):
-        ds[k] = -dG[k] / wd
-    dv = np.empty(4)
-    dv[0] = dS * a11
-    dv[1] = dS * a12
-    dv[2] = dC
-    dv[3] = vt
-    for k in range(4):
-        J[0, k] = dv[k] + acc * ds[k]
+    ds0 = -(S * a11 - a21 * s) / wd
+    ds1 = -(S * a12 - a22 * s) / wd
+    ds2 = -(C - 1.0) / wd
+    ds3 = -zt / wd
+    J[0, 0] = dS * a11 + acc * ds0
+    J[0, 1] = dS * a12 + acc * ds1
+    J[0, 2] = dC + acc * ds2
+    J[0, 3] = vt + acc * ds3
     J[1, 0], J[1, 1], J[1, 2], J[1, 3] = a21, a22, 0.0, 0.0
-    J[2, 0] = a21 * s + vbp * ds[0]
-    J[2, 1] = a22 * s + vbp * ds[1]
-    J[2, 2] = 1.0 + vbp * ds[2]
-    J[2, 3] = vbp * ds[3]
-    for k in range(4):
-        J[3, k] = ds[k]
-    J[3, 3] += 1.0
+    J[2, 0] = a21 * s + vbp * ds0
+    J[2, 1] = a22 * s + vbp * ds1
+    J[2, 2] = 1.0 + vbp * ds2
+    J[2, 3] = vbp * ds3
+    J[3, 0], J[3, 1], J[3, 2], J[3, 3] = ds0, ds1, ds2, ds3 + 1.0
     return s
 
 

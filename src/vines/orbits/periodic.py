@@ -17,6 +17,10 @@ Seeds (every seed is polished by that Newton iteration on the true maps, then de
   scanned over (0, T) and sign changes of sin^2 + cos^2 - 1 are refined by bisection.
 * a short simulation (t_end ~ 600) from rest: its last L impact followed by R and L.
 * caller-supplied seeds (continuation): x_L arrays, optionally with flight times.
+
+``orbit_solve``/``orbit_classify``/``seed_kernel`` (end of the module) are nogil versions
+of ``solve_orbit``/``seed_orbits(simulation=False)`` on float rows, bitwise equal to them,
+for threaded per-point drivers (``stability_map``).
 """
 from __future__ import annotations
 
@@ -27,8 +31,9 @@ import numpy as np
 from numba import njit
 
 from ..core.exact import oscillators
-from ..core.flow import flow
+from ..core.flow import I_ARES, I_NRES, I_PC, I_PS, I_RES, I_W, flow, fundamentals
 from ..core.walls import WALL_L, WALL_R, impact_velocities
+from ._lapack import lambda_max_4
 from .maps import admissible_kernel, map_kernel
 from ..core.params import D_DEFAULT, R_DEFAULT, ModelParams
 
@@ -42,9 +47,13 @@ N_SCAN = 96             # s1 samples of the asymmetric scan
 @njit(cache=True, nogil=True)
 def _solve(A, b, out):
     """Gaussian elimination with partial pivoting; False when (numerically) singular."""
-    n = A.shape[0]
-    M = A.copy()
-    v = b.copy()
+    return _solve_into(A.copy(), b.copy(), out)
+
+
+@njit(cache=True, nogil=True)
+def _solve_into(M, v, out):
+    """``_solve`` overwriting M and v (no allocation)."""
+    n = M.shape[0]
     scale = 0.0
     for i in range(n):
         for j in range(n):
@@ -119,7 +128,7 @@ def newton_1to1(osc, eta, r, omega, phi, x0, s1, s2, x, xR, J1, J2, fl):
                 M[i, k] = acc - (1.0 if i == k else 0.0)
         for i in range(4):
             R[i] = -R[i]
-        if not _solve(M, R, dx):
+        if not _solve_into(M, R, dx):        # M and R are rebuilt every iteration
             return math.inf
         # damping: keep steps moderate (time by at most T/8, velocities by 1)
         fac = 1.0
@@ -187,12 +196,93 @@ def _affine(osc, eta, r, omega, s1, s2, sym, A, b):
 
 
 @njit(cache=True, nogil=True)
-def _circle_residual(osc, eta, r, omega, s1, T, u):
-    """sin^2 + cos^2 - 1 of the affine solution at L->R flight time s1 (nan if singular)."""
-    A = np.empty((5, 5))
-    b = np.empty(5)
-    _affine(osc, eta, r, omega, s1, T - s1, False, A, b)
-    if not _solve(A, -b, u):
+def _s_factors(osc, s):
+    """The factors of ``flow`` that depend on s only: (C, C', S, S', sin, cos of omega s)."""
+    C, dC, S, dS = fundamentals(osc, s)
+    w = osc[I_W]
+    return C, dC, S, dS, math.sin(w * s), math.cos(w * s)
+
+
+@njit(cache=True, nogil=True)
+def _flow_zv(osc, x0, v0, sth0, cth0, s, fs):
+    """(z, z') of ``flow`` given fs = ``_s_factors(osc, s)``, by flow's own arithmetic (same
+    bits); not for the near-resonant undamped form (osc[I_NRES])."""
+    C, dC, S, dS, sw, cw = fs
+    omega = osc[I_W]
+    res = osc[I_RES] > 0.5
+    ps = osc[I_PS]
+    pc = osc[I_PC]
+    if res:
+        zp0, zp10 = 0.0, osc[I_ARES] * cth0
+    else:
+        zp0, zp10 = ps * sth0 + pc * cth0, omega * (ps * cth0 - pc * sth0)
+    xh = x0 - zp0
+    vh = v0 - zp10
+    zh = xh * C + vh * S
+    zh1 = xh * dC + vh * dS
+    sth = sth0 * cw + cth0 * sw
+    cth = cth0 * cw - sth0 * sw
+    if res:
+        A = osc[I_ARES]
+        zp = A * s * cth
+        zp1 = A * cth - A * omega * s * sth
+    else:
+        zp = ps * sth + pc * cth
+        zp1 = omega * (ps * cth - pc * sth)
+    return zp + zh, zp1 + zh1
+
+
+@njit(cache=True, nogil=True)
+def _two_flights_c(osc, eta, r, u, s1, s2, f1, f2, E):
+    """The 5 asymmetric conditions of ``_two_flights`` with the s-factors f1, f2 of s1, s2
+    precomputed (same arithmetic, same bits)."""
+    vm, vb, zb, sth, cth = u[0], u[1], u[2], u[3], u[4]
+    vp, vbp = impact_velocities(eta, r, vm, vb)
+    z1, v1 = _flow_zv(osc, zb + 1.0, vp, sth, cth, s1, f1)
+    zb1 = zb + vbp * s1
+    E[0] = z1 - zb1 + 1.0                       # arrival at R
+    c = f1[5]
+    sn = f1[4]
+    sth1 = sth * c + cth * sn
+    cth1 = cth * c - sth * sn
+    vp2, vbp2 = impact_velocities(eta, r, v1, vbp)
+    z2, v2 = _flow_zv(osc, z1, vp2, sth1, cth1, s2, f2)
+    zb2 = zb1 + vbp2 * s2
+    E[1] = z2 - zb2 - 1.0                       # arrival at L
+    E[2] = v2 - vm
+    E[3] = vbp2 - vb
+    E[4] = zb2 - zb
+
+
+@njit(cache=True, nogil=True)
+def _circle_residual(osc, eta, r, omega, s1, T, u, ws):
+    """sin^2 + cos^2 - 1 of the affine solution at L->R flight time s1 (nan if singular).
+
+    ws = (A 5x5, b, E, M 5x5, v) scratch. E(u) = A u + b is built as ``_affine`` does, with
+    the s-dependent factors computed once (not for the near-resonant undamped form).
+    """
+    A, b, E, M, v = ws
+    s2 = T - s1
+    if osc[I_NRES] > 0.5:
+        _affine(osc, eta, r, omega, s1, s2, False, A, b)
+    else:
+        f1 = _s_factors(osc, s1)
+        f2 = _s_factors(osc, s2)
+        u[:] = 0.0
+        _two_flights_c(osc, eta, r, u, s1, s2, f1, f2, E)
+        for i in range(5):
+            b[i] = E[i]
+        for k in range(5):
+            u[:] = 0.0
+            u[k] = 1.0
+            _two_flights_c(osc, eta, r, u, s1, s2, f1, f2, E)
+            for i in range(5):
+                A[i, k] = E[i] - b[i]
+    for i in range(5):
+        v[i] = -b[i]
+        for k in range(5):
+            M[i, k] = A[i, k]
+    if not _solve_into(M, v, u):
         return math.nan
     return u[3] * u[3] + u[4] * u[4] - 1.0
 
@@ -202,18 +292,19 @@ def asymmetric_seeds(osc, eta, r, omega, n_scan, out):
     """Seeds (vm, vb, zb, theta_L, s1) from the scan of s1; returns how many (<= len(out))."""
     T = 2.0 * math.pi / omega
     u = np.empty(5)
+    ws = (np.empty((5, 5)), np.empty(5), np.empty(5), np.empty((5, 5)), np.empty(5))
     n = 0
     h_prev = math.nan
     s_prev = 0.0
     for k in range(n_scan):
         s = T * (k + 0.5) / n_scan
-        h = _circle_residual(osc, eta, r, omega, s, T, u)
+        h = _circle_residual(osc, eta, r, omega, s, T, u, ws)
         if math.isfinite(h) and math.isfinite(h_prev) and (h > 0.0) != (h_prev > 0.0) \
                 and n < out.shape[0]:
             a, fa, bb = s_prev, h_prev, s
             for _ in range(50):
                 m = 0.5 * (a + bb)
-                fm = _circle_residual(osc, eta, r, omega, m, T, u)
+                fm = _circle_residual(osc, eta, r, omega, m, T, u, ws)
                 if not math.isfinite(fm):
                     break
                 if (fm > 0.0) == (fa > 0.0):
@@ -223,7 +314,7 @@ def asymmetric_seeds(osc, eta, r, omega, n_scan, out):
                 if bb - a < 1e-13 * T:
                     break
             m = 0.5 * (a + bb)
-            fm = _circle_residual(osc, eta, r, omega, m, T, u)
+            fm = _circle_residual(osc, eta, r, omega, m, T, u, ws)
             # a sign change through a pole is no root
             if math.isfinite(fm) and abs(fm) < 1e-3:
                 out[n, 0], out[n, 1], out[n, 2] = u[0], u[1], u[2]
@@ -249,10 +340,11 @@ def symmetric_seeds(osc, eta, r, omega) -> list:
         return []
     q = Vt[-1]
     p = np.linalg.lstsq(A, -b, rcond=None)[0]
-    # |(p3 + lam q3, p4 + lam q4)|^2 = 1
-    a2 = q[3] ** 2 + q[4] ** 2
+    # |(p3 + lam q3, p4 + lam q4)|^2 = 1 (x * x, not x ** 2: numpy's power of a float64
+    # scalar can be 1 ulp off on some CPUs; this keeps ``symmetric_seeds_kernel`` equal)
+    a2 = q[3] * q[3] + q[4] * q[4]
     a1 = 2.0 * (p[3] * q[3] + p[4] * q[4])
-    a0 = p[3] ** 2 + p[4] ** 2 - 1.0
+    a0 = p[3] * p[3] + p[4] * p[4] - 1.0
     disc = a1 * a1 - 4.0 * a2 * a0
     if a2 == 0.0 or disc < 0.0:
         return []
@@ -262,6 +354,43 @@ def symmetric_seeds(osc, eta, r, omega) -> list:
         u = p + lam * q
         out.append((u[0], u[1], u[2], math.atan2(u[3], u[4])))
     return out
+
+
+@njit(cache=True, nogil=True)
+def symmetric_seeds_kernel(osc, eta, r, omega, out):
+    """Compiled ``symmetric_seeds``: rows out[k] = (vm, vb, zb, theta_L); returns 0 or 2.
+
+    Same LAPACK routines as numpy's svd and lstsq (dgesdd, dgelsd with numpy's default
+    rcond = 5 eps), so the seeds equal those of ``symmetric_seeds`` bit for bit.
+    """
+    T = 2.0 * math.pi / omega
+    A = np.empty((4, 5))
+    b = np.empty(4)
+    _affine(osc, eta, r, omega, 0.5 * T, 0.5 * T, True, A, b)
+    for i in range(4):
+        if not math.isfinite(b[i]):
+            return 0
+        for k in range(5):
+            if not math.isfinite(A[i, k]):
+                return 0
+    _, sv, Vt = np.linalg.svd(A)
+    if sv[-1] <= 1e-14 * sv[0]:
+        return 0
+    q = Vt[-1]
+    p = np.linalg.lstsq(A, -b, rcond=5.0 * 2.220446049250313e-16)[0]
+    a2 = q[3] * q[3] + q[4] * q[4]
+    a1 = 2.0 * (p[3] * q[3] + p[4] * q[4])
+    a0 = p[3] * p[3] + p[4] * p[4] - 1.0
+    disc = a1 * a1 - 4.0 * a2 * a0
+    if a2 == 0.0 or disc < 0.0:
+        return 0
+    sq = math.sqrt(disc)
+    for k in range(2):
+        lam = (-a1 - sq) / (2.0 * a2) if k == 0 else (-a1 + sq) / (2.0 * a2)
+        for m in range(3):
+            out[k, m] = p[m] + lam * q[m]
+        out[k, 3] = math.atan2(p[3] + lam * q[3], p[4] + lam * q[4])
+    return 2
 
 
 # --------------------------------------------------------------------------- orbits
@@ -347,7 +476,7 @@ def _orbit(p, osc, x, xR, J1, J2, fl, res) -> PeriodicOrbit:
                                      fl[1]))
     ev = np.linalg.eigvals(J2 @ J1)
     ev = ev[np.argsort(-np.abs(ev))]
-    lam = float(np.abs(ev).max())
+    lam = float(np.hypot(ev.real, ev.imag).max())      # as ``_lapack.lambda_max_4``
     two_pi = 2.0 * math.pi
     return PeriodicOrbit(
         x_L=x.copy(), x_R=xR.copy(), flight_times=[float(fl[0]), float(fl[1])],
@@ -439,3 +568,125 @@ def find_1to1(eta, omega, F, r=R_DEFAULT, d=D_DEFAULT, phi=0.0, seeds=None,
     out = _dedup(found, p.period)
     out.sort(key=_sort_key)
     return out
+
+
+# --------------------------------------------------------------------------- compiled candidates
+# nogil versions of solve_orbit / seed_orbits(simulation=False) for per-point drivers that
+# run on threads (``stability_map``). An orbit is a row of floats (ROW_* columns); the
+# arithmetic is that of the Python functions above, so the rows equal their PeriodicOrbits
+# (lambda_max of admissible orbits: the same dgeev; see ``_lapack``).
+
+ROW_X, ROW_FL, ROW_ADM, ROW_LAM, ROW_SYM, ROW_DWL = 0, 4, 6, 7, 8, 9
+N_ROW = 10                  # callers may append their own columns after these
+N_SEED_MAX = 2 + 16         # symmetric + asymmetric seeds of one parameter point
+
+
+@njit(cache=True, nogil=True)
+def orbit_workspace():
+    """Scratch of ``orbit_solve``/``orbit_classify``: (x0, x, xR, J1, J2, fl, M, a, wr, wi,
+    work); x0 is the starting point, the rest is filled by the solve."""
+    return (np.empty(4), np.empty(4), np.empty(4), np.empty((4, 4)), np.empty((4, 4)),
+            np.empty(2), np.empty((4, 4)), np.empty(16), np.empty(4), np.empty(4),
+            np.empty(64))
+
+
+@njit(cache=True, nogil=True)
+def orbit_solve(osc, eta, r, omega, phi, s1, s2, row, ws):
+    """Newton part of ``solve_orbit`` from ws[0] = x0: fills row's x_L (t_L in [0, T)) and
+    flight times; False where solve_orbit gives None. ``orbit_classify`` completes the row."""
+    x0, x, xR, J1, J2, fl = ws[0], ws[1], ws[2], ws[3], ws[4], ws[5]
+    T = 2.0 * math.pi / omega
+    res = newton_1to1(osc, eta, r, omega, phi, x0, s1, s2, x, xR, J1, J2, fl)
+    if not math.isfinite(res):
+        return False
+    for i in range(4):
+        if not math.isfinite(x[i]):
+            return False
+    if not (fl[0] > 0.0 and fl[1] > 0.0) or abs(fl[0] + fl[1] - T) > 1e-8 * (1.0 + T):
+        return False
+    k = math.floor(x[3] / T)
+    if k != 0:
+        x[3] -= k * T
+        xR[3] -= k * T
+    for i in range(4):
+        row[ROW_X + i] = x[i]
+    row[ROW_FL] = fl[0]
+    row[ROW_FL + 1] = fl[1]
+    return True
+
+
+@njit(cache=True, nogil=True)
+def orbit_classify(osc, eta, r, omega, phi, row, ws):
+    """Admissibility, symmetry, dw_L and, for admissible orbits only, lambda_max (nan
+    otherwise) of the orbit the last ``orbit_solve`` with ws found (as ``_orbit``).
+
+    An admissible orbit whose monodromy matrix is not finite (numpy's eigvals would raise)
+    is marked non-admissible.
+    """
+    x, xR, J1, J2, fl, M, a, wr, wi, work = ws[1:]
+    adm = (admissible_kernel(osc, eta, r, omega, phi, x, WALL_L, WALL_R, fl[0])
+           and admissible_kernel(osc, eta, r, omega, phi, xR, WALL_R, WALL_L, fl[1]))
+    lam = math.nan
+    if adm:
+        np.dot(J2, J1, M)
+        lam = lambda_max_4(M, a, wr, wi, work)
+        adm = math.isfinite(lam)
+    row[ROW_ADM] = 1.0 if adm else 0.0
+    row[ROW_LAM] = lam
+    row[ROW_SYM] = 1.0 if abs(fl[0] - fl[1]) <= SYM_TOL else 0.0
+    row[ROW_DWL] = x[0] - x[1]
+
+
+@njit(cache=True, nogil=True)
+def same_rows(a, b, T):
+    """``_same`` on rows (a the new orbit, b a kept one)."""
+    dt = abs(a[ROW_X + 3] - b[ROW_X + 3]) % T
+    dt = min(dt, T - dt)
+    if not dt <= DEDUP_TOL * (1.0 + T):
+        return False
+    for i in range(3):
+        if not abs(a[ROW_X + i] - b[ROW_X + i]) <= DEDUP_TOL * (1.0 + abs(a[ROW_X + i])):
+            return False
+    return True
+
+
+@njit(cache=True, nogil=True)
+def seed_kernel(osc, eta, r, omega, phi, F, rows, ws):
+    """Compiled ``seed_orbits(simulation=False)``: distinct orbits into rows[:n]; returns n.
+
+    rows needs N_SEED_MAX rows (of >= N_ROW columns). Duplicates are dropped before
+    ``orbit_classify`` (their admissibility and eigenvalues are never needed).
+    """
+    if F == 0.0:
+        return 0
+    T = 2.0 * math.pi / omega
+    x0 = ws[0]
+    buf = np.empty((16, 5))
+    n = 0
+    ns = symmetric_seeds_kernel(osc, eta, r, omega, buf)
+    for k in range(ns):
+        x0[0], x0[1], x0[2] = buf[k, 0], buf[k, 1], buf[k, 2]
+        x0[3] = np.mod((buf[k, 3] - phi) / omega, T)
+        if orbit_solve(osc, eta, r, omega, phi, 0.5 * T, 0.5 * T, rows[n], ws) \
+                and _is_new(rows, n, T):
+            orbit_classify(osc, eta, r, omega, phi, rows[n], ws)
+            n += 1
+    na = asymmetric_seeds(osc, eta, r, omega, N_SCAN, buf)
+    for k in range(na):
+        x0[0], x0[1], x0[2] = buf[k, 0], buf[k, 1], buf[k, 2]
+        x0[3] = np.mod((buf[k, 3] - phi) / omega, T)
+        s1 = buf[k, 4]
+        if orbit_solve(osc, eta, r, omega, phi, s1, T - s1, rows[n], ws) \
+                and _is_new(rows, n, T):
+            orbit_classify(osc, eta, r, omega, phi, rows[n], ws)
+            n += 1
+    return n
+
+
+@njit(cache=True, nogil=True)
+def _is_new(rows, n, T):
+    """rows[n] is not ``same_rows`` as any of rows[:n]."""
+    for q in range(n):
+        if same_rows(rows[n], rows[q], T):
+            return False
+    return True

@@ -3,11 +3,22 @@
 At every grid point the candidates are: the closed-form symmetric orbits, the asymmetric
 orbits of the flight-time scan (``vines.periodic``), and the admissible orbits of the
 previous eta point of the same omega column, continued by Newton (secant predictor when two
-previous points are available). Among the admissible candidates a stable one is preferred,
-then a symmetric one, then the smallest |lambda_max|.
+previous points are available). Candidates are deduplicated in that order (the first of
+equal orbits is kept). Among the admissible candidates a stable one is preferred, then a
+symmetric one, then the smallest |lambda_max| (the first of equals).
 
 Columns (one omega each) are independent and processed in order of increasing eta index,
 so the result does not depend on how the columns are spread over threads.
+
+Design: a whole column is one call of the compiled ``_column_kernel`` (numba, nogil), so
+the columns run truly in parallel on the threads of a ThreadPoolExecutor (inside a
+Snakemake job: ``n_threads`` = the job's threads). Orbits are rows of a float array
+(``periodic.ROW_*`` columns, then this module's ``ROW_SRC*``: the orbit a continued one
+came from). The kernel repeats the arithmetic of the Python solvers (``seed_orbits``,
+``solve_orbit``, numpy's dgeev for the eigenvalues), so it returns the same bits as
+``stability_map_python``, the Python version kept as the reference (tests). Admissibility
+and eigenvalues are only computed for orbits that survive deduplication, and eigenvalues
+only for admissible ones (the only ones the map uses).
 """
 from __future__ import annotations
 
@@ -16,15 +27,141 @@ import os
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
+from numba import njit
 
 from ..core.exact import oscillators
-from ..core.params import D_DEFAULT, R_DEFAULT, ModelParams, ParameterError, check_int
-from .periodic import seed_orbits, solve_orbit
+from ..core.flow import make_osc
+from ..core.params import (D_DEFAULT, MAX_GAIN, R_DEFAULT, ModelParams, ParameterError,
+                           check_conditioning, check_int)
+from .periodic import (N_ROW, N_SEED_MAX, ROW_ADM, ROW_DWL, ROW_FL, ROW_LAM, ROW_SYM, ROW_X,
+                       orbit_classify, orbit_solve, orbit_workspace, seed_kernel, seed_orbits,
+                       solve_orbit)
 
 CLS_NONE, CLS_SYM_STABLE, CLS_ASYM_STABLE, CLS_UNSTABLE = 0, 1, 2, 3
 
+# Row columns after periodic's: the orbit this one was continued from (the secant's
+# second point): flag, its eta, x_L and flight times.
+ROW_SRC, ROW_SRC_ETA, ROW_SRC_X, ROW_SRC_FL = N_ROW, N_ROW + 1, N_ROW + 2, N_ROW + 6
+N_COL = N_ROW + 8
 
-def _pick(orbits):
+
+# --------------------------------------------------------------------------- compiled driver
+
+@njit(cache=True, nogil=True)
+def _continue(osc, eta, r, omega, e_prev, prv, row, ws):
+    """Newton from the orbit prv of the previous eta (secant predictor when prv was itself
+    continued, unless t_L wrapped); fills row's x_L, flight times and source (not yet
+    classified). False when Newton fails."""
+    T = 2.0 * math.pi / omega
+    x0 = ws[0]
+    for k in range(4):
+        x0[k] = prv[ROW_X + k]
+    f0, f1 = prv[ROW_FL], prv[ROW_FL + 1]
+    if prv[ROW_SRC] > 0.0 and e_prev != prv[ROW_SRC_ETA]:
+        f = (eta - e_prev) / (e_prev - prv[ROW_SRC_ETA])
+        if abs(prv[ROW_X + 3] - prv[ROW_SRC_X + 3]) < 0.25 * T:
+            for k in range(4):
+                x0[k] = prv[ROW_X + k] + f * (prv[ROW_X + k] - prv[ROW_SRC_X + k])
+            f0 = prv[ROW_FL] + f * (prv[ROW_FL] - prv[ROW_SRC_FL])
+            f1 = prv[ROW_FL + 1] + f * (prv[ROW_FL + 1] - prv[ROW_SRC_FL + 1])
+    if not orbit_solve(osc, eta, r, omega, 0.0, f0, f1, row, ws):
+        return False
+    row[ROW_SRC] = 1.0
+    row[ROW_SRC_ETA] = e_prev
+    for k in range(4):
+        row[ROW_SRC_X + k] = prv[ROW_X + k]
+    row[ROW_SRC_FL] = prv[ROW_FL]
+    row[ROW_SRC_FL + 1] = prv[ROW_FL + 1]
+    return True
+
+
+@njit(cache=True, nogil=True)
+def _is_new(rows, n, T):
+    """rows[n] is no orbit of rows[:n] for the map's deduplication (same t_L mod T to
+    1e-8 (1 + T) and velocities/position to 1e-8 absolute)."""
+    a = rows[n]
+    for q in range(n):
+        b = rows[q]
+        dt = abs(a[ROW_X + 3] - b[ROW_X + 3]) % T
+        dt = min(dt, T - dt)
+        if dt <= 1e-8 * (1.0 + T) and abs(a[ROW_X] - b[ROW_X]) <= 1e-8 \
+                and abs(a[ROW_X + 1] - b[ROW_X + 1]) <= 1e-8 \
+                and abs(a[ROW_X + 2] - b[ROW_X + 2]) <= 1e-8:
+            return False
+    return True
+
+
+@njit(cache=True, nogil=True)
+def _pick(rows, n):
+    """Index of the admissible orbit with the smallest (not stable, not symmetric,
+    lambda_max), the first of equals; -1 when none is admissible."""
+    best = -1
+    kb0, kb1, kb2 = 2, 2, math.inf
+    for k in range(n):
+        if rows[k, ROW_ADM] == 0.0:
+            continue
+        lam = rows[k, ROW_LAM]
+        k0 = 0 if lam < 1.0 else 1
+        k1 = 0 if rows[k, ROW_SYM] > 0.0 else 1
+        if best < 0 or (k0, k1, lam) < (kb0, kb1, kb2):
+            best, kb0, kb1, kb2 = k, k0, k1, lam
+    return best
+
+
+@njit(cache=True, nogil=True)
+def _point(osc, eta, r, omega, F, e_prev, prev, rows, ws):
+    """Candidates of one grid point into rows[:n]: seeds, then the continued orbits of
+    prev that are new (``_is_new``, seeds first: the old list order); returns n."""
+    T = 2.0 * math.pi / omega
+    n = seed_kernel(osc, eta, r, omega, 0.0, F, rows, ws)
+    for k in range(prev.shape[0]):
+        if _continue(osc, eta, r, omega, e_prev, prev[k], rows[n], ws) and _is_new(rows, n, T):
+            orbit_classify(osc, eta, r, omega, 0.0, rows[n], ws)
+            n += 1
+    return n
+
+
+@njit(cache=True, nogil=True)
+def _column_kernel(etas, omega, F, r, osc, lam_out, cls_out, dw_out, sym_out, j):
+    """Column j (one omega) of the map, eta in the given order (module docstring); writes
+    lam_out[:, j], cls_out[:, j], dw_out[:, j], sym_out[:, j]. Runs without the GIL."""
+    ws = orbit_workspace()
+    prev = np.empty((0, N_COL))
+    rows = np.zeros((N_SEED_MAX + 8, N_COL))
+    for i in range(etas.size):
+        if rows.shape[0] < N_SEED_MAX + prev.shape[0]:
+            rows = np.zeros((N_SEED_MAX + 2 * prev.shape[0], N_COL))
+        rows[:, ROW_SRC] = 0.0
+        n = _point(osc, etas[i], r, omega, F, etas[i - 1] if i > 0 else math.nan, prev,
+                   rows, ws)
+        b = _pick(rows, n)
+        if b < 0:
+            lam_out[i, j] = math.nan
+            cls_out[i, j] = CLS_NONE
+            dw_out[i, j] = math.nan
+            sym_out[i, j] = False
+        else:
+            lam = rows[b, ROW_LAM]
+            sym = rows[b, ROW_SYM] > 0.0
+            lam_out[i, j] = lam
+            cls_out[i, j] = (CLS_UNSTABLE if not lam < 1.0 else
+                             CLS_SYM_STABLE if sym else CLS_ASYM_STABLE)
+            dw_out[i, j] = rows[b, ROW_DWL]
+            sym_out[i, j] = sym
+        n_adm = 0
+        for k in range(n):
+            n_adm += rows[k, ROW_ADM] > 0.0
+        prev = np.empty((n_adm, N_COL))
+        m = 0
+        for k in range(n):
+            if rows[k, ROW_ADM] > 0.0:
+                prev[m, :] = rows[k, :]
+                m += 1
+
+
+# --------------------------------------------------------------------------- Python reference
+
+def _pick_py(orbits):
     adm = [o for o in orbits if o.admissible]
     if not adm:
         return None
@@ -32,7 +169,8 @@ def _pick(orbits):
     return adm[0]
 
 
-def _column(etas, omega, F, r, d, out, j):
+def _column_py(etas, omega, F, r, d, out, j):
+    """The algorithm of ``_column_kernel`` on PeriodicOrbits (slow reference for tests)."""
     prev = []          # admissible orbits at the previous eta: list of (eta, orbit)
     prev2 = {}         # id(orbit) -> orbit at the eta before (for the secant predictor)
     for i, eta in enumerate(etas):
@@ -57,18 +195,12 @@ def _column(etas, omega, F, r, d, out, j):
             if o is not None:
                 cands.append(o)
                 new_prev2[id(o)] = (e_prev, o_prev)
-        # deduplicate against the seeds
         uniq = []
         for o in cands:
-            if not any(_close(o, q, p.period) for q in uniq):
+            if not any(_close_py(o, q, p.period) for q in uniq):
                 uniq.append(o)
-        best = _pick(uniq)
-        if best is None:
-            out["lambda_max"][i, j] = math.nan
-            out["cls"][i, j] = CLS_NONE
-            out["dw_L"][i, j] = math.nan
-            out["symmetric"][i, j] = False
-        else:
+        best = _pick_py(uniq)
+        if best is not None:
             out["lambda_max"][i, j] = best.lambda_max
             out["cls"][i, j] = (CLS_UNSTABLE if not best.stable else
                                 CLS_SYM_STABLE if best.symmetric else CLS_ASYM_STABLE)
@@ -79,10 +211,52 @@ def _column(etas, omega, F, r, d, out, j):
         prev2 = {id(o): new_prev2[id(o)] for o in adm if id(o) in new_prev2}
 
 
-def _close(a, b, T):
+def _close_py(a, b, T):
     dt = abs(a.x_L[3] - b.x_L[3]) % T
     dt = min(dt, T - dt)
     return dt <= 1e-8 * (1.0 + T) and np.all(np.abs(a.x_L[:3] - b.x_L[:3]) <= 1e-8)
+
+
+def stability_map_python(eta, omega, F, r=R_DEFAULT, d=D_DEFAULT) -> dict:
+    """``stability_map`` by the Python orbit solvers, one thread (slow reference)."""
+    etas, omegas, F, r, d, out = _setup(eta, omega, F, r, d)
+    for j in range(omegas.size):
+        _column_py(etas, float(omegas[j]), F, r, d, out, j)
+    out.update(eta=etas, omega=omegas, F=F)
+    return out
+
+
+# --------------------------------------------------------------------------- API
+
+def _setup(eta, omega, F, r, d):
+    """Validated axes and parameters (as floats) and the NaN/zero-filled output arrays."""
+    etas = np.atleast_1d(np.asarray(eta, dtype=float))
+    omegas = np.atleast_1d(np.asarray(omega, dtype=float))
+    if etas.ndim != 1 or omegas.ndim != 1:
+        raise ParameterError("eta/omega", None, "must be 1-D arrays")
+    for e in etas:
+        ModelParams(eta=e, omega=1.0, F=0.0)
+    for w in omegas:
+        ModelParams(eta=1.0, omega=w, F=0.0)
+    p = ModelParams(eta=1.0, omega=1.0, F=F, r=r, d=d)
+    _check_conditioning(etas, omegas, p.F, p.d)
+    shape = (etas.size, omegas.size)
+    out = {"lambda_max": np.full(shape, math.nan), "cls": np.zeros(shape, np.int8),
+           "dw_L": np.full(shape, math.nan), "symmetric": np.zeros(shape, bool)}
+    return etas, omegas, p.F, p.r, p.d, out
+
+
+def _check_conditioning(etas, omegas, F, d):
+    """``check_conditioning`` at every grid point (vectorised screen, then the exact check
+    at the few points near the limit, column by column)."""
+    if F == 0.0 or d == 0.0 or etas.size == 0 or omegas.size == 0:
+        return
+    m = np.concatenate([[1.0], 1.0 + etas])[:, None]
+    gain = 1.0 / np.hypot(1.0 - m * omegas * omegas, d * omegas)
+    near = np.any(gain > MAX_GAIN * (1.0 - 1e-9), axis=0)
+    for j in np.nonzero(near)[0]:
+        for e in etas:
+            check_conditioning(float(e), float(omegas[j]), F, d)
 
 
 def stability_map(eta, omega, F, r=R_DEFAULT, d=D_DEFAULT, n_threads=None,
@@ -93,25 +267,18 @@ def stability_map(eta, omega, F, r=R_DEFAULT, d=D_DEFAULT, n_threads=None,
     cls         int8: 0 no admissible 1:1, 1 symmetric stable, 2 asymmetric stable, 3 unstable
     dw_L        relative velocity before the L impact of the chosen orbit
     symmetric   bool
-    Also returns the axes ``eta``, ``omega`` and ``F``.
+    Also returns the axes ``eta``, ``omega`` and ``F``. ``n_threads`` (default: all cores)
+    columns are computed at once (compiled, without the GIL); the arrays do not depend on
+    it. ``progress(done, total)`` is called after every column.
     """
-    etas = np.atleast_1d(np.asarray(eta, dtype=float))
-    omegas = np.atleast_1d(np.asarray(omega, dtype=float))
-    if etas.ndim != 1 or omegas.ndim != 1:
-        raise ParameterError("eta/omega", None, "must be 1-D arrays")
-    for e in etas:
-        ModelParams(eta=e, omega=1.0, F=0.0)
-    for w in omegas:
-        ModelParams(eta=1.0, omega=w, F=0.0)
-    ModelParams(eta=1.0, omega=1.0, F=F, r=r, d=d)
+    etas, omegas, F, r, d, out = _setup(eta, omega, F, r, d)
     n_threads = check_int("n_threads", n_threads if n_threads is not None
                           else (os.cpu_count() or 1), lo=1)
-    shape = (etas.size, omegas.size)
-    out = {"lambda_max": np.full(shape, math.nan), "cls": np.zeros(shape, np.int8),
-           "dw_L": np.full(shape, math.nan), "symmetric": np.zeros(shape, bool)}
+    arrays = (out["lambda_max"], out["cls"], out["dw_L"], out["symmetric"])
 
     def work(j):
-        _column(etas, float(omegas[j]), float(F), r, d, out, j)
+        w = float(omegas[j])
+        _column_kernel(etas, w, F, r, make_osc(1.0, d, w, F), *arrays, j)
         return j
 
     if n_threads == 1 or omegas.size <= 1:
@@ -124,5 +291,5 @@ def stability_map(eta, omega, F, r=R_DEFAULT, d=D_DEFAULT, n_threads=None,
             for done, _ in enumerate(ex.map(work, range(omegas.size)), 1):
                 if progress:
                     progress(done, omegas.size)
-    out.update(eta=etas, omega=omegas, F=float(F))
+    out.update(eta=etas, omega=omegas, F=F)
     return out
