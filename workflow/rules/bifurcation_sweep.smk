@@ -16,5 +16,7 @@ rule bifurcation_sweep:
         "../envs/vines.yaml"
     log:
         f"{RES}/logs/bifurcation_sweep/{{sweep}}.log",
+    benchmark:
+        f"{RES}/benchmarks/bifurcation_sweep/{{sweep}}.tsv",
     script:
         "../scripts/bifurcation_sweep.py"

@@ -18,5 +18,7 @@ rule convergence:
         "../envs/vines.yaml"
     log:
         f"{RES}/logs/convergence/{{study}}.log",
+    benchmark:
+        f"{RES}/benchmarks/convergence/{{study}}.tsv",
     script:
         "../scripts/convergence.py"

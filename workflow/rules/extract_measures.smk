@@ -16,5 +16,7 @@ rule extract_measures:
         "../envs/vines.yaml"
     log:
         f"{RES}/logs/extract_measures/{{grid}}.log",
+    benchmark:
+        f"{RES}/benchmarks/extract_measures/{{grid}}.tsv",
     script:
         "../scripts/extract_measures.py"

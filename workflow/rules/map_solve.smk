@@ -12,5 +12,7 @@ rule map_solve:
         "../envs/vines.yaml"
     log:
         f"{RES}/logs/map_solve/{{branch}}.log",
+    benchmark:
+        f"{RES}/benchmarks/map_solve/{{branch}}.tsv",
     script:
         "../scripts/map_solve.py"

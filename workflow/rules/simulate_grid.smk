@@ -17,5 +17,7 @@ rule simulate_grid:
         "../envs/vines.yaml"
     log:
         f"{RES}/logs/simulate_grid/{{grid}}/{{key}}.log",
+    benchmark:
+        f"{RES}/benchmarks/simulate_grid/{{grid}}/{{key}}.tsv",
     script:
         "../scripts/simulate_grid.py"

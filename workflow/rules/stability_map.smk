@@ -13,5 +13,7 @@ rule stability_map:
         "../envs/vines.yaml"
     log:
         f"{RES}/logs/stability_map/{{smap}}.log",
+    benchmark:
+        f"{RES}/benchmarks/stability_map/{{smap}}.tsv",
     script:
         "../scripts/stability_map.py"

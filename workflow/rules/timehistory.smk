@@ -14,5 +14,7 @@ rule timehistory:
         "../envs/vines.yaml"
     log:
         f"{RES}/logs/timehistory/{{th}}.log",
+    benchmark:
+        f"{RES}/benchmarks/timehistory/{{th}}.tsv",
     script:
         "../scripts/timehistory.py"

@@ -22,5 +22,7 @@ rule work_precision:
         "../envs/vines.yaml"
     log:
         f"{RES}/logs/work_precision/{{case}}.log",
+    benchmark:
+        f"{RES}/benchmarks/work_precision/{{case}}.tsv",
     script:
         "../scripts/work_precision.py"
