@@ -6,17 +6,37 @@ walls at w = z_m - z_b = +1 (L) and -1 (R), Newtonian impact law with restitutio
 Subpackages: core (simulation), orbits (periodic orbits), reference (independent oracles),
 studies (work-precision, convergence), data (datasets), pipeline, plotting; see
 docs/architecture.md.
+
+``simulate``, ``simulate_batch``, ``SimulationResult`` and ``IMPACT_DTYPE`` are imported on
+first use, so that code which only reads datasets or draws figures does not load numba
+and the compiled kernels.
 """
+from importlib import import_module
+
 from ._numba_cache import refresh as _refresh_numba_cache
 
 _refresh_numba_cache()   # before any jitted function is loaded from the cache
 
 from .core.params import (D_DEFAULT, L_HALF_M, ModelParams, ParameterError,  # noqa: E402
                           SolverSettings)
-from .core.result import IMPACT_DTYPE, SimulationResult  # noqa: E402
-from .core.simulation import simulate, simulate_batch  # noqa: E402
 
 __version__ = "0.1.0"
 
+#: public names loaded on first access, and their modules
+_LAZY = {"simulate": ".core.simulation", "simulate_batch": ".core.simulation",
+         "SimulationResult": ".core.result", "IMPACT_DTYPE": ".core.result"}
+
 __all__ = ["simulate", "simulate_batch", "ModelParams", "SolverSettings", "ParameterError",
            "SimulationResult", "IMPACT_DTYPE", "D_DEFAULT", "L_HALF_M", "__version__"]
+
+
+def __getattr__(name):
+    if name in _LAZY:
+        value = getattr(import_module(_LAZY[name], __name__), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'vines' has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_LAZY))

@@ -8,6 +8,7 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 
 from .exact import run_exact
+from .fields import BATCH_FIELDS
 from .params import (RTOL_DEFAULT, D_DEFAULT, MAX_IMPACTS_DEFAULT, R_DEFAULT, ROOT_TOL_DEFAULT,
                      T_END_DEFAULT, T_TRANSIENT_DEFAULT, V_STICK_DEFAULT, PARAM_BOUNDS,
                      RTOL_MAX, RTOL_MIN, ModelParams, ParameterError, SolverSettings,
@@ -107,14 +108,6 @@ def simulate(eta, omega, F, r=R_DEFAULT, d=D_DEFAULT, phi=0.0, *, t_end=T_END_DE
     return SimulationResult(params=p, settings=st, solver=solver, solver_options=options,
                             impacts=raw.impacts, status=raw.status, t_last=raw.t_last,
                             _state_at=raw.state_at, **m)
-
-
-#: fields of ``simulate_batch`` and their dtypes (CF attributes: ``vines.data.schema``)
-BATCH_FIELDS = {
-    "ke_ratio": "f8", "xmax": "f8", "xmax_whole_run": "f8", "n_impacts": "i8",
-    "impacts_per_period": "f8", "t_stuck": "f8", "period": "i8", "regime": "U16",
-    "status": "U16", "shortcut_time": "f8",
-}
 
 
 def _batch_point(eta, omega, F, r, d, phi, st: SolverSettings, shortcut: bool) -> tuple:
