@@ -188,10 +188,17 @@ def stability(path) -> xr.Dataset:
 
 
 def timehistory(path) -> xr.Dataset:
-    """Time histories of single runs (at least 2 samples per point)."""
+    """Time histories of single runs (at least 2 samples per point), their impacts and, if
+    stored, the samples of the whole measurement window (``window_*``)."""
     ds = load(path)
-    require(ds, variables=("t", "z_m", "v_m", "z_b", "v_b", "row_size"),
-            finite=("eta", "omega", "F", "t", "z_m", "v_m", "z_b", "v_b"))
+    impacts = ("impact_t", "impact_dw", "impact_phase")
+    require(ds, variables=("t", "z_m", "v_m", "z_b", "v_b", "row_size") + impacts,
+            finite=("eta", "omega", "F", "t", "z_m", "v_m", "z_b", "v_b") + impacts)
     if ds.sizes.get("sample", 0) < 2:
         raise FigureInputError(f"{_where(ds)}: time histories have no samples")
+    n, stored = int(ds["row_size"].values.sum()), ds.sizes.get("impact", 0)
+    if n != stored:
+        raise FigureInputError(f"{_where(ds)}: row_size sums to {n}, {stored} impacts stored")
+    if "window_t" in ds.variables:
+        require(ds, finite=tuple(f"window_{k}" for k in ("t", "z_m", "v_m", "z_b", "v_b")))
     return ds
