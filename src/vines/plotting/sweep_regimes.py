@@ -6,9 +6,11 @@ which classifies the grid runs from their stroboscopic section):
 
   no impact      no impact recorded
   chatter        CHATTER_RUN or more consecutive impacts on the same wall
-  1:1 symmetric  two alternating impacts per forcing period, repeating every period, equal
-                 |dw| on both walls (to ``SYM_TOL``)
-  1:1 asymmetric the same with different |dw| on the two walls
+  1:1 symmetric  two alternating impacts per forcing period, repeating every period, the
+                 second half a period after the first (phases differ by pi, to ``SYM_TOL``)
+  1:1 asymmetric the same with phases not half a period apart (|dw| is the same on both
+                 walls for every 1:1 orbit: the ball's velocity changes at the two impacts
+                 cancel over a period, so |dw| cannot tell the two apart)
   other periodic the impact sequence repeats after k impacts (to ``PERIOD_TOL``), at least
                  twice in the record, and is not 1:1 (a:b with a != b, period-p)
   irregular      none of these
@@ -29,7 +31,7 @@ REGIMES = {0: ("no impact", "0.85"), 1: ("1:1 symmetric", "tab:orange"),
  REGIME_CHATTER) = range(6)
 #: relative tolerance of a repeating impact sequence (dw and phase, scaled by max(1, |dw|))
 PERIOD_TOL = 1e-3
-#: relative tolerance of equal |dw| on both walls of a symmetric 1:1 orbit
+#: tolerance (rad) of the half-period phase difference of a symmetric 1:1 orbit
 SYM_TOL = 1e-3
 
 
@@ -59,8 +61,8 @@ def point_regime(dw, phase, wall, n_record: int) -> int:
         return REGIME_IRREGULAR
     periods = k * n_record / dw.size          # forcing periods per repeat
     if k == 2 and abs(periods - 1.0) < 0.25 and wall[0] != wall[1]:
-        a, b = abs(dw[0]), abs(dw[1])
-        return REGIME_SYM if abs(a - b) <= SYM_TOL * max(a, b, 1.0) else REGIME_ASYM
+        half = abs(np.angle(np.exp(1j * (phase[1] - phase[0] - np.pi))))
+        return REGIME_SYM if half <= SYM_TOL else REGIME_ASYM
     return REGIME_PERIODIC
 
 
