@@ -156,5 +156,6 @@ def test_impact_phase_panel_counts_the_window(tmp_path):
                      "impact_wall": ("impact", np.array([1, -1, 1, 1, -1], "i1"))})
     assert P.point_impacts(ds, 1)["phase"].tolist() == [1.0, 2.0]
     fig, axes = P.figure(1, 2)
-    assert P.impact_phase_panel(axes[0, 0], ds, 0) == (3, 1)
-    assert P.impact_phase_panel(axes[0, 1], ds, 1) == (2, 2)
+    # wall +1 is the left end (w = +1), -1 the right end
+    assert P.impact_phase_panel(axes[0, 0], ds, 0) == {"right end": (1, 0), "left end": (2, 1)}
+    assert P.impact_phase_panel(axes[0, 1], ds, 1) == {"right end": (1, 1), "left end": (1, 1)}

@@ -248,3 +248,13 @@ def test_figure_rule_fails_clearly_on_bad_input(tmp_path):
     log = (dst / "logs" / "figures" / "fig2.log").read_text()
     assert log.splitlines()[-1].startswith(line)
     assert not (dst / "figures" / "fig2.png").exists()
+
+
+def test_every_figure_has_a_caption_stating_start_and_window():
+    # each figure's report caption says how its runs started and what they measured
+    report = ROOT / "workflow" / "report"
+    names = [s.stem for s in SCRIPTS.glob("*.py") if s.stem != "timehistory"] + list(TH_FIGURES)
+    for name in names:
+        text = (report / f"{name}.rst").read_text()
+        assert "from rest" in text or "no initial condition" in text, name
+        assert any(w in text for w in ("window", "periods recorded", "forcing periods")), name

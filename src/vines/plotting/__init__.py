@@ -8,9 +8,9 @@ never reruns a computation.
 """
 from .checks import (CLASS_VALUES, FigureInputError, branch, fixed_value, grid2d, load,
                      marked_sections, measures, require, sorted_by_fixed, stability, sweep,
-                     sweep_points, timehistory)
+                     sweep_fixed, sweep_points, timehistory)
 from .draw import (C_BALL, C_BRANCH, C_LO, CLASSES, LABELS, SYMBOLS, bifurcation_dots,
-                   branch_lines, contour_map, eigenvalue_panel, figure, fmt,
+                   branch_lines, class_handles, class_map, contour_map, eigenvalue_panel, figure, fmt,
                    impact_phase_panel, metres, panel_label, point_impacts, save, th_title,
                    time_history, twin_measures)
 from .layouts import ZOOM_PAD, time_history_figure, zoom_figure, zoom_range
@@ -22,10 +22,10 @@ __all__ = [
     # checks
     "CLASS_VALUES", "FigureInputError", "branch", "fixed_value", "grid2d", "load",
     "marked_sections", "measures", "require", "sorted_by_fixed", "stability", "sweep",
-    "sweep_points", "timehistory",
+    "sweep_fixed", "sweep_points", "timehistory",
     # draw
     "C_BALL", "C_BRANCH", "C_LO", "CLASSES", "LABELS", "SYMBOLS", "bifurcation_dots",
-    "branch_lines", "contour_map", "eigenvalue_panel", "figure", "fmt",
+    "branch_lines", "class_handles", "class_map", "contour_map", "eigenvalue_panel", "figure", "fmt",
     "impact_phase_panel", "metres", "panel_label", "point_impacts", "save", "th_title",
     "time_history", "twin_measures",
     # layouts

@@ -142,6 +142,15 @@ def sweep(path) -> xr.Dataset:
     return ds
 
 
+def sweep_fixed(ds: xr.Dataset, name: str) -> float:
+    """The value of a parameter held fixed along a sweep (global attribute 'fixed',
+    'F=0.2,omega=1')."""
+    fx = dict(kv.split("=") for kv in ds.attrs.get("fixed", "").split(",") if "=" in kv)
+    if name not in fx:
+        raise FigureInputError(f"{_where(ds)}: global attribute 'fixed' does not give {name}")
+    return float(fx[name])
+
+
 def sweep_points(ds: xr.Dataset, outer: float | None = None, max_per_point=None):
     """(value, dw) of a sweep's impacts: optionally at one outer value only and the last
     ``max_per_point`` impacts of each point."""

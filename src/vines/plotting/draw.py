@@ -11,10 +11,12 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
-from matplotlib.colors import LogNorm  # noqa: E402
+from matplotlib.colors import BoundaryNorm, ListedColormap, LogNorm  # noqa: E402
+from matplotlib.patches import Patch  # noqa: E402
 from matplotlib.ticker import MaxNLocator  # noqa: E402
 
 from ..core.params import L_HALF_M  # noqa: E402
+from ..core.walls import WALL_L, WALL_R  # noqa: E402
 from ..data.netcdf import new_file_mode  # noqa: E402
 from .checks import FigureInputError  # noqa: E402
 
@@ -86,8 +88,8 @@ def _same_way(phase) -> np.ndarray:
 
 def time_history(ax_t, ax_p, ds: xr.Dataset, i: int):
     """Cavity ends z_m +- 1 (blue) and ball z_b (red) over the last periods, impacts marked
-    by phase; phase portraits beside it over the whole measurement window (``window_*``
-    samples) when the dataset has them, else over the last periods."""
+    by phase; beside it the phase portraits of the last periods (dark) over those of the
+    whole measurement window (light, ``window_*`` samples, when the dataset has them)."""
     t, zm = ds["t"].values[i], ds["z_m"].values[i]
     zb = ds["z_b"].values[i]
     ax_t.plot(t, zm + 1, color=C_LO, lw=0.9, label=r"cavity ends $z_m \pm 1$")
@@ -102,35 +104,52 @@ def time_history(ax_t, ax_p, ds: xr.Dataset, i: int):
     ax_t.set_xlim(t[0], t[-1])
     ax_t.set_xlabel(LABELS["t"])
     ax_t.set_ylabel(r"displacement $z$ (units of $L$)")
-    w = "window_" if "window_t" in ds.variables else ""
-    kw = {"lw": 0.3 if w else 0.8, "rasterized": bool(w)}
-    ax_p.plot(ds[f"{w}z_m"].values[i], ds[f"{w}v_m"].values[i], color=C_LO, label="LO", **kw)
-    ax_p.plot(ds[f"{w}z_b"].values[i], ds[f"{w}v_b"].values[i], color=C_BALL, label="ball",
-              **kw)
+    if "window_t" in ds.variables:       # the whole window, light, broken at the impacts
+        tw = ds["window_t"].values[i]
+        for k, col in (("m", C_LO), ("b", C_BALL)):
+            z, v = (_broken(tw, ds[f"window_{q}_{k}"].values[i], imp["t"]) for q in ("z", "v"))
+            ax_p.plot(z, v, color=col, lw=0.25, alpha=0.35, rasterized=True)
+    ax_p.plot(zm, ds["v_m"].values[i], color=C_LO, lw=0.8, label="LO")
+    ax_p.plot(zb, ds["v_b"].values[i], color=C_BALL, lw=0.8, label="ball")
     ax_p.set_xlabel(r"displacement $z$")
     ax_p.set_ylabel(r"velocity $\dot z$")
 
 
-def impact_phase_panel(ax, ds: xr.Dataset, i: int):
+def _broken(t, y, t_impacts):
+    """``y`` with NaN inserted between two samples that have an impact between them (the
+    velocity jump is not drawn as a slanted line)."""
+    j = np.unique(np.searchsorted(t, t_impacts[(t_impacts > t[0]) & (t_impacts < t[-1])]))
+    return np.insert(np.asarray(y, dtype=float), j, np.nan)
+
+
+def impact_phase_panel(ax, ds: xr.Dataset, i: int) -> dict:
     """|w'_i| against the impact phase of every impact of the dataset (the whole measurement
-    window), (0, pi) shaded, with the share of impacts there."""
+    window): filled markers at the right end of the cavity (wall R, z_b = z_m + 1, where the
+    paper's convention applies: phi_i in (0, pi) LO and ball moving the same way), open ones
+    at the left end; (0, pi) shaded. Returns per wall the impacts and those in (0, pi)."""
     imp = point_impacts(ds, i)
     ph = np.mod(imp["phase"], 2 * np.pi)
     ax.axvspan(0, np.pi, color="0.92", lw=0)
-    for same, (_, mk, col) in zip((True, False), IMPACT_STYLES):
-        m = _same_way(ph) == same
-        ax.plot(ph[m], np.abs(imp["dw"][m]), mk, color=col, ms=2.5, ls="", alpha=0.6,
-                rasterized=True)
+    counts = {}
+    for wall, name, filled in ((WALL_R, "right end", True), (WALL_L, "left end", False)):
+        at = imp["wall"] == wall
+        for same, (_, mk, col) in zip((True, False), IMPACT_STYLES):
+            m = at & (_same_way(ph) == same)
+            ax.plot(ph[m], np.abs(imp["dw"][m]), mk, ls="", ms=4.5, alpha=0.7, mec=col,
+                    mfc=col if filled else "none", mew=0.8, rasterized=True)
+        counts[name] = (int(at.sum()), int((at & _same_way(ph)).sum()))
     ax.axvline(np.pi, color="0.4", lw=0.8, ls=":")
     ax.set_xlim(0, 2 * np.pi)
+    if ph.size:
+        ax.set_ylim(0, 1.25 * float(np.max(np.abs(imp["dw"]))))
     ax.set_xticks([0, np.pi / 2, np.pi, 1.5 * np.pi, 2 * np.pi],
                   ["0", r"$\pi/2$", r"$\pi$", r"$3\pi/2$", r"$2\pi$"])
     ax.set_xlabel(r"impact phase $\varphi_i$")
     ax.set_ylabel(r"$|\dot w_i|$")
-    n, k = ph.size, int(_same_way(ph).sum())
-    text = f"{n} impacts" + (f", {100 * k / n:.0f} % in (0, $\\pi$)" if n else "")
-    ax.text(0.03, 0.97, text, transform=ax.transAxes, fontsize=7, va="top")
-    return n, k
+    text = "\n".join(f"{name} (" + ("filled" if name == "right end" else "open")
+                      + f"): {n}, {k} in (0, $\\pi$)" for name, (n, k) in counts.items())
+    ax.text(0.03, 0.97, text, transform=ax.transAxes, fontsize=6.5, va="top")
+    return counts
 
 
 def bifurcation_dots(ax, x, y, **kw):
@@ -166,6 +185,24 @@ def eigenvalue_panel(ax, br: xr.Dataset):
     ax.set_ylabel(LABELS["abs_lambda"])
     top = np.nanmax(np.where(adm[:, None], ev, np.nan)) if adm.any() else 2.0
     ax.set_ylim(0, min(max(1.5, 1.05 * top), 3.0))
+
+
+def class_map(ax, x, y, codes, classes: dict):
+    """Categorical map: ``codes`` (len(y), len(x)) drawn in the colours of ``classes``
+    (code -> (label, colour)), one cell per point; negative codes are left blank."""
+    keys = sorted(classes)
+    cmap = ListedColormap([classes[k][1] for k in keys])
+    norm = BoundaryNorm(np.arange(len(keys) + 1) - 0.5, cmap.N)
+    idx = np.searchsorted(keys, np.asarray(codes))
+    ax.pcolormesh(x, y, np.ma.masked_where(np.asarray(codes) < 0, idx), cmap=cmap, norm=norm,
+                  shading="nearest", rasterized=True)
+
+
+def class_handles(classes: dict, suffix=None) -> list:
+    """Legend patches of ``classes`` (code -> (label, colour)); ``suffix``: code -> text."""
+    suffix = suffix or {}
+    return [Patch(facecolor=classes[k][1], edgecolor="black",
+                  label=classes[k][0] + suffix.get(k, "")) for k in sorted(classes)]
 
 
 def twin_measures(ax, x, ke, xmax_m, xlabel):

@@ -14,9 +14,9 @@ ZOOM_PAD = 0.6
 
 def time_history_figure(ds: xr.Dataset):
     """Figs 4, 5, 9, 10: one row per point: time history of the last periods with the
-    impacts marked by phase (a, c), phase portrait over the whole measurement window
-    (b, d) and |w'_i| against the impact phase of every impact of the window (third
-    column, titled after the row's time history)."""
+    impacts marked by phase (a, c), phase portraits over those periods (dark) and the whole
+    measurement window (light) (b, d), |w'_i| against the impact phase of every impact of
+    the window (third column, titled after the row's time history)."""
     n = ds.sizes["point"]
     fig, axes = figure(n, 3, width=12.0, height=2.9 * n,
                        gridspec_kw={"width_ratios": [1.8, 1, 0.9]})
@@ -25,7 +25,8 @@ def time_history_figure(ds: xr.Dataset):
         time_history(axes[i, 0], axes[i, 1], ds, i)
         impact_phase_panel(axes[i, 2], ds, i)
         panel_label(axes[i, 0], 2 * i, th_title(ds, i))
-        panel_label(axes[i, 1], 2 * i + 1, window)
+        panel_label(axes[i, 1], 2 * i + 1, f"light: {window}, dark: as ({chr(97 + 2 * i)})"
+                    if "window_t" in ds.variables else None)
         axes[i, 2].set_title(f"impacts of ({chr(ord('a') + 2 * i)}), {window}", loc="left",
                              fontsize=9)
     axes[0, 0].legend(fontsize=7, loc="upper right", ncol=2)

@@ -13,7 +13,8 @@ from vines.pipeline.jobs import run_job
 
 
 def overlay(ax, grid, smap, F):
-    """Stable 1:1 outline (white), hatching where the run reaches it, W = 1 +- F lines."""
+    """Stable 1:1 outline (white), hatching where the run reaches it, W = 1 +- F lines, a
+    note on the stable tongue below the plotted range when its edge runs along the bottom."""
     eta, W = grid["eta"].values, grid["omega"].values
     reached = P.stable_at(smap, eta, W) & P.reaches_1to1(grid)
     if reached.any():
@@ -26,17 +27,25 @@ def overlay(ax, grid, smap, F):
         ax.axhline(w, color="white", ls=":", lw=1.0)
     ax.set_xlim(eta.min(), eta.max())
     ax.set_ylim(W.min(), W.max())
-    handles = [plt.Line2D([], [], color="white", lw=1.4, label="stable 1:1 exists (Fig. 16)"),
-               Patch(facecolor="none", edgecolor="white", hatch="////",
-                     label="from rest: reaches 1:1"),
-               plt.Line2D([], [], color="white", ls=":", lw=1.0,
-                          label=r"$\Omega = 1 \pm F$ (first impact from rest)")]
-    leg = ax.legend(handles=handles, fontsize=6.5, loc="upper right", facecolor="0.3",
-                    labelcolor="white")
-    leg.get_frame().set_alpha(0.7)
+    if P.stable_at(smap, eta, W[:1]).mean() > 0.5:
+        ax.text(0.5, 0.012, r"edge of the stable tongue below $\Omega$ = "
+                f"{P.fmt(W.min())} (Fig. 16)", transform=ax.transAxes, ha="center",
+                va="bottom", fontsize=6.5, color="white")
     counts = P.region_counts(grid, smap)
     print(f"F = {F}: grid points in the stable 1:1 region {counts['stable']}, reached from "
           f"rest {counts['reached']}, KE ratio 0 {counts['ke_zero']}")
+
+
+#: legend of the overlay on (d-f), once below the figure
+OVERLAY_HANDLES = [
+    plt.Line2D([], [], color="black", lw=1.4, label="(d-f) edge of the stable 1:1 region "
+               r"($|\lambda_{\max}| = 1$, Fig. 16)"),
+    Patch(facecolor="none", edgecolor="black", hatch="////",
+          label="(d-f) the run from rest reaches the 1:1 orbit"),
+    plt.Line2D([], [], color="black", ls=":", lw=1.0,
+               label=r"(d-f) $\Omega = 1 \pm F$: first impact from rest"),
+    plt.Line2D([], [], color="magenta", ls="--", lw=1.5,
+               label=r"(a-c) $\Omega = 1/\sqrt{1+\eta}$")]
 
 
 def main(sm):
@@ -44,7 +53,7 @@ def main(sm):
                                for p in sm.input.measures], "F")
     maps = {round(float(m.attrs["F"]), 9): m for m in map(P.stability, sm.input.stability)}
     n = len(grids)
-    fig, axes = P.figure(2, n, width=4.3 * n, height=7.0)
+    fig, axes = P.figure(2, n, width=4.3 * n, height=7.6)
     for j, ds in enumerate(grids):
         F = P.fixed_value(ds, "F")
         smap = maps.get(round(F, 9))
@@ -57,10 +66,8 @@ def main(sm):
         P.contour_map(fig, ax, eta, W, P.grid2d(ds, "xmax_m", "eta", "omega"),
                       label=P.LABELS["xmax_m"], log=True)
         e = np.linspace(eta.min(), eta.max(), 200)
-        ax.plot(e, 1 / np.sqrt(1 + e), "--", color="magenta", lw=1.5,
-                label=r"$\Omega = 1/\sqrt{1+\eta}$")
+        ax.plot(e, 1 / np.sqrt(1 + e), "--", color="magenta", lw=1.5)
         ax.set_ylim(W.min(), W.max())
-        ax.legend(fontsize=7, loc="upper right")
         P.contour_map(fig, axes[1, j], eta, W, P.grid2d(ds, "ke_ratio", "eta", "omega"),
                       label=P.LABELS["ke_ratio"], vmin=0.0, vmax=1.0)
         overlay(axes[1, j], ds, smap, F)
@@ -68,6 +75,8 @@ def main(sm):
             axes[i, j].set_xlabel(P.LABELS["eta"])
             axes[i, j].set_ylabel(P.LABELS["omega"])
             P.panel_label(axes[i, j], i * n + j, rf"$F$ = {P.fmt(F)}")
+    fig.legend(handles=OVERLAY_HANDLES, loc="outside lower center", ncol=2, fontsize=8,
+               frameon=False)
     P.save(fig, sm.output.pdf, sm.output.png)
 
 

@@ -13,9 +13,10 @@ from vines.pipeline.jobs import run_job
 MAX_PER_POINT = 12
 #: marker size and opacity: 1:1 points (emphasised) and all other points
 STYLE_1TO1 = {"s": 1.2, "alpha": 0.9}
-STYLE_OTHER = {"s": 0.15, "alpha": 0.25}
-#: view (elevation, azimuth) of the W <= 1 and W >= 1 panels: eta across, W into depth
-VIEWS = ((22, -68), (22, -68))
+STYLE_OTHER = {"s": 0.25, "alpha": 0.35}
+#: view (elevation, azimuth): eta across, W into depth; the W <= 1 panels have their W axis
+#: reversed, so that W = 1 (the 1:1 windows the text discusses) is the front row of both
+VIEW = (22, -68)
 
 
 def panel(ax, s, W_sel, codes):
@@ -35,13 +36,6 @@ def panel(ax, s, W_sel, codes):
                            depthshade=False, rasterized=True, **style)
 
 
-def fixed_F(s, path) -> float:
-    fx = dict(kv.split("=") for kv in s.attrs.get("fixed", "").split(",") if "=" in kv)
-    if "F" not in fx:
-        raise P.FigureInputError(f"{path}: global attribute 'fixed' does not give F")
-    return float(fx["F"])
-
-
 def main(sm):
     sweeps = [P.sweep(p) for p in sm.input.sweeps]
     for s, p in zip(sweeps, sm.input.sweeps):
@@ -49,7 +43,7 @@ def main(sm):
             raise P.FigureInputError(f"{p}: Fig 14 needs eta sweeps at several W, got "
                                      f"{s.attrs.get('swept_parameter')!r} over "
                                      f"{s.attrs.get('outer_parameter')!r}")
-    Fs = [fixed_F(s, p) for s, p in zip(sweeps, sm.input.sweeps)]
+    Fs = [P.sweep_fixed(s, "F") for s in sweeps]
     n = len(sweeps)
     fig = plt.figure(figsize=(11.0, 4.2 * n), constrained_layout=True)
     for r, k in enumerate(np.argsort(Fs)):
@@ -61,12 +55,13 @@ def main(sm):
             if not sel.any():
                 raise P.FigureInputError(f"{sm.input.sweeps[k]}: no sweep with {side}")
             panel(ax, s, W[sel], codes)
-            ax.set_ylim(W[sel].min(), W[sel].max())
+            lim = (W[sel].min(), W[sel].max())
+            ax.set_ylim(lim[::-1] if c == 0 else lim)
             ax.set_xlabel(P.LABELS["eta"], fontsize=8)
             ax.set_ylabel(r"$\Omega$", fontsize=8)
             ax.set_zlabel(r"$\dot w_i$", fontsize=8)
             ax.tick_params(labelsize=7)
-            ax.view_init(*VIEWS[c])
+            ax.view_init(*VIEW)
             P.panel_label(ax, 2 * r + c, rf"$F$ = {P.fmt(Fs[k])}, {side}")
     handles = [plt.Line2D([], [], ls="", marker="o", ms=5, color=col, label=lab)
                for lab, col in P.REGIMES.values()]

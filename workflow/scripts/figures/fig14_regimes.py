@@ -4,9 +4,7 @@ one panel per F, from the same sweeps (fig14_*) and the same classification
 downward sweep ends in another regime (hysteresis). The eta range of the 1:1 window at
 W = 1 is written in each panel."""
 import numpy as np
-from matplotlib.colors import BoundaryNorm, ListedColormap
 from matplotlib.lines import Line2D
-from matplotlib.patches import Patch
 
 import vines.plotting as P
 from vines.pipeline.jobs import run_job
@@ -22,24 +20,20 @@ def window_text(xs, ys, grid) -> str:
         return ""
     one = np.isin(grid[j[0]], (P.REGIME_SYM, P.REGIME_ASYM))
     if not one.any():
-        return rf"1:1 at $\Omega$ = 1: none"
+        return r"1:1 at $\Omega$ = 1: none"
     return (rf"1:1 at $\Omega$ = 1: $\eta \in$ [{xs[one].min():.3g}, {xs[one].max():.3g}]"
             f" ({int(one.sum())} points)")
 
 
 def main(sm):
-    sweeps = sorted((P.sweep(p) for p in sm.input.sweeps),
-                    key=lambda s: float(s.attrs.get("fixed", "F=nan").split("F=")[-1]))
+    sweeps = sorted((P.sweep(p) for p in sm.input.sweeps), key=lambda s: P.sweep_fixed(s, "F"))
     n = len(sweeps)
     fig, axes = P.figure(1, n, width=4.2 * n + 1.8, height=4.2)
     keys = sorted(P.REGIMES)
-    cmap = ListedColormap([P.REGIMES[k][1] for k in keys])
-    norm = BoundaryNorm(np.arange(len(keys) + 1) - 0.5, cmap.N)
     for j, s in enumerate(sweeps):
         ax = axes[0, j]
         xs, ys, up = P.regime_grid(s, +1)
-        ax.pcolormesh(xs, ys, np.ma.masked_less(up, 0), cmap=cmap, norm=norm,
-                      shading="nearest", rasterized=True)
+        P.class_map(ax, xs, ys, up, P.REGIMES)
         xd, yd, down = P.regime_grid(s, -1)
         if down.shape == up.shape and np.allclose(xd, xs) and np.allclose(yd, ys):
             jj, ii = np.nonzero((down != up) & (down >= 0) & (up >= 0))
@@ -47,14 +41,12 @@ def main(sm):
         ax.axhline(OMEGA_TEXT, color="red", lw=0.8, ls="--")
         ax.set_xlabel(P.LABELS["eta"])
         ax.set_ylabel(P.LABELS["omega"])
-        P.panel_label(ax, j, s.attrs.get("fixed", "").replace("F=", "$F$ = "))
+        P.panel_label(ax, j, rf"$F$ = {P.fmt(P.sweep_fixed(s, 'F'))}")
         ax.text(0.02, 0.02, window_text(xs, ys, up), transform=ax.transAxes, fontsize=7,
                 color="black", bbox={"facecolor": "white", "alpha": 0.8, "lw": 0})
         print(f"{s.attrs.get('fixed')}: {window_text(xs, ys, up)}; up-sweep regime counts "
               f"{ {P.REGIMES[k][0]: int((up == k).sum()) for k in keys} }")
-    handles = [Patch(facecolor=P.REGIMES[k][1], edgecolor="black", label=P.REGIMES[k][0])
-               for k in keys]
-    handles += [Line2D([], [], ls="", marker="o", ms=3, mfc="white", mec="0.5",
+    handles = P.class_handles(P.REGIMES) + [Line2D([], [], ls="", marker="o", ms=3, mfc="white", mec="0.5",
                        label="down sweep differs"),
                 Line2D([], [], color="red", ls="--", lw=0.8, label=r"$\Omega$ = 1")]
     fig.legend(handles=handles, loc="outside right center", fontsize=8, frameon=False)
