@@ -53,7 +53,11 @@ def _timehistories(tmp_path, n_points=2, n_samples=50, bad=False, name="th.nc"):
         {"t": (("point", "sample"), rows), "z_m": (("point", "sample"), 0.2 * np.sin(rows)),
          "v_m": (("point", "sample"), 0.2 * np.cos(rows)), "z_b": (("point", "sample"), zb),
          "v_b": (("point", "sample"), np.cos(rows)),
-         "row_size": (("point",), np.zeros(n_points, np.int64)),
+         "row_size": (("point",), np.full(n_points, 2, np.int32)),
+         "impact_t": (("impact",), np.tile([5.0, 8.0], n_points)),
+         "impact_dw": (("impact",), np.tile([1.0, -1.0], n_points)),
+         "impact_phase": (("impact",), np.tile([1.0, 4.0], n_points)),
+         "impact_wall": (("impact",), np.tile(np.array([1, -1], "i1"), n_points)),
          "eta": (("point",), np.linspace(0.05, 0.1, n_points)),
          "omega": (("point",), np.ones(n_points)), "F": (("point",), np.full(n_points, 0.05))})
     path = tmp_path / name
@@ -163,7 +167,7 @@ def test_time_history_script_draws_one_row_per_point(tmp_path):
     png = tmp_path / "figures" / "fig4.png"
     assert png.read_bytes()[:4] == b"\x89PNG" and (tmp_path / "figures" / "fig4.pdf").is_file()
     fig = P.time_history_figure(P.timehistory(_timehistories(tmp_path, n_points=3)))
-    assert len(fig.axes) == 6 and fig.axes[0].get_title(loc="left").startswith("(a) $\\eta$")
+    assert len(fig.axes) == 9 and fig.axes[0].get_title(loc="left").startswith("(a) $\\eta$")
 
 
 def test_bad_input_fails_with_one_line_in_log_and_console(tmp_path, capfd):
@@ -244,3 +248,13 @@ def test_figure_rule_fails_clearly_on_bad_input(tmp_path):
     log = (dst / "logs" / "figures" / "fig2.log").read_text()
     assert log.splitlines()[-1].startswith(line)
     assert not (dst / "figures" / "fig2.png").exists()
+
+
+def test_every_figure_has_a_caption_stating_start_and_window():
+    # each figure's report caption says how its runs started and what they measured
+    report = ROOT / "workflow" / "report"
+    names = [s.stem for s in SCRIPTS.glob("*.py") if s.stem != "timehistory"] + list(TH_FIGURES)
+    for name in names:
+        text = (report / f"{name}.rst").read_text()
+        assert "from rest" in text or "no initial condition" in text, name
+        assert any(w in text for w in ("window", "periods recorded", "forcing periods")), name

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from vines.core.linear import stuck_amplitude
+from vines.core.linear import stuck_amplitude, stuck_peak
 from vines.core.params import D_DEFAULT
 
 
@@ -47,3 +47,31 @@ def test_limits_and_broadcast():
     w = np.linspace(0.5, 1.5, 20001)
     for eta in (0.2, 0.5):
         assert w[np.argmax(stuck_amplitude(eta, w, 0.4))] == pytest.approx(1 / math.sqrt(1 + eta), abs=1e-3)
+
+
+@pytest.mark.parametrize("eta,F,d", [(0.2, 0.4, D_DEFAULT), (0.5, 0.4, D_DEFAULT),
+                                     (0.05, 0.1, 0.3), (1.0, 0.2, 1.0)])
+def test_peak_is_the_maximum_found_by_a_40_digit_search(eta, F, d):
+    # independent: golden-section search of |z|(omega) in 40-digit arithmetic
+    mp = pytest.importorskip("mpmath")
+    mp.mp.dps = 40
+    a, F_, d_ = 1 + mp.mpf(eta), mp.mpf(F), mp.mpf(d)
+
+    def amp(w):
+        return F_ * mp.sqrt(1 + (d_ * w) ** 2) / mp.sqrt((1 - a * w * w) ** 2 + (d_ * w) ** 2)
+
+    lo, hi, g = mp.mpf("0.01"), mp.mpf(3), (mp.sqrt(5) - 1) / 2
+    for _ in range(200):
+        x1, x2 = hi - g * (hi - lo), lo + g * (hi - lo)
+        lo, hi = (x1, hi) if amp(x1) < amp(x2) else (lo, x2)
+    w_ref = (lo + hi) / 2
+    omega, peak = stuck_peak(eta, F, d)
+    assert omega == pytest.approx(float(w_ref), rel=1e-12)
+    assert peak == pytest.approx(float(amp(w_ref)), rel=1e-13)
+
+
+def test_peak_of_fig11_values():
+    # the numbers quoted in Fig 11 and docs/figures.md (F = 0.4, Table 1 damping; L = 15 mm)
+    for eta, w, mm in ((0.2, 0.91284356, 548), (0.5, 0.81647699, 613)):
+        omega, peak = stuck_peak(eta, 0.4)
+        assert omega == pytest.approx(w, abs=1e-8) and round(peak * 15) == mm

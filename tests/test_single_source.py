@@ -7,6 +7,7 @@ import yaml
 import vines
 from vines import cli
 from vines.core import params as P
+from vines.core.measures import time_histories
 from vines.core.simulation import RK_METHODS, SOLVERS, simulate, simulate_batch
 from vines.core.sweep import bifurcation_sweep
 from vines.core.walls import WALL_L, WALL_R, impact_velocities
@@ -39,6 +40,12 @@ def test_sweep_defaults_equal_the_api():
     api = _defaults(bifurcation_sweep)
     for key in ("t_settle", "t_step", "n_record", "v_stick"):
         assert sw[key]["default"] == api[key], key
+
+
+def test_timehistory_defaults_equal_the_api():
+    th = PROPS["timehistories"]["additionalProperties"]["properties"]
+    api = _defaults(time_histories)
+    assert th["window_samples_per_period"]["default"] == api["window_samples_per_period"]
 
 
 def test_work_precision_defaults_equal_the_api():

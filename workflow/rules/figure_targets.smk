@@ -45,6 +45,7 @@ FIG_INPUTS = {
     "fig12": {"measures": _measures("fig12"), "stability": _smaps("fig16")},
     "fig13": {"measures": _measures("fig12")},
     "fig14": {"sweeps": _sweeps("fig14")},
+    "fig14_regimes": {"sweeps": _sweeps("fig14")},   # companion of Fig 14 (not in the paper)
     "fig15": {"sweep": _sweeps("fig15"), "branches": _branches("fig15")},
     "fig16": {"stability": _smaps("fig16")},
     # beyond the paper: the solver studies

@@ -29,3 +29,16 @@ def stuck_amplitude(eta, omega, F, d=D_DEFAULT):
         amp = F * np.sqrt(1.0 + dw ** 2) / den
     amp = np.where((den == 0) & (F == 0), 0.0, amp)
     return amp[()] if amp.ndim == 0 else amp
+
+
+def stuck_peak(eta, F, d=D_DEFAULT):
+    """(omega, amplitude) of the maximum of ``stuck_amplitude`` over omega, in closed form.
+
+    With u = omega^2 and a = 1 + eta, d|z|^2/du = 0 reduces to a d^2 u^2 + 2 a u - 2 = 0, whose
+    positive root is u = 2 / (a + sqrt(a^2 + 2 a d^2)) (the form without cancellation for
+    small d); the peak lies just below 1/sqrt(1 + eta). Needs d > 0 (d = 0: infinite peak).
+    """
+    eta, F, d = (np.asarray(x, dtype=float) for x in (eta, F, d))
+    a = 1.0 + eta
+    omega = np.sqrt(2.0 / (a + np.sqrt(a * a + 2.0 * a * d * d)))
+    return omega[()], stuck_amplitude(eta, omega, F, d)

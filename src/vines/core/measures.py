@@ -9,7 +9,7 @@ import math
 import numpy as np
 
 from .linear import stuck_amplitude
-from .params import L_HALF_M
+from .params import L_HALF_M, T_END_DEFAULT, T_TRANSIENT_DEFAULT
 from .simulation import simulate
 
 
@@ -45,35 +45,53 @@ def section_marks(axis, values, dim: str) -> np.ndarray:
     return mark.astype("i1")
 
 
+#: sampled state variables (last periods: t, z_m, ...; whole window: window_t, window_z_m, ...)
+STATE_NAMES = ("z_m", "v_m", "z_b", "v_b")
+#: default samples per forcing period of the whole measurement window (phase portraits)
+WINDOW_SAMPLES_PER_PERIOD = 40
+
+
+def _window_samples(points, simulation: dict, per_period: int) -> int:
+    """Samples of the whole measurement window [t_transient, t_end]: ``per_period`` per
+    forcing period of the point with the most periods in it (0: none)."""
+    if per_period <= 0:
+        return 0
+    span = (float(simulation.get("t_end", T_END_DEFAULT))
+            - float(simulation.get("t_transient", T_TRANSIENT_DEFAULT)))
+    most = max(span * p["omega"] / (2 * math.pi) for p in points)
+    return int(math.ceil(most)) * int(per_period) + 1
+
+
 def time_histories(points: list[dict], *, model: dict, simulation: dict,
-                   n_periods: int, samples_per_period: int) -> dict:
+                   n_periods: int, samples_per_period: int,
+                   window_samples_per_period: int = WINDOW_SAMPLES_PER_PERIOD) -> dict:
     """Single runs at ``points``: the last ``n_periods`` forcing periods sampled densely
-    (``samples_per_period`` each, from the exact trajectory), their impacts (concatenated,
-    ``row_size`` per point) and the scalar measures of each run (``shortcut_time``: after
-    it, samples and impacts repeat one period of the settled orbit, see ``simulate``)."""
+    (``samples_per_period`` each, from the exact trajectory: ``t``, ``z_m`` ...), the whole
+    measurement window [t_transient, t_end] at ``window_samples_per_period`` per period of the
+    fastest point (``window_t``, ``window_z_m`` ...; none if 0), the impacts of the window
+    (concatenated, ``row_size`` per point) and the scalar measures of each run
+    (``shortcut_time``: after it, samples and impacts repeat one period of the settled
+    orbit, see ``simulate``)."""
     n_s = int(n_periods) * int(samples_per_period) + 1
+    n_w = _window_samples(points, simulation, int(window_samples_per_period))
     P = len(points)
-    out = {"t": np.empty((P, n_s)), "z_m": np.empty((P, n_s)), "v_m": np.empty((P, n_s)),
-           "z_b": np.empty((P, n_s)), "v_b": np.empty((P, n_s)), "ke_ratio": np.empty(P),
-           "xmax": np.empty(P), "regime": np.empty(P, dtype="U16"),
-           "status": np.empty(P, dtype="U16"), "shortcut_time": np.empty(P)}
+    out = {k: np.empty((P, n_s)) for k in ("t",) + STATE_NAMES}
+    if n_w:
+        out.update({f"window_{k}": np.empty((P, n_w)) for k in ("t",) + STATE_NAMES})
+    out.update(ke_ratio=np.empty(P), xmax=np.empty(P), regime=np.empty(P, dtype="U16"),
+               status=np.empty(P, dtype="U16"), shortcut_time=np.empty(P))
     imp_t, imp_dw, imp_phase, imp_wall, row_size = [], [], [], [], np.zeros(P, dtype=np.int64)
     for i, pt in enumerate(points):
         res = simulate(pt["eta"], pt["omega"], pt["F"], **model, **simulation)
-        T = 2 * math.pi / pt["omega"]
         t1 = res.t_last
-        t0 = max(0.0, t1 - n_periods * T)
-        ts = np.linspace(t0, t1, n_s)
-        st = res.state_at(ts)
-        out["t"][i] = ts
-        for j, k in enumerate(("z_m", "v_m", "z_b", "v_b")):
-            out[k][i] = st[j]
-        out["ke_ratio"][i] = res.ke_ratio
-        out["xmax"][i] = res.xmax
-        out["regime"][i] = res.regime
-        out["status"][i] = res.status
-        out["shortcut_time"][i] = res.shortcut_time
-        sel = res.impacts["t"] >= t0
+        t_tr = min(float(simulation.get("t_transient", T_TRANSIENT_DEFAULT)), t1)
+        t0 = max(0.0, t1 - n_periods * 2 * math.pi / pt["omega"])
+        _sample(out, "", i, res, np.linspace(t0, t1, n_s))
+        if n_w:
+            _sample(out, "window_", i, res, np.linspace(t_tr, t1, n_w))
+        for k in ("ke_ratio", "xmax", "regime", "status", "shortcut_time"):
+            out[k][i] = getattr(res, k)
+        sel = res.impacts["t"] >= t_tr
         imp_t.append(res.impacts["t"][sel])
         imp_dw.append(res.impact_dw[sel])
         imp_phase.append(res.impact_phase[sel])
@@ -83,3 +101,11 @@ def time_histories(points: list[dict], *, model: dict, simulation: dict,
                impact_phase=np.concatenate(imp_phase), impact_wall=np.concatenate(imp_wall),
                row_size=row_size)
     return out
+
+
+def _sample(out: dict, prefix: str, i: int, res, ts) -> None:
+    """State of run ``res`` at the times ``ts`` into row ``i`` of ``out[prefix + name]``."""
+    st = res.state_at(ts)
+    out[prefix + "t"][i] = ts
+    for j, k in enumerate(STATE_NAMES):
+        out[prefix + k][i] = st[j]

@@ -151,19 +151,26 @@ def sweep_dataset(sweep: dict, param: str, outer: str, attrs: dict) -> xr.Datase
 
 
 def timehistory_dataset(points: list[dict], th: dict, attrs: dict) -> xr.Dataset:
-    """Time histories (``core.measures.time_histories``) of ``points``: samples per point
-    (incomplete multidimensional array over (point, sample)), impacts as a contiguous ragged
-    array; one ``timeSeries`` per point, located by (eta, omega, F) and timed by ``t`` /
-    ``impact_t``."""
-    PS, P, I = ("point", "sample"), ("point",), ("impact",)
-    data = {k: xr.Variable(P, np.asarray([p[k] for p in points]), COORD_ATTRS[k]) for k in DIMS}
+    """Time histories (``core.measures.time_histories``) of ``points``: samples of the last
+    periods per point (incomplete multidimensional array over (point, sample)), samples of
+    the whole measurement window if any (over (point, window_sample)), impacts of the window
+    as a contiguous ragged array; one ``timeSeries`` per point, located by (eta, omega, F)
+    and timed by ``t`` / ``window_t`` / ``impact_t``."""
+    dims_of = {"": ("point", "sample"), "window_": ("point", "window_sample")}
+    data = {k: xr.Variable(("point",), np.asarray([p[k] for p in points]), COORD_ATTRS[k])
+            for k in DIMS}
     where = " ".join(DIMS)
     coordinates = {}
-    for k in TIMEHISTORY_ATTRS:
-        dims = PS if k in ("t", "z_m", "v_m", "z_b", "v_b") else I if k.startswith("impact_") else P
+    for k in [k for k in TIMEHISTORY_ATTRS if k in th]:
+        prefix = "window_" if k.startswith("window_") else ""
+        if k.startswith("impact_"):
+            dims, time = ("impact",), "impact_t "
+        elif k[len(prefix):] in ("t", "z_m", "v_m", "z_b", "v_b"):
+            dims, time = dims_of[prefix], f"{prefix}t "
+        else:
+            dims, time = ("point",), ""
         data[k] = xr.Variable(dims, np.asarray(th[k]), cf(TIMEHISTORY_ATTRS, k))
-        if k not in ("t", "impact_t"):
-            time = "t " if dims == PS else "impact_t " if dims == I else ""
+        if k not in ("t", "window_t", "impact_t"):
             coordinates[k] = time + where
         if k == "status":
             data["row_size"] = count_variable(th["row_size"], "point", "impact",

@@ -93,13 +93,19 @@ STABILITY_CLASS_FLAGS = {
     "flag_meanings": "no_admissible_1to1 symmetric_stable asymmetric_stable unstable",
 }
 
-#: time histories: per point, per sample and per impact variables
+#: time histories: per point, per sample (last periods), per window sample (the whole
+#: measurement window, coarser) and per impact (the whole window) variables
 TIMEHISTORY_ATTRS = {
     "t": ("time t = w0 t_dim", "1"),
     "z_m": ("LO displacement z_m (units of L)", "1"),
     "v_m": ("LO velocity z_m'", "1"),
     "z_b": ("ball displacement z_b (units of L)", "1"),
     "v_b": ("ball velocity z_b'", "1"),
+    "window_t": ("time t = w0 t_dim, whole measurement window", "1"),
+    "window_z_m": ("LO displacement z_m (units of L), whole measurement window", "1"),
+    "window_v_m": ("LO velocity z_m', whole measurement window", "1"),
+    "window_z_b": ("ball displacement z_b (units of L), whole measurement window", "1"),
+    "window_v_b": ("ball velocity z_b', whole measurement window", "1"),
     "ke_ratio": BATCH_ATTRS["ke_ratio"],
     "xmax": BATCH_ATTRS["xmax"],
     "regime": BATCH_ATTRS["regime"],

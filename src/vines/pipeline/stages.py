@@ -194,11 +194,13 @@ def stability_map(spec: dict, *, model: dict, code: str, title: str, n_workers: 
 
 def timehistory(spec: dict, *, model: dict, simulation: dict, code: str, title: str):
     """Dataset of the time histories of one figure's points."""
-    from ..core.measures import time_histories
+    from ..core.measures import WINDOW_SAMPLES_PER_PERIOD, time_histories
     points = [dict(p) for p in spec["points"]]
     th = time_histories(points, model=model, simulation=simulation,
                         n_periods=spec["n_periods"],
-                        samples_per_period=spec["samples_per_period"])
+                        samples_per_period=spec["samples_per_period"],
+                        window_samples_per_period=spec.get("window_samples_per_period",
+                                                           WINDOW_SAMPLES_PER_PERIOD))
     attrs = provenance_attrs(title=title, config_subset={"spec": spec, "model": model,
                                                          "simulation": simulation},
                              settings={**model, **simulation}, code_version=code)

@@ -1,26 +1,37 @@
 """Figure helpers: input checks (``checks``), drawing (``draw``), multi-panel layouts
-(``layouts``). Figure scripts use ``import vines.plotting as P``.
+(``layouts``), the stable 1:1 region of a stability map on other maps (``stable_region``),
+the regime of each point of a bifurcation sweep (``sweep_regimes``).
+Figure scripts use ``import vines.plotting as P``.
 
 Figures only *read* the pipeline's datasets (``results/<run>/...``); restyling a figure
 never reruns a computation.
 """
 from .checks import (CLASS_VALUES, FigureInputError, branch, fixed_value, grid2d, load,
                      marked_sections, measures, require, sorted_by_fixed, stability, sweep,
-                     sweep_points, timehistory)
+                     sweep_fixed, sweep_points, timehistory)
 from .draw import (C_BALL, C_BRANCH, C_LO, CLASSES, LABELS, SYMBOLS, bifurcation_dots,
-                   branch_lines, contour_map, eigenvalue_panel, figure, fmt, metres,
-                   panel_label, save, th_title, time_history, twin_measures)
+                   branch_lines, class_handles, class_map, contour_map, eigenvalue_panel, figure, fmt,
+                   impact_phase_panel, metres, panel_label, point_impacts, save, th_title,
+                   time_history, twin_measures)
 from .layouts import ZOOM_PAD, time_history_figure, zoom_figure, zoom_range
+from .stable_region import reaches_1to1, region_counts, stability_margin, stable_at
+from .sweep_regimes import (REGIME_ASYM, REGIME_SYM, REGIMES, point_regime, regime_grid,
+                            sweep_regimes)
 
 __all__ = [
     # checks
     "CLASS_VALUES", "FigureInputError", "branch", "fixed_value", "grid2d", "load",
     "marked_sections", "measures", "require", "sorted_by_fixed", "stability", "sweep",
-    "sweep_points", "timehistory",
+    "sweep_fixed", "sweep_points", "timehistory",
     # draw
     "C_BALL", "C_BRANCH", "C_LO", "CLASSES", "LABELS", "SYMBOLS", "bifurcation_dots",
-    "branch_lines", "contour_map", "eigenvalue_panel", "figure", "fmt", "metres",
-    "panel_label", "save", "th_title", "time_history", "twin_measures",
+    "branch_lines", "class_handles", "class_map", "contour_map", "eigenvalue_panel", "figure", "fmt",
+    "impact_phase_panel", "metres", "panel_label", "point_impacts", "save", "th_title",
+    "time_history", "twin_measures",
     # layouts
     "ZOOM_PAD", "time_history_figure", "zoom_figure", "zoom_range",
+    # stable_region
+    "reaches_1to1", "region_counts", "stability_margin", "stable_at",
+    # sweep_regimes
+    "REGIME_ASYM", "REGIME_SYM", "REGIMES", "point_regime", "regime_grid", "sweep_regimes",
 ]

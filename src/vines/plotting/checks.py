@@ -142,6 +142,15 @@ def sweep(path) -> xr.Dataset:
     return ds
 
 
+def sweep_fixed(ds: xr.Dataset, name: str) -> float:
+    """The value of a parameter held fixed along a sweep (global attribute 'fixed',
+    'F=0.2,omega=1')."""
+    fx = dict(kv.split("=") for kv in ds.attrs.get("fixed", "").split(",") if "=" in kv)
+    if name not in fx:
+        raise FigureInputError(f"{_where(ds)}: global attribute 'fixed' does not give {name}")
+    return float(fx[name])
+
+
 def sweep_points(ds: xr.Dataset, outer: float | None = None, max_per_point=None):
     """(value, dw) of a sweep's impacts: optionally at one outer value only and the last
     ``max_per_point`` impacts of each point."""
@@ -188,10 +197,17 @@ def stability(path) -> xr.Dataset:
 
 
 def timehistory(path) -> xr.Dataset:
-    """Time histories of single runs (at least 2 samples per point)."""
+    """Time histories of single runs (at least 2 samples per point), their impacts and, if
+    stored, the samples of the whole measurement window (``window_*``)."""
     ds = load(path)
-    require(ds, variables=("t", "z_m", "v_m", "z_b", "v_b", "row_size"),
-            finite=("eta", "omega", "F", "t", "z_m", "v_m", "z_b", "v_b"))
+    impacts = ("impact_t", "impact_dw", "impact_phase")
+    require(ds, variables=("t", "z_m", "v_m", "z_b", "v_b", "row_size") + impacts,
+            finite=("eta", "omega", "F", "t", "z_m", "v_m", "z_b", "v_b") + impacts)
     if ds.sizes.get("sample", 0) < 2:
         raise FigureInputError(f"{_where(ds)}: time histories have no samples")
+    n, stored = int(ds["row_size"].values.sum()), ds.sizes.get("impact", 0)
+    if n != stored:
+        raise FigureInputError(f"{_where(ds)}: row_size sums to {n}, {stored} impacts stored")
+    if "window_t" in ds.variables:
+        require(ds, finite=tuple(f"window_{k}" for k in ("t", "z_m", "v_m", "z_b", "v_b")))
     return ds

@@ -11,9 +11,12 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
+from matplotlib.colors import BoundaryNorm, ListedColormap, LogNorm  # noqa: E402
+from matplotlib.patches import Patch  # noqa: E402
 from matplotlib.ticker import MaxNLocator  # noqa: E402
 
 from ..core.params import L_HALF_M  # noqa: E402
+from ..core.walls import WALL_L, WALL_R  # noqa: E402
 from ..data.netcdf import new_file_mode  # noqa: E402
 from .checks import FigureInputError  # noqa: E402
 
@@ -67,20 +70,86 @@ def metres(x):
     return np.asarray(x, dtype=float) * L_HALF_M
 
 
+#: impact markers by phase: (0, pi) LO and ball moving the same way, (pi, 2 pi) opposite
+IMPACT_STYLES = ((r"impact, $\varphi_i \in (0, \pi)$", "v", "darkorange"),
+                 (r"impact, $\varphi_i \in (\pi, 2\pi)$", "^", "black"))
+
+
+def point_impacts(ds: xr.Dataset, i: int) -> dict:
+    """Impacts of point ``i`` of a time-history dataset: t, dw, phase, wall arrays."""
+    edges = np.concatenate([[0], np.cumsum(ds["row_size"].values)])
+    return {k: ds[f"impact_{k}"].values[edges[i]:edges[i + 1]]
+            for k in ("t", "dw", "phase", "wall")}
+
+
+def _same_way(phase) -> np.ndarray:
+    return np.mod(phase, 2 * np.pi) < np.pi
+
+
 def time_history(ax_t, ax_p, ds: xr.Dataset, i: int):
-    """Cavity ends z_m +- 1 (blue) and ball z_b (red) vs time; phase portraits beside."""
-    t, zm, vm = ds["t"].values[i], ds["z_m"].values[i], ds["v_m"].values[i]
-    zb, vb = ds["z_b"].values[i], ds["v_b"].values[i]
+    """Cavity ends z_m +- 1 (blue) and ball z_b (red) over the last periods, impacts marked
+    by phase; beside it the phase portraits of the last periods (dark) over those of the
+    whole measurement window (light, ``window_*`` samples, when the dataset has them)."""
+    t, zm = ds["t"].values[i], ds["z_m"].values[i]
+    zb = ds["z_b"].values[i]
     ax_t.plot(t, zm + 1, color=C_LO, lw=0.9, label=r"cavity ends $z_m \pm 1$")
     ax_t.plot(t, zm - 1, color=C_LO, lw=0.9)
     ax_t.plot(t, zb, color=C_BALL, lw=0.9, label=r"ball $z_b$")
+    imp = point_impacts(ds, i)
+    shown = (imp["t"] >= t[0]) & (imp["t"] <= t[-1])
+    for same, (lab, mk, col) in zip((True, False), IMPACT_STYLES):
+        m = shown & (_same_way(imp["phase"]) == same)
+        ax_t.plot(imp["t"][m], np.interp(imp["t"][m], t, zb), mk, color=col, ms=4,
+                  ls="", label=lab)
     ax_t.set_xlim(t[0], t[-1])
     ax_t.set_xlabel(LABELS["t"])
     ax_t.set_ylabel(r"displacement $z$ (units of $L$)")
-    ax_p.plot(zm, vm, color=C_LO, lw=0.8, label="LO")
-    ax_p.plot(zb, vb, color=C_BALL, lw=0.8, label="ball")
+    if "window_t" in ds.variables:       # the whole window, light, broken at the impacts
+        tw = ds["window_t"].values[i]
+        for k, col in (("m", C_LO), ("b", C_BALL)):
+            z, v = (_broken(tw, ds[f"window_{q}_{k}"].values[i], imp["t"]) for q in ("z", "v"))
+            ax_p.plot(z, v, color=col, lw=0.25, alpha=0.35, rasterized=True)
+    ax_p.plot(zm, ds["v_m"].values[i], color=C_LO, lw=0.8, label="LO")
+    ax_p.plot(zb, ds["v_b"].values[i], color=C_BALL, lw=0.8, label="ball")
     ax_p.set_xlabel(r"displacement $z$")
     ax_p.set_ylabel(r"velocity $\dot z$")
+
+
+def _broken(t, y, t_impacts):
+    """``y`` with NaN inserted between two samples that have an impact between them (the
+    velocity jump is not drawn as a slanted line)."""
+    j = np.unique(np.searchsorted(t, t_impacts[(t_impacts > t[0]) & (t_impacts < t[-1])]))
+    return np.insert(np.asarray(y, dtype=float), j, np.nan)
+
+
+def impact_phase_panel(ax, ds: xr.Dataset, i: int) -> dict:
+    """|w'_i| against the impact phase of every impact of the dataset (the whole measurement
+    window): filled markers at the right end of the cavity (wall R, z_b = z_m + 1, where the
+    paper's convention applies: phi_i in (0, pi) LO and ball moving the same way), open ones
+    at the left end; (0, pi) shaded. Returns per wall the impacts and those in (0, pi)."""
+    imp = point_impacts(ds, i)
+    ph = np.mod(imp["phase"], 2 * np.pi)
+    ax.axvspan(0, np.pi, color="0.92", lw=0)
+    counts = {}
+    for wall, name, filled in ((WALL_R, "right end", True), (WALL_L, "left end", False)):
+        at = imp["wall"] == wall
+        for same, (_, mk, col) in zip((True, False), IMPACT_STYLES):
+            m = at & (_same_way(ph) == same)
+            ax.plot(ph[m], np.abs(imp["dw"][m]), mk, ls="", ms=4.5, alpha=0.7, mec=col,
+                    mfc=col if filled else "none", mew=0.8, rasterized=True)
+        counts[name] = (int(at.sum()), int((at & _same_way(ph)).sum()))
+    ax.axvline(np.pi, color="0.4", lw=0.8, ls=":")
+    ax.set_xlim(0, 2 * np.pi)
+    if ph.size:
+        ax.set_ylim(0, 1.25 * float(np.max(np.abs(imp["dw"]))))
+    ax.set_xticks([0, np.pi / 2, np.pi, 1.5 * np.pi, 2 * np.pi],
+                  ["0", r"$\pi/2$", r"$\pi$", r"$3\pi/2$", r"$2\pi$"])
+    ax.set_xlabel(r"impact phase $\varphi_i$")
+    ax.set_ylabel(r"$|\dot w_i|$")
+    text = "\n".join(f"{name} (" + ("filled" if name == "right end" else "open")
+                      + f"): {n}, {k} in (0, $\\pi$)" for name, (n, k) in counts.items())
+    ax.text(0.03, 0.97, text, transform=ax.transAxes, fontsize=6.5, va="top")
+    return counts
 
 
 def bifurcation_dots(ax, x, y, **kw):
@@ -118,6 +187,24 @@ def eigenvalue_panel(ax, br: xr.Dataset):
     ax.set_ylim(0, min(max(1.5, 1.05 * top), 3.0))
 
 
+def class_map(ax, x, y, codes, classes: dict):
+    """Categorical map: ``codes`` (len(y), len(x)) drawn in the colours of ``classes``
+    (code -> (label, colour)), one cell per point; negative codes are left blank."""
+    keys = sorted(classes)
+    cmap = ListedColormap([classes[k][1] for k in keys])
+    norm = BoundaryNorm(np.arange(len(keys) + 1) - 0.5, cmap.N)
+    idx = np.searchsorted(keys, np.asarray(codes))
+    ax.pcolormesh(x, y, np.ma.masked_where(np.asarray(codes) < 0, idx), cmap=cmap, norm=norm,
+                  shading="nearest", rasterized=True)
+
+
+def class_handles(classes: dict, suffix=None) -> list:
+    """Legend patches of ``classes`` (code -> (label, colour)); ``suffix``: code -> text."""
+    suffix = suffix or {}
+    return [Patch(facecolor=classes[k][1], edgecolor="black",
+                  label=classes[k][0] + suffix.get(k, "")) for k in sorted(classes)]
+
+
 def twin_measures(ax, x, ke, xmax_m, xlabel):
     """x_max (m, red circles, left axis) and KE ratio (blue stars, right axis); returns the
     right axis."""
@@ -133,19 +220,41 @@ def twin_measures(ax, x, ke, xmax_m, xlabel):
     return ax2
 
 
-def contour_map(fig, ax, x, y, z, *, label, vmin=None, vmax=None):
-    """Filled contour (20 levels, jet) with a colour bar; needs at least 2 x 2 points."""
+def contour_map(fig, ax, x, y, z, *, label, vmin=None, vmax=None, log=False):
+    """Filled contour (20 levels, jet) with a colour bar; needs at least 2 x 2 points.
+    ``log``: levels equally spaced in log10(z) (z > 0), so small values keep their detail
+    next to a large resonance peak."""
     if len(x) < 2 or len(y) < 2:
         raise FigureInputError(f"a contour map of {label} needs at least 2 x 2 grid points, "
                                f"got {len(x)} x {len(y)}")
     vmin = float(np.nanmin(z)) if vmin is None else vmin
     vmax = float(np.nanmax(z)) if vmax is None else vmax
+    if log and vmin <= 0:
+        raise FigureInputError(f"a log colour scale of {label} needs values > 0, "
+                               f"minimum {vmin}")
     if vmax <= vmin:
-        vmax = vmin + 1e-12
-    cs = ax.contourf(x, y, z, levels=np.linspace(vmin, vmax, 21), cmap="jet",
-                     extend="neither")
-    cb = fig.colorbar(cs, ax=ax, shrink=0.9, ticks=MaxNLocator(6))
-    cb.set_label(label)
+        vmax = vmin * (1 + 1e-9) + 1e-12
+    if log:
+        levels, norm, ticks = np.geomspace(vmin, vmax, 21), LogNorm(vmin, vmax), None
+    else:
+        levels, norm, ticks = np.linspace(vmin, vmax, 21), None, MaxNLocator(6)
+    cs = ax.contourf(x, y, z, levels=levels, cmap="jet", norm=norm, extend="neither")
+    cb = fig.colorbar(cs, ax=ax, shrink=0.9, ticks=ticks)
+    if log:
+        _log_ticks(cb, vmin, vmax)
+    cb.set_label(label + (" (log scale)" if log else ""))
+
+
+def _log_ticks(cb, vmin, vmax):
+    """Colour bar ticks at 1, 2, 5 x 10^k inside [vmin, vmax] (and the two ends)."""
+    k = np.arange(np.floor(np.log10(vmin)), np.ceil(np.log10(vmax)) + 1)
+    cand = np.sort(np.concatenate([m * 10.0 ** k for m in (1, 2, 5)]))
+    ticks = cand[(cand >= vmin) & (cand <= vmax)]
+    if ticks.size < 3:
+        ticks = np.geomspace(vmin, vmax, 4)
+    cb.set_ticks(ticks)
+    cb.set_ticklabels([f"{v:.3g}" for v in ticks])
+    cb.ax.minorticks_off()
 
 
 def save(fig, pdf, png, dpi=150):

@@ -1,28 +1,45 @@
 """Multi-panel layouts shared by several figures (Figs 4, 5, 9, 10 and Figs 6, 15)."""
 from __future__ import annotations
 
+import numpy as np
 import xarray as xr
 
 from .checks import sweep_points
 from .draw import (LABELS, SYMBOLS, bifurcation_dots, branch_lines, eigenvalue_panel, figure,
-                   fmt, panel_label, th_title, time_history)
+                   fmt, impact_phase_panel, panel_label, th_title, time_history)
 
 #: a zoom window is the stable 1:1 interval widened by this fraction of its width each side
 ZOOM_PAD = 0.6
 
 
 def time_history_figure(ds: xr.Dataset):
-    """Figs 4, 5, 9, 10: one row per point, time history (a, c) and phase portrait (b, d)."""
+    """Figs 4, 5, 9, 10: one row per point: time history of the last periods with the
+    impacts marked by phase (a, c), phase portraits over those periods (dark) and the whole
+    measurement window (light) (b, d), |w'_i| against the impact phase of every impact of
+    the window (third column, titled after the row's time history)."""
     n = ds.sizes["point"]
-    fig, axes = figure(n, 2, width=9.0, height=2.8 * n,
-                       gridspec_kw={"width_ratios": [1.8, 1]})
+    fig, axes = figure(n, 3, width=12.0, height=2.9 * n,
+                       gridspec_kw={"width_ratios": [1.8, 1, 0.9]})
+    window = _window_text(ds)
     for i in range(n):
         time_history(axes[i, 0], axes[i, 1], ds, i)
+        impact_phase_panel(axes[i, 2], ds, i)
         panel_label(axes[i, 0], 2 * i, th_title(ds, i))
-        panel_label(axes[i, 1], 2 * i + 1)
-    axes[0, 0].legend(fontsize=7, loc="upper right")
+        panel_label(axes[i, 1], 2 * i + 1, f"light: {window}, dark: as ({chr(97 + 2 * i)})"
+                    if "window_t" in ds.variables else None)
+        axes[i, 2].set_title(f"impacts of ({chr(ord('a') + 2 * i)}), {window}", loc="left",
+                             fontsize=9)
+    axes[0, 0].legend(fontsize=7, loc="upper right", ncol=2)
     axes[0, 1].legend(fontsize=7, loc="upper right")
     return fig
+
+
+def _window_text(ds: xr.Dataset) -> str:
+    """'tau in [a, b]' of the whole-window samples (or of the impacts when none)."""
+    t = ds["window_t"].values if "window_t" in ds.variables else ds["impact_t"].values
+    if t.size == 0:
+        return ""
+    return rf"$\tau \in$ [{np.min(t):.0f}, {np.max(t):.0f}]"
 
 
 def zoom_range(br: xr.Dataset):

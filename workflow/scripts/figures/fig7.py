@@ -1,5 +1,6 @@
-"""Fig 7: contour maps over (eta, F) of the KE ratio (a-c) and x_max in metres (d-f), one
-column per W (grids fig7_*), each with its colour bar."""
+"""Fig 7: contour maps over (eta, F) of the KE ratio (a-c) and x_max in metres (d-f, log
+colour scale: the low-x_max valleys stay visible next to the resonance peak), one column
+per W (grids fig7_*), each with its colour bar."""
 import vines.plotting as P
 from vines.pipeline.jobs import run_job
 
@@ -14,7 +15,7 @@ def main(sm):
         W = P.fmt(P.fixed_value(ds, "omega"))
         for i, (var, lab, kw) in enumerate((("ke_ratio", P.LABELS["ke_ratio"],
                                              {"vmin": 0.0, "vmax": 1.0}),
-                                            ("xmax_m", P.LABELS["xmax_m"], {}))):
+                                            ("xmax_m", P.LABELS["xmax_m"], {"log": True}))):
             ax = axes[i, j]
             P.contour_map(fig, ax, eta, F, P.grid2d(ds, var, "eta", "F"), label=lab, **kw)
             ax.set_xlabel(P.LABELS["eta"])

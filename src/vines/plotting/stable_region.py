@@ -1,0 +1,58 @@
+"""The stable 1:1 region of a stability map (Fig 16) drawn over other maps (Fig 12 (d-f)).
+
+The region's edges are placed where |lambda_max| crosses 1 by linear interpolation between
+grid points (``stability_margin``), not half-way between a stable and an unstable cell: a
+tongue whose edge lies just above a grid row (the symmetric tongue below Omega = 0.5 ends
+at Omega ~ 0.5001) then shows as the sliver it is, not as a band one row high.
+"""
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+from scipy.interpolate import RegularGridInterpolator
+
+#: margin given to grid points without an admissible 1:1 orbit (cls 0, lambda_max NaN)
+NO_ORBIT_MARGIN = -1.0
+#: regime label of the from-rest runs on the 1:1 orbit (vines.core.regime)
+REGIME_1TO1 = "1:1"
+
+
+def stability_margin(smap: xr.Dataset) -> np.ndarray:
+    """1 - |lambda_max| over (omega, eta): > 0 stable, < 0 unstable; ``NO_ORBIT_MARGIN``
+    where the map has no admissible 1:1 orbit."""
+    lam = np.asarray(smap["lambda_max"].transpose("omega", "eta").values, dtype=float)
+    none = np.asarray(smap["cls"].transpose("omega", "eta").values) == 0
+    return np.where(none | ~np.isfinite(lam), NO_ORBIT_MARGIN, 1.0 - lam)
+
+
+def stable_at(smap: xr.Dataset, eta, omega) -> np.ndarray:
+    """True at the points (omega x eta, shape (len(omega), len(eta))) inside the stable 1:1
+    region of ``smap`` (bilinear interpolation of ``stability_margin``); False outside the
+    map's range."""
+    f = RegularGridInterpolator((smap["omega"].values, smap["eta"].values),
+                                stability_margin(smap), bounds_error=False,
+                                fill_value=NO_ORBIT_MARGIN)
+    W, E = np.meshgrid(np.asarray(omega, float), np.asarray(eta, float), indexing="ij")
+    return f(np.stack([W, E], axis=-1)) > 0
+
+
+def reaches_1to1(grid: xr.Dataset) -> np.ndarray:
+    """True where the grid's from-rest run settles on a 1:1 orbit (regime '1:1'), over
+    (omega, eta) with the fixed F squeezed."""
+    reg = grid["regime"]
+    for d in [d for d in reg.dims if d not in ("eta", "omega")]:
+        reg = reg.isel({d: 0})
+    return np.asarray(reg.transpose("omega", "eta").values).astype(str) == REGIME_1TO1
+
+
+def region_counts(grid: xr.Dataset, smap: xr.Dataset) -> dict:
+    """Grid points inside the stable 1:1 region, how many of them the from-rest run reaches
+    (regime 1:1) and how many have KE ratio 0 (no impact): the numbers of docs/figures.md."""
+    eta, omega = grid["eta"].values, grid["omega"].values
+    stable = stable_at(smap, eta, omega)
+    ke = grid["ke_ratio"]
+    for d in [d for d in ke.dims if d not in ("eta", "omega")]:
+        ke = ke.isel({d: 0})
+    ke = np.asarray(ke.transpose("omega", "eta").values, dtype=float)
+    return {"stable": int(stable.sum()), "reached": int((stable & reaches_1to1(grid)).sum()),
+            "ke_zero": int((stable & (ke == 0)).sum())}

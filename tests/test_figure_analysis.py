@@ -1,0 +1,161 @@
+"""What the figures compute from the datasets before drawing: the regime of sweep points
+(Figs 14, 15, fig14_regimes), the stable 1:1 region with interpolated edges (Figs 12, 16),
+the impacts of a time history (Figs 4, 5, 9, 10) and the whole-window samples behind them."""
+import math
+
+import numpy as np
+import pytest
+import xarray as xr
+
+import vines.plotting as P
+from vines.core.measures import time_histories
+from vines.core.simulation import simulate
+from vines.orbits.stability_map import stability_map
+from vines.plotting.sweep_regimes import (REGIME_CHATTER, REGIME_IRREGULAR, REGIME_NONE,
+                                          REGIME_PERIODIC, point_regime)
+
+N_REC = 10
+
+
+def _repeat(pattern_dw, pattern_phase, pattern_wall, n_periods=N_REC):
+    k = len(pattern_dw)
+    return (np.tile(pattern_dw, n_periods), np.tile(pattern_phase, n_periods),
+            np.tile(pattern_wall, n_periods).astype("i1")), k
+
+
+# ------------------------------------------------------------------ regimes of sweep points
+
+def test_regime_of_synthetic_impact_sequences():
+    (dw, ph, wl), _ = _repeat([1.5, -1.5], [1.0, 1.0 + math.pi], [1, -1])
+    assert point_regime(dw, ph, wl, N_REC) == P.REGIME_SYM
+    (dw, ph, wl), _ = _repeat([1.5, -1.5], [1.0, 3.0], [1, -1])
+    assert point_regime(dw, ph, wl, N_REC) == P.REGIME_ASYM
+    (dw, ph, wl), _ = _repeat([1.2, -0.7, -0.4], [0.5, 2.0, 4.0], [1, -1, -1])   # 2:1
+    assert point_regime(dw, ph, wl, N_REC) == REGIME_PERIODIC
+    (dw, ph, wl), _ = _repeat([1.5, -1.5, 1.2, -1.2], [1.0, 4.1, 1.1, 4.2], [1, -1, 1, -1],
+                              N_REC // 2)                                        # period 2
+    assert point_regime(dw, ph, wl, N_REC) == REGIME_PERIODIC
+    assert point_regime([], [], [], N_REC) == REGIME_NONE
+    walls = np.array([1, 1, 1, 1, -1] * 4, "i1")
+    assert point_regime(np.full(20, 1e-3), np.linspace(0, 6, 20), walls, N_REC) == REGIME_CHATTER
+    rng = np.random.default_rng(1)
+    dw = rng.uniform(0.5, 2.0, 20) * np.tile([1, -1], 10)
+    assert point_regime(dw, rng.uniform(0, 6.28, 20), np.tile([1, -1], 10),
+                        N_REC) == REGIME_IRREGULAR
+
+
+def test_regime_tolerance_separates_settled_from_drifting():
+    (dw, ph, wl), _ = _repeat([1.5, -1.5], [1.0, 1.0 + math.pi], [1, -1])
+    assert point_regime(dw * (1 + 1e-6 * np.arange(dw.size)), ph, wl, N_REC) == P.REGIME_SYM
+    assert point_regime(dw * (1 + 1e-3 * np.arange(dw.size)), ph, wl,
+                        N_REC) == REGIME_IRREGULAR
+
+
+@pytest.mark.parametrize("eta,omega,F,cls", [(0.05, 1.0, 0.05, 1), (0.12, 1.1, 0.3077, 2)])
+def test_regime_of_simulated_impacts_agrees_with_the_orbit_solver(eta, omega, F, cls):
+    # independent: the stability map solves the 1:1 orbits on the impact map and says
+    # whether the stable one is symmetric (cls 1) or asymmetric (cls 2)
+    res = simulate(eta, omega, F, t_end=3000.0, t_transient=2000.0)
+    sel = res.impacts["t"] >= res.t_last - N_REC * 2 * math.pi / omega
+    code = point_regime(res.impact_dw[sel], res.impact_phase[sel], res.impacts["wall"][sel],
+                        N_REC)
+    smap = stability_map(np.array([eta - 0.01, eta]), np.array([omega, omega + 0.001]), F)
+    assert int(smap["cls"][1, 0]) == cls
+    assert code == {1: P.REGIME_SYM, 2: P.REGIME_ASYM}[cls]
+
+
+def _sweep_ds(points):
+    """A sweep dataset (as bifurcation_sweep writes it) from (eta, omega, direction, dw,
+    phase, wall) tuples."""
+    rows = [np.asarray(p[3]) for p in points]
+    return xr.Dataset(
+        {"value": ("point", [p[0] for p in points]),
+         "outer_value": ("point", [p[1] for p in points]),
+         "direction": ("point", np.array([p[2] for p in points], "i1")),
+         "row_size": ("point", np.array([r.size for r in rows], "i4")),
+         "dw": ("impact", np.concatenate(rows)),
+         "phase": ("impact", np.concatenate([np.asarray(p[4]) for p in points])),
+         "wall": ("impact", np.concatenate([np.asarray(p[5], "i1") for p in points]))},
+        attrs={"solver_n_record": N_REC})
+
+
+def test_regime_grid_places_each_point():
+    (dw, ph, wl), _ = _repeat([1.5, -1.5], [1.0, 1.0 + math.pi], [1, -1])
+    pts = [(e, w, d, dw if e > 0.15 else [], ph if e > 0.15 else [], wl if e > 0.15 else [])
+           for d in (1, -1) for w in (0.9, 1.0) for e in (0.1, 0.2, 0.3)]
+    xs, ys, grid = P.regime_grid(_sweep_ds(pts), +1)
+    assert xs.tolist() == [0.1, 0.2, 0.3] and ys.tolist() == [0.9, 1.0]
+    assert grid.tolist() == [[REGIME_NONE, P.REGIME_SYM, P.REGIME_SYM]] * 2
+
+
+# ------------------------------------------------------------------ stable region
+
+def _map(lam_rows, omega, eta=(0.1, 0.2), cls=None):
+    lam = np.repeat(np.asarray(lam_rows, float)[None, :], len(eta), axis=0)   # (eta, omega)
+    if cls is None:
+        cls = np.where(lam < 1, 1, 3)
+    return xr.Dataset({"lambda_max": (("eta", "omega"), np.where(cls == 0, np.nan, lam)),
+                       "cls": (("eta", "omega"), np.asarray(cls, "i1"))},
+                      coords={"eta": list(eta), "omega": list(omega)}, attrs={"F": 0.2})
+
+
+def test_stable_edge_is_interpolated_between_rows():
+    # the tongue of the issue: |lambda_max| 0.945 at omega 0.5, 1.86 at 0.5067 -> the
+    # edge lies at 0.5 + 0.0067 * 0.055 / 0.915 = 0.500403, not half-way (0.50335)
+    m = _map([0.945, 1.86, 1.9], [0.5, 0.5067, 0.52])
+    edge = 0.5 + 0.0067 * 0.055 / 0.915
+    st = P.stable_at(m, [0.15], [0.5, edge - 1e-6, edge + 1e-6, 0.5033])
+    assert st[:, 0].tolist() == [True, True, False, False]
+    assert not P.stable_at(m, [0.15], [0.49])[0, 0]                # outside the map's range
+
+
+def test_points_without_an_orbit_are_not_stable():
+    m = _map([0.5, 0.5, 0.5], [0.9, 1.0, 1.1], cls=[[1, 0, 1], [1, 0, 1]])
+    assert P.stability_margin(m)[1].tolist() == [-1.0, -1.0]
+    st = P.stable_at(m, [0.15], [0.9, 0.95, 1.0])[:, 0]
+    assert st.tolist() == [True, False, False]                    # 0.5 -> -1 crosses at 1/3
+
+
+def test_reached_and_counted_only_inside_the_stable_region():
+    m = _map([0.5, 0.5, 2.0], [0.9, 1.0, 1.1])
+    reg = np.array([["1:1", "no-impact", "1:1"], ["irregular", "1:1", "1:1"]])  # (eta, omega)
+    ke = np.array([[0.8, 0.0, 0.9], [0.2, 0.7, 0.6]])
+    g = xr.Dataset({"regime": (("eta", "omega", "F"), reg[..., None]),
+                    "ke_ratio": (("eta", "omega", "F"), ke[..., None])},
+                   coords={"eta": [0.1, 0.2], "omega": [0.9, 1.0, 1.1], "F": [0.2]})
+    assert P.reaches_1to1(g).tolist() == [[True, False], [False, True], [True, True]]
+    assert P.region_counts(g, m) == {"stable": 4, "reached": 2, "ke_zero": 1}
+
+
+# ------------------------------------------------------------------ time histories
+
+def test_time_histories_sample_the_whole_window_and_keep_its_impacts():
+    sim = {"t_end": 400.0, "t_transient": 200.0}
+    pts = [{"eta": 0.05, "omega": 1.0, "F": 0.05}, {"eta": 0.2, "omega": 0.9, "F": 0.4}]
+    th = time_histories(pts, model={}, simulation=sim, n_periods=3, samples_per_period=20,
+                        window_samples_per_period=8)
+    span = 200.0 * 1.0 / (2 * math.pi)                            # periods of the fastest
+    assert th["window_t"].shape == (2, math.ceil(span) * 8 + 1)
+    assert np.allclose(th["window_t"][:, 0], 200.0) and np.allclose(th["window_t"][:, -1], 400.0)
+    assert np.allclose(th["window_z_m"][:, -1], th["z_m"][:, -1])      # same end state
+    # 1:1 orbit of Fig 4a: two impacts per period over the whole window, not only the last 3
+    n0 = int(th["row_size"][0])
+    assert abs(n0 - 2 * span) <= 2
+    t0 = th["impact_t"][:n0]
+    assert t0.min() >= 200.0 and t0.min() < 200.0 + 2 * math.pi
+    none = time_histories(pts[:1], model={}, simulation=sim, n_periods=3,
+                          samples_per_period=20, window_samples_per_period=0)
+    assert "window_t" not in none
+
+
+def test_impact_phase_panel_counts_the_window(tmp_path):
+    ds = xr.Dataset({"row_size": ("point", np.array([3, 2], "i4")),
+                     "impact_t": ("impact", [1.0, 2.0, 3.0, 1.5, 2.5]),
+                     "impact_dw": ("impact", [1.0, -1.0, 1.0, 0.5, -0.5]),
+                     "impact_phase": ("impact", [0.5, 4.0, 6.0, 1.0, 2.0]),
+                     "impact_wall": ("impact", np.array([1, -1, 1, 1, -1], "i1"))})
+    assert P.point_impacts(ds, 1)["phase"].tolist() == [1.0, 2.0]
+    fig, axes = P.figure(1, 2)
+    # wall +1 is the left end (w = +1), -1 the right end
+    assert P.impact_phase_panel(axes[0, 0], ds, 0) == {"right end": (1, 0), "left end": (2, 1)}
+    assert P.impact_phase_panel(axes[0, 1], ds, 1) == {"right end": (1, 1), "left end": (1, 1)}
