@@ -8,7 +8,7 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 
 from .exact import run_exact
-from .fields import BATCH_FIELDS
+from .conventions import BATCH_FIELDS
 from .params import (RTOL_DEFAULT, D_DEFAULT, MAX_IMPACTS_DEFAULT, R_DEFAULT, ROOT_TOL_DEFAULT,
                      T_END_DEFAULT, T_TRANSIENT_DEFAULT, V_STICK_DEFAULT, PARAM_BOUNDS,
                      RTOL_MAX, RTOL_MIN, ModelParams, ParameterError, SolverSettings,

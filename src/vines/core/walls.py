@@ -6,9 +6,7 @@ conserving momentum v_m + eta v_b.
 """
 from numba import njit
 
-WALL_L = 1      # w = +1
-WALL_R = -1     # w = -1
-WALL_NAMES = {WALL_L: "L", WALL_R: "R"}
+from .conventions import WALL_L, WALL_NAMES, WALL_R  # noqa: F401  (the wall codes)
 
 
 @njit(cache=True, nogil=True)

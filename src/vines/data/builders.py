@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from ..core.fields import BATCH_FIELDS
+from ..core.conventions import BATCH_FIELDS
 from .schema import (BATCH_ATTRS, BRANCH_ATTRS, COORD_ATTRS, COUNT_DTYPE, DERIVED_ATTRS, DIMS,
                      FEATURE_TYPE, STABILITY_ATTRS, STABILITY_CLASS_FLAGS,
                      SWEEP_INSTANCE_ATTRS, SWEEP_SAMPLE_ATTRS, TIMEHISTORY_ATTRS, attrs as cf)

@@ -16,7 +16,7 @@ from matplotlib.patches import Patch  # noqa: E402
 from matplotlib.ticker import MaxNLocator  # noqa: E402
 
 from ..core.params import L_HALF_M  # noqa: E402
-from ..core.walls import WALL_L, WALL_R  # noqa: E402
+from ..core.conventions import WALL_L, WALL_R  # noqa: E402
 from ..data.netcdf import new_file_mode  # noqa: E402
 from .checks import FigureInputError  # noqa: E402
 
