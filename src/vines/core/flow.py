@@ -320,7 +320,7 @@ def _phi1(x, ex):
 
 
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(8)
-# Underdamped, non-resonant oscillators: flights of at most V2_GAUSS_PANELS panels are
+# Underdamped, non-resonant oscillators: flights of 2 to V2_GAUSS_PANELS panels are
 # integrated by the Gauss rule on the exponential modes of z' (``_v2_modes_gauss``),
 # longer ones in closed form (``_v2_closed``); the mode amplitudes at the panel centres
 # follow by recurrence, computed afresh every V2_RESEED panels.
@@ -449,8 +449,8 @@ def v2_integral(osc, x0, v0, sth0, cth0, L):
     Clearly underdamped, non-resonant oscillators: z' = Re(Ah e^(lam s) + Bp e^(i omega s)),
     integrated in closed form (sums of complex exponentials) on long intervals where its
     terms do not cancel heavily (they do near resonance), else by the Gauss rule on these
-    modes (``_v2_modes_gauss``). Other oscillators: the Gauss rule on ``flow``
-    (``_v2_gauss``). An 8-point Gauss-Legendre rule on panels of length <= 1/rate is exact
+    modes (``_v2_modes_gauss``). Other oscillators, and intervals of one panel: the Gauss
+    rule on ``flow`` (``_v2_gauss``). An 8-point Gauss-Legendre rule on panels of length <= 1/rate is exact
     to round-off for these smooth, band-limited integrands.
     """
     if L <= 0.0:
@@ -458,7 +458,9 @@ def v2_integral(osc, x0, v0, sth0, cth0, L):
     sigma = osc[I_SIGMA]
     om2 = osc[I_OM2]
     kappa = osc[I_KAPPA]
-    if osc[I_KIND] < 0.5 or osc[I_RES] > 0.5 or osc[I_NRES] > 0.5 or kappa < 0.01 * om2:
+    npan = _n_panels(osc, L)
+    if osc[I_KIND] < 0.5 or osc[I_RES] > 0.5 or osc[I_NRES] > 0.5 or kappa < 0.01 * om2 \
+            or npan == 1:
         return _v2_gauss(osc, x0, v0, sth0, cth0, L, _GL_X, _GL_W)
     alpha = osc[I_SQ]
     omega = osc[I_W]
@@ -471,7 +473,6 @@ def v2_integral(osc, x0, v0, sth0, cth0, L):
     lam = complex(-sigma, alpha)
     # z_p'(s) = Re(Bp e^{i omega s})
     Bp = omega * complex(osc[I_PS], osc[I_PC]) * complex(cth0, sth0)
-    npan = _n_panels(osc, L)
     if npan > V2_GAUSS_PANELS:
         res, big = _v2_closed(Ah, lam, Bp, omega, L)
         if big <= 1e3 * res:       # else the terms cancel (near resonance)

@@ -99,6 +99,8 @@ CONTACT_PRESSED = 2
 CUR_T, CUR_ZM, CUR_VM, CUR_ZB, CUR_VB, CUR_MODE, CUR_RELEASED = range(7)
 
 MAX_STEPS_PER_SEGMENT = 200_000
+# evaluations of the step rule per step (``free_step_local``; odd: ends on a safe step)
+N_STEP_ITER = 3
 ROUNDOFF = 8.0 * 2.220446049250313e-16   # a few ulps: contact/release at this gap is exact
 
 
@@ -311,22 +313,24 @@ def free_step_local(osc, s, z, v, a, j, b1, zb0, vb0, h_cap, root_tol, released)
     tol_z = max(root_tol, _floor(P0, s, abs(z) + abs(zb), v - vb0))
     floor_v = _floor(P1, s, abs(v) + abs(vb0), a)
     floor_a = _floor(P2, s, a, j)
-    h_best = -1.0
-    B_best = B2g
+    # phi(H) = the step allowed by the bound valid on [s, s + H] is non-increasing in H;
+    # any H with phi(H) >= H is a safe step, and odd iterates H -> min(phi(H), h_cap) from
+    # h_cap are such steps, approaching the longest one
     H = h_cap
-    for _ in range(3):
-        if h_best >= H:
-            break
-        B = min(B2g, abs(a) + abs(j) * H + 0.5 * B4 * H * H)
+    B = min(B2g, abs(a) + abs(j) * H + 0.5 * B4 * H * H)
+    h_best, B_best = H, B
+    for it in range(N_STEP_ITER):
         h, pressed = free_step(s, z, v, a, j, zb0, vb0, B, B3, B4, tol_z, floor_v, floor_a,
                                released)
         if pressed != 0:
             return 0.0, pressed, B2g, B4
-        h = min(h, H)
-        if h > h_best:
-            h_best = h
-            B_best = B
-        H *= 0.25
+        if it % 2 == 0:
+            if h >= H:
+                return H, 0, B, B4           # the bound allows all of [s, s + H]
+            if it == 0 or h > h_best:
+                h_best, B_best = h, B        # valid: h <= phi(H) with the bound for H >= h
+        H = min(h, h_cap)
+        B = min(B2g, abs(a) + abs(j) * H + 0.5 * B4 * H * H)
     return h_best, 0, B_best, B4
 
 
