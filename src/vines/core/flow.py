@@ -320,11 +320,13 @@ def _phi1(x, ex):
 
 
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(8)
-# Underdamped, non-resonant oscillators: flights of 2 to V2_GAUSS_PANELS panels are
-# integrated by the Gauss rule on the exponential modes of z' (``_v2_modes_gauss``),
-# longer ones in closed form (``_v2_closed``); the mode amplitudes at the panel centres
-# follow by recurrence, computed afresh every V2_RESEED panels.
+# Underdamped, non-resonant oscillators: the integral of z'^2 in closed form
+# (``_v2_closed``) unless its terms cancel; flights of 2 to V2_GAUSS_PANELS panels whose
+# modes' amplitudes |Ah| + |Bp| exceed V2_CLOSED_SPREAD |Ah + Bp| (near resonance: the
+# closed form would cancel) go directly to the Gauss rule on the modes (``_v2_modes_gauss``),
+# whose amplitudes at the panel centres follow by recurrence, afresh every V2_RESEED panels.
 V2_GAUSS_PANELS = 8
+V2_CLOSED_SPREAD = 10.0
 V2_RESEED = 8
 
 
@@ -473,7 +475,7 @@ def v2_integral(osc, x0, v0, sth0, cth0, L):
     lam = complex(-sigma, alpha)
     # z_p'(s) = Re(Bp e^{i omega s})
     Bp = omega * complex(osc[I_PS], osc[I_PC]) * complex(cth0, sth0)
-    if npan > V2_GAUSS_PANELS:
+    if npan > V2_GAUSS_PANELS or abs(Ah) + abs(Bp) <= V2_CLOSED_SPREAD * abs(Ah + Bp):
         res, big = _v2_closed(Ah, lam, Bp, omega, L)
         if big <= 1e3 * res:       # else the terms cancel (near resonance)
             return res

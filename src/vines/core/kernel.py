@@ -8,13 +8,18 @@ Segments end at an impact, at the start or end of sticking, at t_transient (so t
 segment lies wholly inside or outside the measurement window) or at t_end.
 
 First-contact rule (cannot miss a crossing, grazing included). Between impacts
-w = z_m - z_b has w'' = z_m'', and |z_m''| <= B2 on [s, s + h_cap] by the energy bound of
-``vines.flow``. From a point with gap g = 1 - w (wall L) or 1 + w (wall R) >= 0 and closing
+w = z_m - z_b has w'' = z_m'', and |z_m''| <= B2 on [s, s + h_cap]: the smaller of the
+bound of the closed form's parts (``flow.part_bounds``) and the bound from the energy of the
+whole state (``flow.state_bounds``; near resonance the parts, ~F/(d omega) each, nearly
+cancel and the second is an order of magnitude tighter), or on [s, s + H] the Taylor bound
+|z''(s)| + |z'''(s)| H + B4 H^2/2. From a point with gap g = 1 - w (wall L) or 1 + w (wall R) >= 0 and closing
 speed c toward that wall, the wall cannot be reached before
         h = 2 g / (c + sqrt(c^2 + 2 B2 g))      (root of c h + B2 h^2 / 2 = g;
                                                  (sqrt(...) - c)/B2 when c <= 0),
-so each step goes to the smaller of the two walls' h (and at most h_cap = 1/rate). The
-iteration approaches a transversal contact quadratically and a grazing one geometrically,
+so each step goes to the smaller of the two walls' h (and at most h_cap = 1/rate); H is
+chosen by a short fixed-point iteration towards the longest step its own bound allows
+(``free_step_local``). The iteration approaches a transversal contact quadratically (nearly
+cubically when the acceleration points to the wall) and a grazing one geometrically,
 and can never step over a wall. Contact is declared when c > 0 and g <= max(root_tol, floor),
 and either g <= floor or the crossing is transversal (c^2 >= 2 B2 g); one Newton step
 s += g/c then places the impact (error <= g/4). ``floor`` is the resolution of the computed
@@ -38,8 +43,10 @@ Release from sticking uses the same rule on the contact force, proportional to z
 stuck body (mass 1 + eta), with a bound on z_m'''' (and the same kind of floor for z_m'').
 
 Maximum of |z_m|: on each step interval [a, b] the value cannot exceed
-max(|z(a)|, |z(b)|) + B2 (b - a)^2 / 8; only intervals where this beats the running
-maximum are refined (z' = 0 by safeguarded Newton, or bisection).
+max(|z(a)|, |z(b)|) + B2 (b - a)^2 / 8, nor the maximum of the cubic Hermite interpolant of
+(z, z') at a and b plus B4 (b - a)^4 / 384; only intervals where both beat the running
+maximum are refined (z' = 0 by safeguarded Newton from the interpolant's extremum, or
+bisection).
 
 Layout of ``run_kernel``: per segment, ``_advance_segment`` steps to the first event (free
 flight: ``free_step_local`` / ``free_contact``; stuck: the same rules on the contact force),
