@@ -33,7 +33,6 @@ can take them as plain arguments.
 """
 from __future__ import annotations
 
-import cmath
 import math
 
 import numpy as np
@@ -320,13 +319,11 @@ def _phi1(x, ex):
 
 
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(8)
-# Underdamped, non-resonant oscillators: the integral of z'^2 in closed form
-# (``_v2_closed``) unless its terms cancel; flights of 2 to V2_GAUSS_PANELS panels whose
-# modes' amplitudes |Ah| + |Bp| exceed V2_CLOSED_SPREAD |Ah + Bp| (near resonance: the
-# closed form would cancel) go directly to the Gauss rule on the modes (``_v2_modes_gauss``),
-# whose amplitudes at the panel centres follow by recurrence, afresh every V2_RESEED panels.
+# Underdamped, non-resonant oscillators: the integral of z'^2 over 2 to V2_GAUSS_PANELS
+# panels by the Gauss rule on the exponential modes of z' (``_v2_modes_gauss``), whose
+# factors at the panel centres follow by recurrence, afresh every V2_RESEED panels; longer
+# intervals in closed form (``_v2_closed``) unless its terms cancel (near resonance).
 V2_GAUSS_PANELS = 8
-V2_CLOSED_SPREAD = 10.0
 V2_RESEED = 8
 
 
@@ -359,30 +356,24 @@ def _v2_gauss(osc, x0, v0, sth0, cth0, L, gx, gw):
 
 
 @njit(cache=True, nogil=True)
-def _em1(x):
-    """e^x - 1 for complex x without cancellation for small |x|."""
-    a = x.real
-    b = x.imag
-    sh = math.sin(0.5 * b)
-    return complex(math.expm1(a) * math.cos(b) - 2.0 * sh * sh, math.exp(a) * math.sin(b))
+def _em1_pair(x):
+    """(e^x - 1, e^-x - 1) for complex x, without cancellation for small |x|."""
+    em = math.expm1(x.real)
+    sh = math.sin(0.5 * x.imag)
+    ch = math.cos(0.5 * x.imag)
+    sb = 2.0 * sh * ch                      # sin(Im x)
+    cm1 = -2.0 * sh * sh                    # cos(Im x) - 1
+    em_neg = -em / (1.0 + em)               # e^-Re(x) - 1
+    return (complex(em * (1.0 + cm1) + cm1, (1.0 + em) * sb),
+            complex(em_neg * (1.0 + cm1) + cm1, -(1.0 + em_neg) * sb))
 
 
 @njit(cache=True, nogil=True)
-def _node_factors(lam, omega, u):
-    """e^(+-lam u), e^(+-i omega u), e^(+-mu u) - 1 (mu = lam - i omega) with shared
-    transcendentals; lam = -sigma + i alpha."""
-    sigma = -lam.real
-    e = math.exp(-sigma * u)
-    em = math.expm1(-sigma * u)
-    ca, sa = math.cos(lam.imag * u), math.sin(lam.imag * u)
-    cw, sw = math.cos(omega * u), math.sin(omega * u)
-    b = (lam.imag - omega) * u
-    cb, sb, sh = math.cos(b), math.sin(b), math.sin(0.5 * b)
-    ep = -em / e                          # e^(sigma u) - 1
-    m_p = complex(em * cb - 2.0 * sh * sh, e * sb)
-    m_m = complex(ep * cb - 2.0 * sh * sh, -sb / e)
-    return (complex(e * ca, e * sa), complex(ca / e, -sa / e), complex(cw, sw),
-            complex(cw, -sw), m_p, m_m)
+def _modes_at(omega, mu, s):
+    """(e^(i omega s), e^(mu s) - 1, e^(-i omega s), e^(-mu s) - 1)."""
+    ew = complex(math.cos(omega * s), math.sin(omega * s))
+    m_p, m_m = _em1_pair(mu * s)
+    return ew, m_p, ew.conjugate(), m_m
 
 
 @njit(cache=True, nogil=True)
@@ -391,32 +382,32 @@ def _v2_modes_gauss(Ah, lam, Bp, omega, L, npan, gx, gw):
 
     Written as z' = Re(D e^(lam s)) - Re(Bp e^(i omega s) (e^(mu s) - 1)), D = Ah + Bp,
     mu = lam - i omega: near resonance Ah ~ -Bp are each far larger than z', and this form
-    does not add them. At the nodes c +- u of a panel centred at c the factors are products
-    of the panel's (stepped from panel to panel, computed afresh every V2_RESEED panels) and
-    the node's (computed once per node pair, gx being symmetric).
+    does not add them (e^(lam s) = e^(i omega s) e^(mu s)). At the nodes c +- u of a panel
+    centred at c the factors are products of the panel's (stepped from panel to panel,
+    computed afresh every V2_RESEED panels) and the node's (once per node pair, gx being
+    symmetric).
     """
     h = L / npan
-    iw = complex(0.0, omega)
-    mu = lam - iw
+    mu = lam - complex(0.0, omega)
     D = Ah + Bp
-    step_l, step_w, step_m = cmath.exp(lam * h), cmath.exp(iw * h), _em1(mu * h)
+    step_w, step_m, _, _ = _modes_at(omega, mu, h)
+    Ew0, Mc0, _, _ = _modes_at(omega, mu, 0.5 * h)
     n = gx.shape[0]
     acc = 0.0
     for k in range(n // 2):
-        u = 0.5 * h * gx[n - 1 - k]
-        el_p, el_m, ew_p, ew_m, m_p, m_m = _node_factors(lam, omega, u)
+        ew_p, m_p, ew_m, m_m = _modes_at(omega, mu, 0.5 * h * gx[n - 1 - k])
+        el_p = ew_p * (1.0 + m_p)
+        el_m = ew_m * (1.0 + m_m)
+        Ew, Mc = Ew0, Mc0
         part = 0.0
-        El = Ew = Mc = 0.0j
         for p in range(npan):
-            if p % V2_RESEED == 0:
-                c = (p + 0.5) * h
-                El, Ew, Mc = cmath.exp(lam * c), cmath.exp(iw * c), _em1(mu * c)
-            DE = D * El
+            if p > 0 and p % V2_RESEED == 0:
+                Ew, Mc, _, _ = _modes_at(omega, mu, (p + 0.5) * h)
+            DE = D * (Ew * (1.0 + Mc))
             BE = Bp * Ew
             vp = (DE * el_p).real - (BE * ew_p * (Mc + m_p * (1.0 + Mc))).real
             vm = (DE * el_m).real - (BE * ew_m * (Mc + m_m * (1.0 + Mc))).real
             part += vp * vp + vm * vm
-            El *= step_l
             Ew *= step_w
             Mc += step_m * (1.0 + Mc)
         acc += gw[n - 1 - k] * part
@@ -452,8 +443,8 @@ def v2_integral(osc, x0, v0, sth0, cth0, L):
     integrated in closed form (sums of complex exponentials) on long intervals where its
     terms do not cancel heavily (they do near resonance), else by the Gauss rule on these
     modes (``_v2_modes_gauss``). Other oscillators, and intervals of one panel: the Gauss
-    rule on ``flow`` (``_v2_gauss``). An 8-point Gauss-Legendre rule on panels of length <= 1/rate is exact
-    to round-off for these smooth, band-limited integrands.
+    rule on ``flow`` (``_v2_gauss``). An 8-point Gauss-Legendre rule on panels of length
+    <= 1/rate is exact to round-off for these smooth, band-limited integrands.
     """
     if L <= 0.0:
         return 0.0
@@ -475,7 +466,7 @@ def v2_integral(osc, x0, v0, sth0, cth0, L):
     lam = complex(-sigma, alpha)
     # z_p'(s) = Re(Bp e^{i omega s})
     Bp = omega * complex(osc[I_PS], osc[I_PC]) * complex(cth0, sth0)
-    if npan > V2_GAUSS_PANELS or abs(Ah) + abs(Bp) <= V2_CLOSED_SPREAD * abs(Ah + Bp):
+    if npan > V2_GAUSS_PANELS:
         res, big = _v2_closed(Ah, lam, Bp, omega, L)
         if big <= 1e3 * res:       # else the terms cancel (near resonance)
             return res

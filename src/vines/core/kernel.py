@@ -12,8 +12,8 @@ w = z_m - z_b has w'' = z_m'', and |z_m''| <= B2 on [s, s + h_cap]: the smaller 
 bound of the closed form's parts (``flow.part_bounds``) and the bound from the energy of the
 whole state (``flow.state_bounds``; near resonance the parts, ~F/(d omega) each, nearly
 cancel and the second is an order of magnitude tighter), or on [s, s + H] the Taylor bound
-|z''(s)| + |z'''(s)| H + B4 H^2/2. From a point with gap g = 1 - w (wall L) or 1 + w (wall R) >= 0 and closing
-speed c toward that wall, the wall cannot be reached before
+|z''(s)| + |z'''(s)| H + B4 H^2/2. From a point with gap g = 1 - w (wall L) or 1 + w
+(wall R) >= 0 and closing speed c toward that wall, the wall cannot be reached before
         h = 2 g / (c + sqrt(c^2 + 2 B2 g))      (root of c h + B2 h^2 / 2 = g;
                                                  (sqrt(...) - c)/B2 when c <= 0),
 so each step goes to the smaller of the two walls' h (and at most h_cap = 1/rate); H is
