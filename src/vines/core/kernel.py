@@ -166,8 +166,9 @@ MIN_BISECT = 1e-9
 @njit(cache=True, nogil=True)
 def _extremum(osc, x0, v0, sth0, cth0, sa, va, sb, vb, s):
     """|z| at the zero of z' inside [sa, sb] (z'(sa) z'(sb) < 0), from the first guess s:
-    safeguarded Newton on z', stopped once the next correction ds = -z'/z'' is below
-    EXTREMUM_DS / rate, with z + z' ds / 2 as the value there."""
+    safeguarded Halley iteration on z' (cubic: from the Hermite guess one step usually
+    suffices), stopped once the next correction ds = -z'/z'' is below EXTREMUM_DS / rate,
+    with z + z' ds / 2 as the value there."""
     lo, hi = sa, sb
     vlo = va
     if not (lo < s < hi):
@@ -175,7 +176,7 @@ def _extremum(osc, x0, v0, sth0, cth0, sa, va, sb, vb, s):
     ds_tol = EXTREMUM_DS / osc[I_RATE]
     z = 0.0
     for _ in range(60):
-        z, v, a, _, _ = flow(osc, x0, v0, sth0, cth0, s)
+        z, v, a, j, _ = flow(osc, x0, v0, sth0, cth0, s)
         if (v > 0.0) == (vlo > 0.0):
             lo = s
             vlo = v
@@ -183,7 +184,10 @@ def _extremum(osc, x0, v0, sth0, cth0, sa, va, sb, vb, s):
             hi = s
         if a != 0.0 and abs(v) <= ds_tol * abs(a):
             return abs(z - 0.5 * v * v / a)
-        s_new = s - v / a if a != 0.0 else 0.5 * (lo + hi)
+        s_new = 0.5 * (lo + hi)
+        den = a - 0.5 * v * j / a if a != 0.0 else 0.0
+        if den != 0.0:
+            s_new = s - v / den
         if not (lo < s_new < hi):
             s_new = 0.5 * (lo + hi)
         if hi - lo <= 1e-12 * (1.0 + abs(s)):
