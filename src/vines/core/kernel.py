@@ -123,7 +123,7 @@ def _floor(part, s, x, rate):
 
 @njit(cache=True, nogil=True)
 def _step_bounds(osc, z, v, b1, s, h_cap):
-    """Bounds for a step from local time s: the parts' sizes P0, P1, P2 at s (for the
+    """Bounds for a step from local time s: the parts' sizes P0 ... P3 at s (for the
     floors), and bounds B2, B3, B4 of |z''|, |z'''|, |z''''| on [s, s + h_cap], each the
     smaller of the parts' bound (``part_bounds``) and the whole state's (``state_bounds``,
     far tighter near resonance, where the parts nearly cancel)."""
@@ -132,7 +132,7 @@ def _step_bounds(osc, z, v, b1, s, h_cap):
     if osc[I_RES] > 0.5 or osc[I_NRES] > 0.5:      # these parts' bounds grow with s
         _, _, Q2, Q3, Q4 = part_bounds(osc, b1, s + h_cap)
     T2, T3, T4 = state_bounds(osc, z, v, ROUNDOFF * (1.0 + P0 + P1), h_cap)
-    return P0, P1, P2, min(Q2, T2), min(Q3, T3), min(Q4, T4)
+    return P0, P1, P2, P3, min(Q2, T2), min(Q3, T3), min(Q4, T4)
 
 
 @njit(cache=True, nogil=True)
@@ -269,10 +269,11 @@ def _interval_max(osc, x0, v0, sth0, cth0, sa, za, va, sb, zb, vb, B2, B4, m):
 
 
 @njit(cache=True, nogil=True)
-def free_step(s, z, v, a, j, zb0, vb0, B2, B3, B4, tol_z, floor_v, floor_a, released):
+def free_step(s, z, v, a, j, zb0, vb0, BL, BR, B3, B4, tol_z, floor_v, floor_a, released):
     """Step that provably reaches neither wall in free flight (module docstring).
 
-    B2 bounds |w''| over the step, B3 and B4 bound |z_m'''| and |z_m''''| over [s, s + h_cap];
+    The gap to wall L (R) stays above g - c h - BL h^2/2 (BR) over the step
+    (``_wall_bounds``); B3 and B4 bound |z_m'''| and |z_m''''| over [s, s + h_cap];
     tol_z is the contact tolerance on the gap, floor_v and floor_a the resolution of the
     computed relative velocity and acceleration (``_floor``).
 
@@ -285,8 +286,8 @@ def free_step(s, z, v, a, j, zb0, vb0, B2, B3, B4, tol_z, floor_v, floor_a, rele
     wd = v - vb0
     gL = 1.0 - w
     gR = 1.0 + w
-    hL = _safe_step(gL, wd, B2)
-    hR = _safe_step(gR, -wd, B2)
+    hL = _safe_step(gL, wd, BL)
+    hR = _safe_step(gR, -wd, BR)
     # departure from a wall with (almost) zero relative velocity; an approach faster than
     # round-off is left to the contact test (it must neither be stepped over nor stick)
     sw = 1.0 if gL <= gR else -1.0
@@ -309,39 +310,55 @@ def free_step(s, z, v, a, j, zb0, vb0, B2, B3, B4, tol_z, floor_v, floor_a, rele
     return min(hL, hR), 0
 
 
+@njit(cache=True, nogil=True, inline="always")
+def _wall_bounds(a, j, H, B2g, B4, floor_a, floor_j):
+    """(BL, BR, B) for steps h <= H from a point where w'' = z_m'' = a, w''' = j.
+
+    The gap to wall L, g_L = 1 - w, obeys g_L(h) = g_L - w' h - int_0^h (h - t) w''(t) dt
+    with w''(t) <= a + j t + B4 t^2/2, so it stays above g_L - w' h - BL h^2/2 with
+    BL = a + max(j, 0) H/3 + B4 H^2/12 (>= 0), and BR likewise with -a, -j (each widened by
+    the round-off floors of a and j, and at most B2g, the bound of |z''| on [s, s + h_cap]).
+    The acceleration counts with its sign: one pointing away from the wall allows a long
+    step, one towards it is taken exactly, and the contact is approached nearly cubically.
+    B = min(B2g, |a| + |j| H + B4 H^2/2) bounds |w''| itself on [s, s + H].
+    """
+    rest = B4 * H * H / 12.0
+    BL = min(B2g, max(0.0, a + floor_a + max(j + floor_j, 0.0) * H / 3.0 + rest))
+    BR = min(B2g, max(0.0, -a + floor_a + max(floor_j - j, 0.0) * H / 3.0 + rest))
+    return BL, BR, min(B2g, abs(a) + abs(j) * H + 0.5 * B4 * H * H)
+
+
 @njit(cache=True, nogil=True)
 def free_step_local(osc, s, z, v, a, j, b1, zb0, vb0, h_cap, root_tol, released):
-    """``free_step`` with the tightest of several valid bounds on |w''| = |z_m''|.
+    """``free_step`` with bounds for the step length H itself (``_wall_bounds``).
 
-    Besides the bound B2 on [s, s + h_cap] (``_step_bounds``), on [s, s + H]
-    |z''| <= |z''(s)| + |z'''(s)| H + B4 H^2 / 2 (B4 the bound on |z''''|), which is
-    tighter for short steps. Tries H = h_cap, h_cap/4, h_cap/16 and keeps the longest step
-    (a shorter H cannot win once the step reaches it). Returns (h, pressed, B2, B4) with B2
-    valid on [s, s + h] and B4 (bound of |z''''|) on [s, s + h_cap].
+    The bounds over [s, s + H] shrink with H, so the step phi(H) they allow grows as H
+    shrinks: any H with phi(H) >= H is a safe step, and the odd iterates of
+    H -> min(phi(H), h_cap) from h_cap are such steps, approaching the longest one
+    (N_STEP_ITER evaluations). Returns (h, pressed, B2, B4) with B2 bounding |w''| on
+    [s, s + h] and B4 (bound of |z''''|) valid on [s, s + h_cap].
     """
-    P0, P1, P2, B2g, B3, B4 = _step_bounds(osc, z, v, b1, s, h_cap)
+    P0, P1, P2, P3, B2g, B3, B4 = _step_bounds(osc, z, v, b1, s, h_cap)
     zb = zb0 + vb0 * s
     tol_z = max(root_tol, _floor(P0, s, abs(z) + abs(zb), v - vb0))
     floor_v = _floor(P1, s, abs(v) + abs(vb0), a)
     floor_a = _floor(P2, s, a, j)
-    # phi(H) = the step allowed by the bound valid on [s, s + H] is non-increasing in H;
-    # any H with phi(H) >= H is a safe step, and odd iterates H -> min(phi(H), h_cap) from
-    # h_cap are such steps, approaching the longest one
+    floor_j = _floor(P3, s, j, B4)
     H = h_cap
-    B = min(B2g, abs(a) + abs(j) * H + 0.5 * B4 * H * H)
+    BL, BR, B = _wall_bounds(a, j, H, B2g, B4, floor_a, floor_j)
     h_best, B_best = H, B
     for it in range(N_STEP_ITER):
-        h, pressed = free_step(s, z, v, a, j, zb0, vb0, B, B3, B4, tol_z, floor_v, floor_a,
-                               released)
+        h, pressed = free_step(s, z, v, a, j, zb0, vb0, BL, BR, B3, B4, tol_z, floor_v,
+                               floor_a, released)
         if pressed != 0:
             return 0.0, pressed, B2g, B4
         if it % 2 == 0:
             if h >= H:
-                return H, 0, B, B4           # the bound allows all of [s, s + H]
+                return H, 0, B, B4           # the bounds allow all of [s, s + H]
             if it == 0 or h > h_best:
-                h_best, B_best = h, B        # valid: h <= phi(H) with the bound for H >= h
+                h_best, B_best = h, B        # valid: h <= phi(H) with the bounds for H >= h
         H = min(h, h_cap)
-        B = min(B2g, abs(a) + abs(j) * H + 0.5 * B4 * H * H)
+        BL, BR, B = _wall_bounds(a, j, H, B2g, B4, floor_a, floor_j)
     return h_best, 0, B_best, B4
 
 
@@ -474,7 +491,7 @@ def _advance_segment(osc, mode, zm0, vm0, zb0, vb0, sth0, cth0, s_stop, released
             if pressed != 0:
                 return EV_STICK, pressed, s, z, v, a, j, b1, gap, closing, steps
         else:
-            _, _, _, B2, _, B4 = _step_bounds(osc, z, v, b1, s, h_cap)
+            _, _, _, _, B2, _, B4 = _step_bounds(osc, z, v, b1, s, h_cap)
             gap = mode * a                    # contact force, > 0 while stuck
             closing = -mode * j
             h = _safe_step(gap, closing, B4)
