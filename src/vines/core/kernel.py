@@ -11,15 +11,17 @@ First-contact rule (cannot miss a crossing, grazing included). Between impacts
 w = z_m - z_b has w'' = z_m'', and |z_m''| <= B2 on [s, s + h_cap]: the smaller of the
 bound of the closed form's parts (``flow.part_bounds``) and the bound from the energy of the
 whole state (``flow.state_bounds``; near resonance the parts, ~F/(d omega) each, nearly
-cancel and the second is an order of magnitude tighter), or on [s, s + H] the Taylor bound
-|z''(s)| + |z'''(s)| H + B4 H^2/2. From a point with gap g = 1 - w (wall L) or 1 + w
-(wall R) >= 0 and closing speed c toward that wall, the wall cannot be reached before
-        h = 2 g / (c + sqrt(c^2 + 2 B2 g))      (root of c h + B2 h^2 / 2 = g;
-                                                 (sqrt(...) - c)/B2 when c <= 0),
-so each step goes to the smaller of the two walls' h (and at most h_cap = 1/rate); H is
+cancel and the second is an order of magnitude tighter). From a point with gap g = 1 - w
+(wall L) or 1 + w (wall R) >= 0 and closing speed c toward that wall, the gap stays above
+g - c h - B h^2/2 for h <= H, where B (per wall, ``_wall_bounds``) takes the acceleration
+towards the wall with its sign and the jerk and |z''''| bound with their Taylor weights
+(H/3, H^2/12), at most B2; so the wall cannot be reached before
+        h = 2 g / (c + sqrt(c^2 + 2 B g))       (root of c h + B h^2 / 2 = g;
+                                                 (sqrt(...) - c)/B when c <= 0),
+and each step goes to the smaller of the two walls' h (and at most h_cap = 1/rate); H is
 chosen by a short fixed-point iteration towards the longest step its own bound allows
-(``free_step_local``). The iteration approaches a transversal contact quadratically (nearly
-cubically when the acceleration points to the wall) and a grazing one geometrically,
+(``free_step_local``). The iteration approaches a transversal contact nearly cubically
+(about five steps for a flight of half a period) and a grazing one geometrically,
 and can never step over a wall. Contact is declared when c > 0 and g <= max(root_tol, floor),
 and either g <= floor or the crossing is transversal (c^2 >= 2 B2 g); one Newton step
 s += g/c then places the impact (error <= g/4). ``floor`` is the resolution of the computed
