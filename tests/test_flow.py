@@ -79,3 +79,47 @@ def test_local_time_is_translation_invariant():
     z2, v2, *_ = fl.flow(osc, z1, v1, math.sin(th), math.cos(th), 3.0)
     z3, v3, *_ = fl.flow(osc, X0, V0, math.sin(TH0), math.cos(TH0), 5.0)
     assert abs(z2 - z3) < 1e-13 and abs(v2 - v3) < 1e-13
+
+
+@pytest.mark.parametrize("m,d,W,F", CASES)
+@pytest.mark.parametrize("x0,v0", [(X0, V0), (0.26, 0.0), (0.0, 3.0)])
+def test_state_bounds_hold_over_the_span(m, d, W, F, x0, v0):
+    """``state_bounds`` (from the whole state at s0) bound z'', z''', z'''' on [s0, s0 + H]."""
+    osc = fl.make_osc(m, d, W, F)
+    sth, cth = math.sin(TH0), math.cos(TH0)
+    s0 = 0.9
+    z, v, _, _, _ = fl.flow(osc, x0, v0, sth, cth, s0)
+    for H in (0.3, 1.0 / osc[fl.I_RATE], 6.0):
+        B2, B3, B4 = fl.state_bounds(osc, z, v, 0.0, H)
+        for s in np.linspace(s0, s0 + H, 801):
+            _, _, a, j, _ = fl.flow(osc, x0, v0, sth, cth, s)
+            f = fl.forcing(osc, sth, cth, s)
+            z4 = (-W * W * f - d * j - a) / m          # the equation differentiated twice
+            assert abs(a) <= B2 * (1 + 1e-12) + 1e-14
+            assert abs(j) <= B3 * (1 + 1e-12) + 1e-14
+            assert abs(z4) <= B4 * (1 + 1e-12) + 1e-14
+
+
+def test_state_bounds_are_tight_where_the_parts_cancel():
+    """Near resonance the parts are ~F/(d omega) while the motion is small: the bound from
+    the whole state must be far below the parts' bound (fewer, longer event steps)."""
+    osc = fl.make_osc(1.0, 0.011998, 1.0, 0.05)
+    sth, cth = math.sin(TH0), math.cos(TH0)
+    z, v, a, _, b1 = fl.flow(osc, 0.26, 0.0, sth, cth, 0.0)
+    B2, _, _ = fl.state_bounds(osc, z, v, 0.0, 1.0)
+    assert B2 < 0.25 * fl.deriv_bound(osc, b1, 2, 1.0)
+    assert B2 < 2.0 * (0.26 + 0.05) + 0.1
+
+
+@pytest.mark.parametrize("m,d,W,F", CASES[:2])
+@pytest.mark.parametrize("x0,v0", [(0.26, 0.0), (-0.09064843610007449, 0.014744267131689222)])
+def test_velocity_square_integral_near_resonance(m, d, W, F, x0, v0):
+    """Small motion of a near-resonant oscillator (parts ~4, z' ~0.05): the integral from
+    the exponential modes keeps the accuracy of the Gauss rule on ``flow`` (relative)."""
+    osc = fl.make_osc(m, d, W, F)
+    sth, cth = math.sin(TH0), math.cos(TH0)
+    for L in (0.4, 3.14159, 7.8):
+        exact = fl.v2_integral(osc, x0, v0, sth, cth, L)
+        num = quad(lambda s: fl.flow(osc, x0, v0, sth, cth, s)[1] ** 2, 0.0, L,
+                   epsabs=0.0, epsrel=1e-13, limit=400)[0]
+        assert abs(exact - num) <= 2e-13 * num

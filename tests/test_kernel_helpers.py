@@ -71,3 +71,39 @@ def test_run_kernel_resumes_after_buffer_full_with_identical_numbers():
     assert set(np.unique(imp[:, 5])) <= {k.WALL_L, k.WALL_R}
     assert set(np.unique(seg[:, 5])) <= {k.MODE_FREE, k.WALL_L, k.WALL_R}
     assert np.any(seg[:, 5] != k.MODE_FREE)                        # stuck segments occur
+
+
+def _dense_max(osc, x0, v0, sth, cth, sa, sb):
+    """max |z| on [sa, sb]: dense sampling, then golden-section refinement of the best."""
+    from scipy.optimize import minimize_scalar
+    from vines.core.flow import flow
+    ss = np.linspace(sa, sb, 4001)
+    zs = np.array([abs(flow(osc, x0, v0, sth, cth, s)[0]) for s in ss])
+    i = int(np.argmax(zs))
+    lo, hi = ss[max(i - 1, 0)], ss[min(i + 1, ss.size - 1)]
+    r = minimize_scalar(lambda s: -abs(flow(osc, x0, v0, sth, cth, s)[0]), bounds=(lo, hi),
+                        method="bounded", options={"xatol": 1e-12})
+    return max(zs.max(), -r.fun)
+
+
+def test_interval_max_matches_a_dense_search():
+    """The x_max refinement (bounds, Hermite test, Newton on z') finds max |z| on a step."""
+    from vines.core.flow import flow, part_bounds, state_bounds
+    rng = np.random.default_rng(3)
+    for eta, omega, F in ((0.05, 1.0, 0.05), (0.2, 0.9, 0.4), (0.3, 1.6, 0.5)):
+        osc = oscillators(ModelParams(eta=eta, omega=omega, F=F))[0]
+        for _ in range(40):
+            x0, v0, th = rng.normal(0, 0.5), rng.normal(0, 0.5), rng.uniform(0, 2 * math.pi)
+            sth, cth = math.sin(th), math.cos(th)
+            sa = rng.uniform(0, 3)
+            sb = sa + rng.uniform(0.01, 1.0)
+            za, va, _, _, b1 = flow(osc, x0, v0, sth, cth, sa)
+            zb, vb, _, _, _ = flow(osc, x0, v0, sth, cth, sb)
+            B2, _, B4 = state_bounds(osc, za, va, 0.0, sb - sa)
+            B2, B4 = min(B2, part_bounds(osc, b1, sb)[2]), min(B4, part_bounds(osc, b1, sb)[4])
+            ref = _dense_max(osc, x0, v0, sth, cth, sa, sb)
+            # from below the interval's max (refined) and from above (nothing to do)
+            got = k._interval_max(osc, x0, v0, sth, cth, sa, za, va, sb, zb, vb, B2, B4, 0.0)
+            assert abs(got - ref) <= 1e-14 * (1 + ref)
+            assert k._interval_max(osc, x0, v0, sth, cth, sa, za, va, sb, zb, vb, B2, B4,
+                                   ref + 1e-3) == ref + 1e-3

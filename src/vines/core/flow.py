@@ -42,8 +42,8 @@ from .params import RESONANCE_SNAP
 
 # Indices into the packed oscillator array.
 I_SIGMA, I_OM2, I_OM, I_KAPPA, I_SQ, I_KIND, I_W, I_PS, I_PC, I_RES, I_ARES, I_PAMP, I_M, \
-    I_RATE, I_D, I_F, I_NRES, I_SUM, I_DIFF, I_K = range(20)
-N_OSC = 20
+    I_RATE, I_D, I_F, I_NRES, I_SUM, I_DIFF, I_K, I_FAMP = range(21)
+N_OSC = 21
 
 KIND_UNDER, KIND_CRIT, KIND_OVER = 1.0, 0.0, -1.0
 
@@ -69,6 +69,7 @@ def make_osc(m: float, d: float, omega: float, F: float) -> np.ndarray:
     osc[I_KAPPA], osc[I_SQ] = kappa, math.sqrt(abs(kappa))
     osc[I_KIND] = KIND_UNDER if kappa > 0 else (KIND_CRIT if kappa == 0 else KIND_OVER)
     osc[I_W], osc[I_M], osc[I_D], osc[I_F] = omega, m, d, F
+    osc[I_FAMP] = abs(F) * math.hypot(1.0, d * omega)    # amplitude of the forcing
     det = 1.0 - m * omega * omega
     den = det * det + (d * omega) ** 2
     if d == 0.0 and abs(det) <= RESONANCE_SNAP:     # exact resonance (to round-off)
@@ -215,49 +216,78 @@ def flow(osc, x0, v0, sth0, cth0, s):
 
 
 @njit(cache=True, nogil=True)
-def deriv_bound(osc, b1, n, s_hi):
-    """Upper bound of |z^(n)| (n = 0..4) on [s, s_hi] given b1 = sqrt(2 E_h(s))."""
+def part_bounds(osc, b1, s_hi):
+    """Upper bounds (B0, ..., B4) of |z^(n)|, n = 0..4, on [s, s_hi] given b1 = sqrt(2 E_h(s)).
+
+    Each is the homogeneous part's bound b_n (module docstring) plus the particular part's
+    (or, near resonance and undamped, the zero-initial-condition response's). They also
+    measure the size of the parts the closed form adds, hence its round-off.
+    """
     om = osc[I_OM]
     om2 = osc[I_OM2]
     two_sigma = 2.0 * osc[I_SIGMA]
-    bm2 = b1 / om          # b_0
-    bm1 = b1               # b_1
-    if n == 0:
-        bh = bm2
-    elif n == 1:
-        bh = bm1
-    else:
-        bh = 0.0
-        for _ in range(n - 1):
-            bh = two_sigma * bm1 + om2 * bm2
-            bm2 = bm1
-            bm1 = bh
+    h0 = b1 / om
+    h2 = two_sigma * b1 + om2 * h0
+    h3 = two_sigma * h2 + om2 * b1
+    h4 = two_sigma * h3 + om2 * h2
     omega = osc[I_W]
     if osc[I_NRES] > 0.5:
         # z(s + t) = free motion from the state at s (energy b1) + R_s(t), t <= s_hi, with
         # |R| <= K (2 t + 1/om), |R'| <= K (Sg t + 3), R^(n+2) = om2 (F omega^n sin|cos - R^(n))
         K = osc[I_K]
         F = osc[I_F]
-        r0 = K * (2.0 * s_hi + 1.0 / om)
-        r1 = K * (osc[I_SUM] * s_hi + 3.0)
-        if n == 0:
-            bp = r0
-        elif n == 1:
-            bp = r1
-        elif n == 2:
-            bp = om2 * (F + r0)
-        elif n == 3:
-            bp = om2 * (F * omega + r1)
-        else:
-            bp = om2 * (F * omega * omega + om2 * (F + r0))
-        return bh + bp
-    if osc[I_RES] > 0.5:
-        # z_p^(n) = A omega^(n-1) (n * trig + omega s * trig): bounded by |A| omega^(n-1) (n + omega s_hi)
+        p0 = K * (2.0 * s_hi + 1.0 / om)
+        p1 = K * (osc[I_SUM] * s_hi + 3.0)
+        p2 = om2 * (F + p0)
+        p3 = om2 * (F * omega + p1)
+        p4 = om2 * (F * omega * omega + p2)
+    elif osc[I_RES] > 0.5:
+        # z_p^(n) = A omega^(n-1) (n trig + omega s trig): |A| omega^(n-1) (n + omega s_hi)
         A = abs(osc[I_ARES])
-        bp = A * omega ** (n - 1) * (n + omega * s_hi) if n >= 1 else A * s_hi
+        ws = omega * s_hi
+        p0 = A * s_hi
+        p1 = A * (1.0 + ws)
+        p2 = A * omega * (2.0 + ws)
+        p3 = A * omega * omega * (3.0 + ws)
+        p4 = A * omega * omega * omega * (4.0 + ws)
     else:
-        bp = osc[I_PAMP] * omega ** n
-    return bh + bp
+        p0 = osc[I_PAMP]
+        p1 = p0 * omega
+        p2 = p1 * omega
+        p3 = p2 * omega
+        p4 = p3 * omega
+    return h0 + p0, b1 + p1, h2 + p2, h3 + p3, h4 + p4
+
+
+@njit(cache=True, nogil=True)
+def deriv_bound(osc, b1, n, s_hi):
+    """Upper bound of |z^(n)| (n = 0..4) on [s, s_hi] given b1 = sqrt(2 E_h(s))
+    (``part_bounds``)."""
+    return part_bounds(osc, b1, s_hi)[n]
+
+
+@njit(cache=True, nogil=True)
+def state_bounds(osc, z, v, margin, H):
+    """Bounds of |z''|, |z'''|, |z''''| on [s, s + H] from the whole state (z, z') at s.
+
+    The energy of the whole motion, r = sqrt(z'^2 + z^2/m), grows at most like
+    r' <= |f|/m <= FAMP/m (m z'' + d z' + z = f, |f^(n)| <= FAMP omega^n; the damping only
+    takes energy out), so |z| <= r/om and |z'| <= r on [s, s + H] with r = r(s) + H FAMP/m,
+    and the equation bounds the higher derivatives:
+        |z^(n+2)| <= (FAMP omega^n + d |z^(n+1)| + |z^(n)|)/m.
+    Unlike ``part_bounds`` this does not add the homogeneous and particular parts, which
+    near resonance are each far larger than z (F/(d omega) against the orbit's size).
+    ``margin`` (>= the round-off of the computed z and z') is added to r.
+    """
+    om2 = osc[I_OM2]
+    d = osc[I_D]
+    famp = osc[I_FAMP]
+    omega = osc[I_W]
+    r = math.sqrt(v * v + om2 * z * z) + margin + om2 * famp * H
+    b2 = om2 * (famp + d * r + r / osc[I_OM])
+    b3 = om2 * (famp * omega + d * b2 + r)
+    b4 = om2 * (famp * omega * omega + d * b3 + b2)
+    return b2, b3, b4
 
 
 @njit(cache=True, nogil=True)
@@ -289,14 +319,29 @@ def _phi1(x, ex):
 
 
 _GL_X, _GL_W = np.polynomial.legendre.leggauss(8)
+# Underdamped, non-resonant oscillators: the integral of z'^2 over 2 to V2_GAUSS_PANELS
+# panels by the Gauss rule on the exponential modes of z' (``_v2_modes_gauss``), whose
+# factors at the panel centres follow by recurrence, afresh every V2_RESEED panels; longer
+# intervals in closed form (``_v2_closed``) unless its terms cancel (near resonance).
+V2_GAUSS_PANELS = 8
+V2_RESEED = 8
 
 
 @njit(cache=True, nogil=True)
-def _v2_gauss(osc, x0, v0, sth0, cth0, L, gx, gw):
+def _n_panels(osc, L):
+    """Panels of the Gauss rule on [0, L]: length <= 1/rate (finer when secular)."""
     rate = osc[I_RATE]
     npan = int(math.ceil(L * rate)) if L * rate > 1.0 else 1
     if osc[I_RES] > 0.5 or osc[I_NRES] > 0.5:     # secular growth: finer panels
         npan = max(npan, int(math.ceil(L * osc[I_W] * (1.0 + 0.05 * L))))
+    return npan
+
+
+@njit(cache=True, nogil=True)
+def _v2_gauss(osc, x0, v0, sth0, cth0, L, gx, gw):
+    """Gauss-Legendre rule (nodes gx, weights gw on [-1, 1]) for the integral of z'^2 over
+    [0, L] on ``_n_panels`` panels, z' from ``flow``: any oscillator."""
+    npan = _n_panels(osc, L)
     h = L / npan
     acc = 0.0
     for p in range(npan):
@@ -311,34 +356,72 @@ def _v2_gauss(osc, x0, v0, sth0, cth0, L, gx, gw):
 
 
 @njit(cache=True, nogil=True)
-def v2_integral(osc, x0, v0, sth0, cth0, L):
-    """Exact integral of z'(s)^2 over local time [0, L].
+def _em1_pair(x):
+    """(e^x - 1, e^-x - 1) for complex x, without cancellation for small |x|."""
+    em = math.expm1(x.real)
+    sh = math.sin(0.5 * x.imag)
+    ch = math.cos(0.5 * x.imag)
+    sb = 2.0 * sh * ch                      # sin(Im x)
+    cm1 = -2.0 * sh * sh                    # cos(Im x) - 1
+    em_neg = -em / (1.0 + em)               # e^-Re(x) - 1
+    return (complex(em * (1.0 + cm1) + cm1, (1.0 + em) * sb),
+            complex(em_neg * (1.0 + cm1) + cm1, -(1.0 + em_neg) * sb))
 
-    Closed form (sums of complex exponentials) when the oscillator is clearly underdamped, not
-    resonant and the terms do not cancel heavily (near resonance); otherwise an 8-point Gauss-Legendre rule on panels of length <= 1/rate,
-    which is exact to round-off for these smooth, band-limited integrands.
+
+@njit(cache=True, nogil=True)
+def _modes_at(omega, mu, s):
+    """(e^(i omega s), e^(mu s) - 1, e^(-i omega s), e^(-mu s) - 1)."""
+    ew = complex(math.cos(omega * s), math.sin(omega * s))
+    m_p, m_m = _em1_pair(mu * s)
+    return ew, m_p, ew.conjugate(), m_m
+
+
+@njit(cache=True, nogil=True)
+def _v2_modes_gauss(Ah, lam, Bp, omega, L, npan, gx, gw):
+    """``_v2_gauss`` for z'(s) = Re(Ah e^(lam s) + Bp e^(i omega s)), from the modes.
+
+    Written as z' = Re(D e^(lam s)) - Re(Bp e^(i omega s) (e^(mu s) - 1)), D = Ah + Bp,
+    mu = lam - i omega: near resonance Ah ~ -Bp are each far larger than z', and this form
+    does not add them (e^(lam s) = e^(i omega s) e^(mu s)). At the nodes c +- u of a panel
+    centred at c the factors are products of the panel's (stepped from panel to panel,
+    computed afresh every V2_RESEED panels) and the node's (once per node pair, gx being
+    symmetric).
     """
-    if L <= 0.0:
-        return 0.0
-    sigma = osc[I_SIGMA]
-    om2 = osc[I_OM2]
-    kappa = osc[I_KAPPA]
-    if osc[I_KIND] < 0.5 or osc[I_RES] > 0.5 or osc[I_NRES] > 0.5 or kappa < 0.01 * om2:
-        return _v2_gauss(osc, x0, v0, sth0, cth0, L, _GL_X, _GL_W)
-    alpha = osc[I_SQ]
-    omega = osc[I_W]
-    zp0, zp10 = particular0(osc, sth0, cth0)
-    xh = x0 - zp0
-    vh = v0 - zp10
-    # z_h'(s) = e^{-sigma s} (a cos(alpha s) + b sin(alpha s)) = Re(Ah e^{lam s})
-    a = vh
-    b = -(om2 * xh + sigma * vh) / alpha
-    Ah = complex(a, -b)
-    lam = complex(-sigma, alpha)
-    # z_p'(s) = Re(Bp e^{i omega s})
-    Bp = omega * complex(osc[I_PS], osc[I_PC]) * complex(cth0, sth0)
-    E = math.exp(-sigma * L) * complex(math.cos(alpha * L), math.sin(alpha * L))   # e^{lam L}
-    G = complex(math.cos(omega * L), math.sin(omega * L))                                  # e^{iWL}
+    h = L / npan
+    mu = lam - complex(0.0, omega)
+    D = Ah + Bp
+    step_w, step_m, _, _ = _modes_at(omega, mu, h)
+    Ew0, Mc0, _, _ = _modes_at(omega, mu, 0.5 * h)
+    n = gx.shape[0]
+    acc = 0.0
+    for k in range(n // 2):
+        ew_p, m_p, ew_m, m_m = _modes_at(omega, mu, 0.5 * h * gx[n - 1 - k])
+        el_p = ew_p * (1.0 + m_p)
+        el_m = ew_m * (1.0 + m_m)
+        Ew, Mc = Ew0, Mc0
+        part = 0.0
+        for p in range(npan):
+            if p > 0 and p % V2_RESEED == 0:
+                Ew, Mc, _, _ = _modes_at(omega, mu, (p + 0.5) * h)
+            DE = D * (Ew * (1.0 + Mc))
+            BE = Bp * Ew
+            vp = (DE * el_p).real - (BE * ew_p * (Mc + m_p * (1.0 + Mc))).real
+            vm = (DE * el_m).real - (BE * ew_m * (Mc + m_m * (1.0 + Mc))).real
+            part += vp * vp + vm * vm
+            Ew *= step_w
+            Mc += step_m * (1.0 + Mc)
+        acc += gw[n - 1 - k] * part
+    return 0.5 * h * acc
+
+
+@njit(cache=True, nogil=True)
+def _v2_closed(Ah, lam, Bp, omega, L):
+    """Integral over [0, L] of (Re(Ah e^(lam s) + Bp e^(i omega s)))^2 in closed form
+    (lam = -sigma + i alpha). Returns (value, size of its largest terms)."""
+    sigma = -lam.real
+    alpha = lam.imag
+    E = math.exp(-sigma * L) * complex(math.cos(alpha * L), math.sin(alpha * L))  # e^{lam L}
+    G = complex(math.cos(omega * L), math.sin(omega * L))                         # e^{iWL}
     iW = complex(0.0, omega)
     J_m2s = L * _phi1(complex(-2.0 * sigma * L, 0.0), complex(abs(E) ** 2, 0.0))
     J_lmw = L * _phi1((lam - iW) * L, E * G.conjugate())
@@ -348,9 +431,43 @@ def v2_integral(osc, x0, v0, sth0, cth0, L):
     mod2 = (abs(Ah) ** 2) * J_m2s.real + (abs(Bp) ** 2) * L \
         + 2.0 * (Ah * Bp.conjugate() * J_lmw).real
     sq2 = (Ah * Ah * J_2l + Bp * Bp * J_2w + 2.0 * Ah * Bp * J_lpw).real
-    res = 0.5 * (mod2 + sq2)
-    # Near resonance the terms are much larger than their sum (cancellation): use quadrature.
     big = abs(Ah) + abs(Bp)
-    if big * big * L > 1e3 * res:
+    return 0.5 * (mod2 + sq2), big * big * L
+
+
+@njit(cache=True, nogil=True)
+def v2_integral(osc, x0, v0, sth0, cth0, L):
+    """Exact integral of z'(s)^2 over local time [0, L].
+
+    Clearly underdamped, non-resonant oscillators: z' = Re(Ah e^(lam s) + Bp e^(i omega s)),
+    integrated in closed form (sums of complex exponentials) on long intervals where its
+    terms do not cancel heavily (they do near resonance), else by the Gauss rule on these
+    modes (``_v2_modes_gauss``). Other oscillators, and intervals of one panel: the Gauss
+    rule on ``flow`` (``_v2_gauss``). An 8-point Gauss-Legendre rule on panels of length
+    <= 1/rate is exact to round-off for these smooth, band-limited integrands.
+    """
+    if L <= 0.0:
+        return 0.0
+    sigma = osc[I_SIGMA]
+    om2 = osc[I_OM2]
+    kappa = osc[I_KAPPA]
+    npan = _n_panels(osc, L)
+    if osc[I_KIND] < 0.5 or osc[I_RES] > 0.5 or osc[I_NRES] > 0.5 or kappa < 0.01 * om2 \
+            or npan == 1:
         return _v2_gauss(osc, x0, v0, sth0, cth0, L, _GL_X, _GL_W)
-    return res
+    alpha = osc[I_SQ]
+    omega = osc[I_W]
+    zp0, zp10 = particular0(osc, sth0, cth0)
+    xh = x0 - zp0
+    vh = v0 - zp10
+    # z_h'(s) = e^{-sigma s} (a cos(alpha s) + b sin(alpha s)) = Re(Ah e^{lam s}), a = vh
+    b = -(om2 * xh + sigma * vh) / alpha
+    Ah = complex(vh, -b)
+    lam = complex(-sigma, alpha)
+    # z_p'(s) = Re(Bp e^{i omega s})
+    Bp = omega * complex(osc[I_PS], osc[I_PC]) * complex(cth0, sth0)
+    if npan > V2_GAUSS_PANELS:
+        res, big = _v2_closed(Ah, lam, Bp, omega, L)
+        if big <= 1e3 * res:       # else the terms cancel (near resonance)
+            return res
+    return _v2_modes_gauss(Ah, lam, Bp, omega, L, npan, _GL_X, _GL_W)

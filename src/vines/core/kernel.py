@@ -8,13 +8,20 @@ Segments end at an impact, at the start or end of sticking, at t_transient (so t
 segment lies wholly inside or outside the measurement window) or at t_end.
 
 First-contact rule (cannot miss a crossing, grazing included). Between impacts
-w = z_m - z_b has w'' = z_m'', and |z_m''| <= B2 on [s, s + h_cap] by the energy bound of
-``vines.flow``. From a point with gap g = 1 - w (wall L) or 1 + w (wall R) >= 0 and closing
-speed c toward that wall, the wall cannot be reached before
-        h = 2 g / (c + sqrt(c^2 + 2 B2 g))      (root of c h + B2 h^2 / 2 = g;
-                                                 (sqrt(...) - c)/B2 when c <= 0),
-so each step goes to the smaller of the two walls' h (and at most h_cap = 1/rate). The
-iteration approaches a transversal contact quadratically and a grazing one geometrically,
+w = z_m - z_b has w'' = z_m'', and |z_m''| <= B2 on [s, s + h_cap]: the smaller of the
+bound of the closed form's parts (``flow.part_bounds``) and the bound from the energy of the
+whole state (``flow.state_bounds``; near resonance the parts, ~F/(d omega) each, nearly
+cancel and the second is an order of magnitude tighter). From a point with gap g = 1 - w
+(wall L) or 1 + w (wall R) >= 0 and closing speed c toward that wall, the gap stays above
+g - c h - B h^2/2 for h <= H, where B (per wall, ``_wall_bounds``) takes the acceleration
+towards the wall with its sign and the jerk and |z''''| bound with their Taylor weights
+(H/3, H^2/12), at most B2; so the wall cannot be reached before
+        h = 2 g / (c + sqrt(c^2 + 2 B g))       (root of c h + B h^2 / 2 = g;
+                                                 (sqrt(...) - c)/B when c <= 0),
+and each step goes to the smaller of the two walls' h (and at most h_cap = 1/rate); H is
+chosen by a short fixed-point iteration towards the longest step its own bound allows
+(``free_step_local``). The iteration approaches a transversal contact nearly cubically
+(about five steps for a flight of half a period) and a grazing one geometrically,
 and can never step over a wall. Contact is declared when c > 0 and g <= max(root_tol, floor),
 and either g <= floor or the crossing is transversal (c^2 >= 2 B2 g); one Newton step
 s += g/c then places the impact (error <= g/4). ``floor`` is the resolution of the computed
@@ -38,8 +45,10 @@ Release from sticking uses the same rule on the contact force, proportional to z
 stuck body (mass 1 + eta), with a bound on z_m'''' (and the same kind of floor for z_m'').
 
 Maximum of |z_m|: on each step interval [a, b] the value cannot exceed
-max(|z(a)|, |z(b)|) + B2 (b - a)^2 / 8; only intervals where this beats the running
-maximum are refined (z' = 0 by safeguarded Newton, or bisection).
+max(|z(a)|, |z(b)|) + B2 (b - a)^2 / 8, nor the maximum of the cubic Hermite interpolant of
+(z, z') at a and b plus B4 (b - a)^4 / 384; only intervals where both beat the running
+maximum are refined (z' = 0 by safeguarded Newton from the interpolant's extremum, or
+bisection).
 
 Layout of ``run_kernel``: per segment, ``_advance_segment`` steps to the first event (free
 flight: ``free_step_local`` / ``free_contact``; stuck: the same rules on the contact force),
@@ -60,7 +69,8 @@ import math
 import numpy as np
 from numba import njit
 
-from .flow import I_D, I_RATE, deriv_bound, flow, forcing, v2_integral
+from .flow import (I_D, I_NRES, I_RATE, I_RES, deriv_bound, flow, forcing, part_bounds,
+                   state_bounds, v2_integral)
 from .walls import WALL_L, WALL_R, impact_velocities
 
 # Return codes of run_kernel. RC_PAUSED (``run_kernel_until`` only): the trajectory reached
@@ -98,17 +108,33 @@ CONTACT_PRESSED = 2
 CUR_T, CUR_ZM, CUR_VM, CUR_ZB, CUR_VB, CUR_MODE, CUR_RELEASED = range(7)
 
 MAX_STEPS_PER_SEGMENT = 200_000
+# evaluations of the step rule per step (``free_step_local``; odd: ends on a safe step)
+N_STEP_ITER = 3
 ROUNDOFF = 8.0 * 2.220446049250313e-16   # a few ulps: contact/release at this gap is exact
 
 
 @njit(cache=True, nogil=True)
-def _floor(osc, b1, n, s, x, rate):
+def _floor(part, s, x, rate):
     """Resolution of a computed z^(n) of size |x| that changes at ``rate`` per unit time.
 
-    A few ulps of |x| and of the magnitudes of its homogeneous and particular parts
-    (``deriv_bound``), plus the change over a few ulps of the local time s.
+    A few ulps of |x| and of the magnitude ``part`` of its homogeneous and particular parts
+    (``part_bounds`` at s), plus the change over a few ulps of the local time s.
     """
-    return ROUNDOFF * (1.0 + abs(x) + deriv_bound(osc, b1, n, s) + abs(rate) * (1.0 + s))
+    return ROUNDOFF * (1.0 + abs(x) + part + abs(rate) * (1.0 + s))
+
+
+@njit(cache=True, nogil=True)
+def _step_bounds(osc, z, v, b1, s, h_cap):
+    """Bounds for a step from local time s: the parts' sizes P0 ... P3 at s (for the
+    floors), and bounds B2, B3, B4 of |z''|, |z'''|, |z''''| on [s, s + h_cap], each the
+    smaller of the parts' bound (``part_bounds``) and the whole state's (``state_bounds``,
+    far tighter near resonance, where the parts nearly cancel)."""
+    P0, P1, P2, P3, P4 = part_bounds(osc, b1, s)
+    Q2, Q3, Q4 = P2, P3, P4
+    if osc[I_RES] > 0.5 or osc[I_NRES] > 0.5:      # these parts' bounds grow with s
+        _, _, Q2, Q3, Q4 = part_bounds(osc, b1, s + h_cap)
+    T2, T3, T4 = state_bounds(osc, z, v, ROUNDOFF * (1.0 + P0 + P1), h_cap)
+    return P0, P1, P2, P3, min(Q2, T2), min(Q3, T3), min(Q4, T4)
 
 
 @njit(cache=True, nogil=True)
@@ -130,85 +156,126 @@ def _safe_step(gap, closing, B):
     return math.inf if gap > 0.0 or closing < 0.0 else 0.0
 
 
+# x_max refinement: a stationary point of z is placed to within EXTREMUM_DS / rate in local
+# time, then z there is corrected by its Taylor term (error ~ (rate ds)^3 |z|, below round-off)
+EXTREMUM_DS = 1e-6
+# Depth of the bisection stack of ``_interval_max`` (intervals shorter than MIN_BISECT are
+# not split further)
+MAX_BISECT = 24
+MIN_BISECT = 1e-9
+
+
 @njit(cache=True, nogil=True)
-def _extremum(osc, x0, v0, sth0, cth0, sa, va, sb, vb):
-    """|z| at the zero of z' inside [sa, sb] (z'(sa) z'(sb) < 0): safeguarded Newton."""
+def _extremum(osc, x0, v0, sth0, cth0, sa, va, sb, vb, s):
+    """|z| at the zero of z' inside [sa, sb] (z'(sa) z'(sb) < 0), from the first guess s:
+    safeguarded Halley iteration on z' (cubic: from the Hermite guess one step usually
+    suffices), stopped once the next correction ds = -z'/z'' is below EXTREMUM_DS / rate,
+    with z + z' ds / 2 as the value there."""
     lo, hi = sa, sb
     vlo = va
-    s = sa - va * (sb - sa) / (vb - va)
+    if not (lo < s < hi):
+        s = sa - va * (sb - sa) / (vb - va)
+    ds_tol = EXTREMUM_DS / osc[I_RATE]
     z = 0.0
     for _ in range(60):
-        z, v, a, _, _ = flow(osc, x0, v0, sth0, cth0, s)
+        z, v, a, j, _ = flow(osc, x0, v0, sth0, cth0, s)
         if (v > 0.0) == (vlo > 0.0):
             lo = s
             vlo = v
         else:
             hi = s
-        if a != 0.0:
-            s_new = s - v / a
-        else:
-            s_new = 0.5 * (lo + hi)
+        if a != 0.0 and abs(v) <= ds_tol * abs(a):
+            return abs(z - 0.5 * v * v / a)
+        s_new = 0.5 * (lo + hi)
+        den = a - 0.5 * v * j / a if a != 0.0 else 0.0
+        if den != 0.0:
+            s_new = s - v / den
         if not (lo < s_new < hi):
             s_new = 0.5 * (lo + hi)
-        if abs(s_new - s) <= 1e-10 * (1.0 + abs(s)) or hi - lo <= 1e-12 * (1.0 + abs(s)):
-            s = s_new
-            z, v, a, _, _ = flow(osc, x0, v0, sth0, cth0, s)
+        if hi - lo <= 1e-12 * (1.0 + abs(s)):
             break
         s = s_new
     return abs(z)
 
 
 @njit(cache=True, nogil=True)
-def _interval_max(osc, x0, v0, sth0, cth0, sa, za, va, sb, zb, vb, B2, m):
-    """Running maximum m updated with max |z| over [sa, sb]."""
-    za_ = abs(za)
-    zb_ = abs(zb)
-    if za_ > m:
-        m = za_
-    if zb_ > m:
-        m = zb_
-    h = sb - sa
-    if max(za_, zb_) + 0.125 * B2 * h * h <= m:
+def _hermite_max(za, va, zb, vb, h):
+    """(max |p| on [0, h], where) for the cubic p with p(0) = za, p'(0) = va, p(h) = zb,
+    p'(h) = vb (Hermite interpolation; |z - p| <= max|z''''| h^4 / 384 on [0, h])."""
+    dz = (zb - za) / h
+    c2 = (3.0 * dz - 2.0 * va - vb) / h
+    c3 = (va + vb - 2.0 * dz) / (h * h)
+    best, t_best = abs(za), 0.0
+    if abs(zb) > best:
+        best, t_best = abs(zb), h
+    # p'(t) = va + 2 c2 t + 3 c3 t^2 = 0, roots without cancellation
+    qa, qb, qc = 3.0 * c3, 2.0 * c2, va
+    disc = qb * qb - 4.0 * qa * qc
+    if disc < 0.0 or (qa == 0.0 and qb == 0.0):
+        return best, t_best
+    q = -0.5 * (qb + math.copysign(math.sqrt(disc), qb))
+    for t in (q / qa if qa != 0.0 else -1.0, qc / q if q != 0.0 else -1.0):
+        if 0.0 < t < h:
+            p = abs(za + t * (va + t * (c2 + t * c3)))
+            if p > best:
+                best, t_best = p, t
+    return best, t_best
+
+
+@njit(cache=True, nogil=True)
+def _may_exceed(za, va, zb, vb, h, B2, B4, m):
+    """(max |z| on an interval of length h may exceed m, first guess of where):
+    max(|z(a)|, |z(b)|) + B2 h^2/8 and the Hermite bound (``_hermite_max``) both bound it."""
+    if max(abs(za), abs(zb)) + 0.125 * B2 * h * h <= m:
+        return False, 0.0
+    p, t = _hermite_max(za, va, zb, vb, h)
+    return p + B4 * h * h * h * h / 384.0 > m, t
+
+
+@njit(cache=True, nogil=True)
+def _interval_max(osc, x0, v0, sth0, cth0, sa, za, va, sb, zb, vb, B2, B4, m):
+    """Running maximum m updated with max |z| over [sa, sb] (|z''| <= B2, |z''''| <= B4
+    there): nothing more is computed where the bounds of ``_may_exceed`` stay <= m; a
+    sign change of z' is refined by ``_extremum``, else the interval is bisected."""
+    m = max(m, abs(za), abs(zb))
+    exceed, t = _may_exceed(za, va, zb, vb, sb - sa, B2, B4, m)
+    if not exceed:
         return m
-    # small explicit stack for bisection
-    st_a = np.empty(24)
-    st_za = np.empty(24)
-    st_va = np.empty(24)
-    st_b = np.empty(24)
-    st_zb = np.empty(24)
-    st_vb = np.empty(24)
-    n = 0
-    st_a[0], st_za[0], st_va[0], st_b[0], st_zb[0], st_vb[0] = sa, za, va, sb, zb, vb
+    if va * vb < 0.0:
+        return max(m, _extremum(osc, x0, v0, sth0, cth0, sa, va, sb, vb, sa + t))
+    stack = np.empty((MAX_BISECT, 6))         # intervals (a, z, z', b, z, z') to examine
+    stack[0, 0], stack[0, 1], stack[0, 2], stack[0, 3], stack[0, 4], stack[0, 5] = \
+        sa, za, va, sb, zb, vb
     n = 1
     while n > 0:
         n -= 1
-        a_, za1, va1 = st_a[n], st_za[n], st_va[n]
-        b_, zb1, vb1 = st_b[n], st_zb[n], st_vb[n]
-        h = b_ - a_
-        if max(abs(za1), abs(zb1)) + 0.125 * B2 * h * h <= m:
+        a_, za1, va1, b_, zb1, vb1 = stack[n, 0], stack[n, 1], stack[n, 2], stack[n, 3], \
+            stack[n, 4], stack[n, 5]
+        exceed, t = _may_exceed(za1, va1, zb1, vb1, b_ - a_, B2, B4, m)
+        if not exceed:
             continue
         if va1 * vb1 < 0.0:
-            ze = _extremum(osc, x0, v0, sth0, cth0, a_, va1, b_, vb1)
-            if ze > m:
-                m = ze
+            m = max(m, _extremum(osc, x0, v0, sth0, cth0, a_, va1, b_, vb1, a_ + t))
             continue
-        if n + 2 > 24 or h <= 1e-9:
+        if n + 2 > MAX_BISECT or b_ - a_ <= MIN_BISECT:
             continue
         mid = 0.5 * (a_ + b_)
         zm, vm, _, _, _ = flow(osc, x0, v0, sth0, cth0, mid)
-        if abs(zm) > m:
-            m = abs(zm)
-        st_a[n], st_za[n], st_va[n], st_b[n], st_zb[n], st_vb[n] = a_, za1, va1, mid, zm, vm
-        n += 1
-        st_a[n], st_za[n], st_va[n], st_b[n], st_zb[n], st_vb[n] = mid, zm, vm, b_, zb1, vb1
-        n += 1
+        m = max(m, abs(zm))
+        stack[n, 0], stack[n, 1], stack[n, 2], stack[n, 3], stack[n, 4], stack[n, 5] = \
+            a_, za1, va1, mid, zm, vm
+        stack[n + 1, 0], stack[n + 1, 1], stack[n + 1, 2], stack[n + 1, 3], \
+            stack[n + 1, 4], stack[n + 1, 5] = mid, zm, vm, b_, zb1, vb1
+        n += 2
     return m
 
 
 @njit(cache=True, nogil=True)
-def free_step(osc, s, z, v, a, j, b1, zb0, vb0, h_cap, B2, tol_z, floor_v, floor_a, released):
+def free_step(s, z, v, a, j, zb0, vb0, BL, BR, B3, B4, tol_z, floor_v, floor_a, released):
     """Step that provably reaches neither wall in free flight (module docstring).
 
+    The gap to wall L (R) stays above g - c h - BL h^2/2 (BR) over the step
+    (``_wall_bounds``); B3 and B4 bound |z_m'''| and |z_m''''| over [s, s + h_cap];
     tol_z is the contact tolerance on the gap, floor_v and floor_a the resolution of the
     computed relative velocity and acceleration (``_floor``).
 
@@ -221,8 +288,8 @@ def free_step(osc, s, z, v, a, j, b1, zb0, vb0, h_cap, B2, tol_z, floor_v, floor
     wd = v - vb0
     gL = 1.0 - w
     gR = 1.0 + w
-    hL = _safe_step(gL, wd, B2)
-    hR = _safe_step(gR, -wd, B2)
+    hL = _safe_step(gL, wd, BL)
+    hR = _safe_step(gR, -wd, BR)
     # departure from a wall with (almost) zero relative velocity; an approach faster than
     # round-off is left to the contact test (it must neither be stepped over nor stick)
     sw = 1.0 if gL <= gR else -1.0
@@ -233,9 +300,9 @@ def free_step(osc, s, z, v, a, j, b1, zb0, vb0, h_cap, B2, tol_z, floor_v, floor
         # (jerk away, acceleration not towards the wall beyond round-off)
         h0 = 0.0
         if acc_away > 0.0:
-            h0 = acc_away / deriv_bound(osc, b1, 3, s + h_cap)
+            h0 = acc_away / B3
         if jerk_away > 0.0 and (released or acc_away >= -floor_a):
-            h0 = max(h0, jerk_away / deriv_bound(osc, b1, 4, s + h_cap))
+            h0 = max(h0, jerk_away / B4)
         if h0 == 0.0 and sw * wd >= -floor_v:
             return 0.0, int(sw)
         if sw > 0.0:
@@ -245,37 +312,56 @@ def free_step(osc, s, z, v, a, j, b1, zb0, vb0, h_cap, B2, tol_z, floor_v, floor
     return min(hL, hR), 0
 
 
+@njit(cache=True, nogil=True, inline="always")
+def _wall_bounds(a, j, H, B2g, B4, floor_a, floor_j):
+    """(BL, BR, B) for steps h <= H from a point where w'' = z_m'' = a, w''' = j.
+
+    The gap to wall L, g_L = 1 - w, obeys g_L(h) = g_L - w' h - int_0^h (h - t) w''(t) dt
+    with w''(t) <= a + j t + B4 t^2/2, so it stays above g_L - w' h - BL h^2/2 with
+    BL = a + max(j, 0) H/3 + B4 H^2/12 (>= 0), and BR likewise with -a, -j (each widened by
+    the round-off floors of a and j, and at most B2g, the bound of |z''| on [s, s + h_cap]).
+    The acceleration counts with its sign: one pointing away from the wall allows a long
+    step, one towards it is taken exactly, and the contact is approached nearly cubically.
+    B = min(B2g, |a| + |j| H + B4 H^2/2) bounds |w''| itself on [s, s + H].
+    """
+    rest = B4 * H * H / 12.0
+    BL = min(B2g, max(0.0, a + floor_a + max(j + floor_j, 0.0) * H / 3.0 + rest))
+    BR = min(B2g, max(0.0, -a + floor_a + max(floor_j - j, 0.0) * H / 3.0 + rest))
+    return BL, BR, min(B2g, abs(a) + abs(j) * H + 0.5 * B4 * H * H)
+
+
 @njit(cache=True, nogil=True)
 def free_step_local(osc, s, z, v, a, j, b1, zb0, vb0, h_cap, root_tol, released):
-    """``free_step`` with the tightest of several valid bounds on |w''| = |z_m''|.
+    """``free_step`` with bounds for the step length H itself (``_wall_bounds``).
 
-    Besides the global bound B2 (valid for all later times), on [s, s + H]
-    |z''| <= |z''(s)| + |z'''(s)| H + B4 H^2 / 2 (B4 the global bound on |z''''|), which is
-    far tighter near resonance where the homogeneous and forced parts nearly cancel.
-    Tries H = h_cap, h_cap/4, h_cap/16 and keeps the longest step. Returns (h, pressed, B2)
-    with B2 valid on [s, s + h].
+    The bounds over [s, s + H] shrink with H, so the step phi(H) they allow grows as H
+    shrinks: any H with phi(H) >= H is a safe step, and the odd iterates of
+    H -> min(phi(H), h_cap) from h_cap are such steps, approaching the longest one
+    (N_STEP_ITER evaluations). Returns (h, pressed, B2, B4) with B2 bounding |w''| on
+    [s, s + h] and B4 (bound of |z''''|) valid on [s, s + h_cap].
     """
-    B2g = deriv_bound(osc, b1, 2, s + h_cap)
-    B4 = deriv_bound(osc, b1, 4, s + h_cap)
+    P0, P1, P2, P3, B2g, B3, B4 = _step_bounds(osc, z, v, b1, s, h_cap)
     zb = zb0 + vb0 * s
-    tol_z = max(root_tol, _floor(osc, b1, 0, s, abs(z) + abs(zb), v - vb0))
-    floor_v = _floor(osc, b1, 1, s, abs(v) + abs(vb0), a)
-    floor_a = _floor(osc, b1, 2, s, a, j)
-    h_best = -1.0
-    B_best = B2g
+    tol_z = max(root_tol, _floor(P0, s, abs(z) + abs(zb), v - vb0))
+    floor_v = _floor(P1, s, abs(v) + abs(vb0), a)
+    floor_a = _floor(P2, s, a, j)
+    floor_j = _floor(P3, s, j, B4)
     H = h_cap
-    for _ in range(3):
-        B = min(B2g, abs(a) + abs(j) * H + 0.5 * B4 * H * H)
-        h, pressed = free_step(osc, s, z, v, a, j, b1, zb0, vb0, h_cap, B, tol_z, floor_v,
+    BL, BR, B = _wall_bounds(a, j, H, B2g, B4, floor_a, floor_j)
+    h_best, B_best = H, B
+    for it in range(N_STEP_ITER):
+        h, pressed = free_step(s, z, v, a, j, zb0, vb0, BL, BR, B3, B4, tol_z, floor_v,
                                floor_a, released)
         if pressed != 0:
-            return 0.0, pressed, B2g
-        h = min(h, H)
-        if h > h_best:
-            h_best = h
-            B_best = B
-        H *= 0.25
-    return h_best, 0, B_best
+            return 0.0, pressed, B2g, B4
+        if it % 2 == 0:
+            if h >= H:
+                return H, 0, B, B4           # the bounds allow all of [s, s + H]
+            if it == 0 or h > h_best:
+                h_best, B_best = h, B        # valid: h <= phi(H) with the bounds for H >= h
+        H = min(h, h_cap)
+        BL, BR, B = _wall_bounds(a, j, H, B2g, B4, floor_a, floor_j)
+    return h_best, 0, B_best, B4
 
 
 @njit(cache=True, nogil=True)
@@ -291,9 +377,10 @@ def free_contact(osc, s, z, v, b1, zb, vb, B2, root_tol):
         gap = max(1.0 + w, 0.0)
         closing = -wd
         wall = WALL_R
-    floor = _floor(osc, b1, 0, s, abs(z) + abs(zb), closing)
+    P0, P1, _, _, _ = part_bounds(osc, b1, s)
+    floor = _floor(P0, s, abs(z) + abs(zb), closing)
     # a closing speed at round-off level is no impact (the departure rule handles it)
-    if closing > _floor(osc, b1, 1, s, abs(v) + abs(vb), 0.0) and gap <= max(root_tol, floor) \
+    if closing > _floor(P1, s, abs(v) + abs(vb), 0.0) and gap <= max(root_tol, floor) \
             and (gap <= floor or closing * closing >= 2.0 * B2 * gap):
         return wall, gap, closing
     return 0, gap, closing
@@ -312,8 +399,8 @@ def first_contact(osc, zm0, vm0, zb0, vb0, sth0, cth0, s_max, root_tol):
     s = 0.0
     z, v, a, j, b1 = flow(osc, zm0, vm0, sth0, cth0, 0.0)
     for _ in range(MAX_STEPS_PER_SEGMENT):
-        h, pressed, B2 = free_step_local(osc, s, z, v, a, j, b1, zb0, vb0, h_cap, root_tol,
-                                         False)
+        h, pressed, B2, _ = free_step_local(osc, s, z, v, a, j, b1, zb0, vb0, h_cap,
+                                            root_tol, False)
         if pressed != 0:
             return CONTACT_PRESSED * pressed, s, z, v
         h = min(h, h_cap)
@@ -401,29 +488,28 @@ def _advance_segment(osc, mode, zm0, vm0, zb0, vb0, sth0, cth0, s_stop, released
         if s >= s_pause:
             return EV_PAUSE, 0, s, z, v, a, j, b1, gap, closing, steps
         if mode == MODE_FREE:
-            h, pressed, B2 = free_step_local(osc, s, z, v, a, j, b1, zb0, vb0, h_cap,
-                                             root_tol, released and steps == 1)
+            h, pressed, B2, B4 = free_step_local(osc, s, z, v, a, j, b1, zb0, vb0, h_cap,
+                                                 root_tol, released and steps == 1)
             if pressed != 0:
                 return EV_STICK, pressed, s, z, v, a, j, b1, gap, closing, steps
         else:
-            B2 = deriv_bound(osc, b1, 2, s + h_cap)
+            _, _, _, _, B2, _, B4 = _step_bounds(osc, z, v, b1, s, h_cap)
             gap = mode * a                    # contact force, > 0 while stuck
             closing = -mode * j
-            B4 = deriv_bound(osc, b1, 4, s + h_cap)
             h = _safe_step(gap, closing, B4)
         s_new, forced = _clamp_step(s, h, h_cap, s_stop)
         if s_new <= s:
             break
         z1, v1, a1, j1, b11 = flow(osc, zm0, vm0, sth0, cth0, s_new)
         if in_window:
-            m = _interval_max(osc, zm0, vm0, sth0, cth0, s, z, v, s_new, z1, v1, B2,
+            m = _interval_max(osc, zm0, vm0, sth0, cth0, s, z, v, s_new, z1, v1, B2, B4,
                               acc[A_XMAX_WIN])
             acc[A_XMAX_WIN] = m
             if m > acc[A_XMAX_ALL]:
                 acc[A_XMAX_ALL] = m
         else:
             acc[A_XMAX_ALL] = _interval_max(osc, zm0, vm0, sth0, cth0, s, z, v, s_new, z1,
-                                            v1, B2, acc[A_XMAX_ALL])
+                                            v1, B2, B4, acc[A_XMAX_ALL])
         s, z, v, a, j, b1 = s_new, z1, v1, a1, j1, b11
         acc[A_NEVAL] += 1.0
         if mode == MODE_FREE:
@@ -434,7 +520,7 @@ def _advance_segment(osc, mode, zm0, vm0, zb0, vb0, sth0, cth0, s_stop, released
         else:                                 # release test on the contact force
             gap = mode * a
             closing = -mode * j
-            floor = _floor(osc, b1, 2, s, a, closing)
+            floor = _floor(part_bounds(osc, b1, s)[2], s, a, closing)
             if closing > 0.0 and gap <= max(root_tol, floor) and (
                     gap <= floor or closing * closing >= 2.0 * B4 * gap):
                 return EV_RELEASE, 0, s, z, v, a, j, b1, max(gap, 0.0), closing, steps
