@@ -410,9 +410,65 @@ def _branch_text(d: dict, values: dict, indent: str = "") -> str:
     return "\n".join(lines)
 
 
+# --------------------------------------------------------------------------- boundaries
+
+def _add_boundaries(subparsers) -> VinesArgumentParser:
+    p = subparsers.add_parser(
+        "boundaries",
+        help="curves of fold, flip, neimark-sacker, symmetry-breaking and grazing points of "
+             "1:1 orbits in the (eta, omega) plane at fixed F",
+        description="Seed from one-parameter continuations along lines of the box, then "
+                    "continue every codimension-one point of the 1:1 orbits (augmented "
+                    "systems, exact Jacobians) in (eta, omega) at fixed F: the edges of the "
+                    "classes of the stability map (Fig 16).",
+    )
+    p.allowed_values["--F"] = _param_allowed("F")
+    p.add_argument("--F", metavar="F", required=True,
+                   help=f"forcing amplitude A/L [{_param_allowed('F')}]")
+    for name, default in (("eta", (0.05, 1.0)), ("omega", (0.7, 1.4))):
+        flag = f"--{name}-range"
+        p.allowed_values[flag] = f"two numbers lo < hi, each {_param_allowed(name)}"
+        p.add_argument(flag, nargs=2, metavar=("LO", "HI"), default=list(default),
+                       help=f"{name} interval of the box [{p.allowed_values[flag]}; default "
+                            f"{default[0]:g} {default[1]:g}]")
+    opt = p.add_argument_group("model parameters (optional)")
+    for flag, default, help in (("--r", R_DEFAULT, "coefficient of restitution"),
+                                ("--d", D_DEFAULT, "LO damping c/(M w0)")):
+        p.allowed_values[flag] = _param_allowed(flag[2:])
+        opt.add_argument(flag, metavar=flag[2:].upper(), default=default,
+                         help=f"{help} [{_param_allowed(flag[2:])}; default {default:g}]")
+    p.add_argument("--json", action="store_true",
+                   help="print one JSON object on stdout (key: curves)")
+    p.set_defaults(handler=_cmd_boundaries)
+    return p
+
+
+def _cmd_boundaries(args: argparse.Namespace) -> int:
+    params = ModelParams(eta=0.1, omega=1.0, F=args.F, r=args.r, d=args.d)
+    from .orbits.boundaries import boundaries
+
+    with contextlib.redirect_stdout(sys.stderr):
+        res = boundaries(params.F, args.eta_range, args.omega_range, r=params.r, d=params.d)
+    d = res.to_dict()
+    if args.json:
+        sys.stdout.write(json.dumps(_jsonable(d), allow_nan=False) + "\n")
+    else:
+        lines = [f"F = {params.F:g}, eta in {d['eta_range']}, omega in {d['omega_range']}: "
+                 f"{len(d['curves'])} curve(s)"]
+        for c in d["curves"]:
+            (e0, w0), (e1, w1) = c["points"][0], c["points"][-1]
+            where = f" (flight {c['flight']}, {c['wall']})" if "wall" in c else ""
+            lines.append(f"  {c['type']}{where} of {c['family']} orbits: {len(c['points'])} "
+                         f"points from (eta, omega) = ({e0:.4g}, {w0:.4g}) to ({e1:.4g}, "
+                         f"{w1:.4g})")
+        sys.stdout.write("\n".join(lines) + "\n")
+    sys.stdout.flush()
+    return 0
+
+
 # --------------------------------------------------------------------------- main
 
-_COMMANDS = (_add_simulate, _add_periodic, _add_continue)
+_COMMANDS = (_add_simulate, _add_periodic, _add_continue, _add_boundaries)
 
 
 def _value_flags(subparsers_map: dict) -> set[str]:

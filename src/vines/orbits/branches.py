@@ -101,12 +101,12 @@ def test_values(family: str, o: PeriodicOrbit, z, t) -> dict:
     return out
 
 
-def is_ns(family: str, o: PeriodicOrbit) -> bool:
+def is_ns(family: str, o: PeriodicOrbit, tol: float = NS_TOL) -> bool:
     """A complex eigenvalue pair of A (symmetric) or B on the unit circle."""
     A = sh.MIRROR @ o.J1 if family == "symmetric" else o.J2 @ o.J1
     ev = np.linalg.eigvals(A)
     k = int(np.argmin(np.abs(np.abs(ev) - 1.0)))
-    return abs(ev[k].imag) > 1e-6 and abs(abs(ev[k]) - 1.0) < NS_TOL
+    return abs(ev[k].imag) > 1e-6 and abs(abs(ev[k]) - 1.0) < tol
 
 
 class _Follower:
