@@ -125,6 +125,11 @@ def trace(model, family, kind, graze, z0, F, box, step=0.01, max_points=400) -> 
     fwd, why_f = ct.half(np.asarray(z0, float), 1.0)
     bwd, why_b = ct.half(np.asarray(z0, float), -1.0)
     zs = np.array(bwd[::-1] + [np.asarray(z0, float)] + fwd)
+    (e0, e1), (w0, w1) = box
+    tol = 1e-9
+    inside = (zs[:, -2] >= e0 - tol) & (zs[:, -2] <= e1 + tol) & (zs[:, -1] >= w0 - tol) \
+        & (zs[:, -1] <= w1 + tol)
+    zs = zs[inside]          # a located exit can overshoot when its correction fails
     return Curve(kind, family, graze, zs[:, -2:].copy(), zs, [why_b, why_f])
 
 
