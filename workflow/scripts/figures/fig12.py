@@ -5,6 +5,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 import vines.plotting as P
+from vines.plotting import bifurcation as B
 from vines.pipeline.jobs import run_job
 
 
@@ -46,6 +47,7 @@ def main(sm):
             axes[i, j].set_xlabel(P.LABELS["eta"])
             axes[i, j].set_ylabel(P.LABELS["omega"])
             P.panel_label(axes[i, j], i * n + j, rf"$F$ = {P.fmt(F)}")
+    B.draw_on_panels(fig, axes[1], [P.fixed_value(g, "F") for g in grids], sm.input.boundaries)
     P.save(fig, sm.output.pdf, sm.output.png)
 
 

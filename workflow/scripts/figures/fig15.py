@@ -2,6 +2,7 @@
 branch (red, solid stable, dotted unstable) and |lambda| vs eta with the |lambda| = 1 line;
 one row per branch fig15_* (F = 0.3077, W = 0.9 and 1.1)."""
 import vines.plotting as P
+from vines.plotting import bifurcation as B
 from vines.pipeline.jobs import run_job
 
 
@@ -9,7 +10,9 @@ def main(sm):
     sw = P.sweep(sm.input.sweep[0])
     brs = sorted((P.branch(p) for p in sm.input.branches),
                  key=lambda b: float(b["omega"][0]))
-    fig = P.zoom_figure(sw, brs, outer_dim=sw.attrs.get("outer_parameter", "omega"))
+    fig = P.zoom_figure(sw, B.continued_branches(brs),
+                        outer_dim=sw.attrs.get("outer_parameter", "omega"))
+    B.draw_switched(fig, brs)
     P.save(fig, sm.output.pdf, sm.output.png, dpi=200)
 
 

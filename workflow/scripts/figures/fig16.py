@@ -6,6 +6,7 @@ from matplotlib.colors import BoundaryNorm, ListedColormap
 from matplotlib.patches import Patch
 
 import vines.plotting as P
+from vines.plotting import bifurcation as B
 from vines.pipeline.jobs import run_job
 
 
@@ -34,6 +35,7 @@ def main(sm):
                                               else ""))
                for k in keys]
     fig.legend(handles=handles, loc="outside right center", fontsize=8, frameon=False)
+    B.draw_on_panels(fig, axes[0], [float(m.attrs["F"]) for m in maps], sm.input.boundaries)
     P.save(fig, sm.output.pdf, sm.output.png)
 
 

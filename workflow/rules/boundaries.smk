@@ -1,0 +1,19 @@
+# boundaries: curves of fold, flip, Neimark-Sacker, symmetry-breaking and grazing points of
+# 1:1 orbits in the (eta, omega) plane at fixed F (edges of Fig 16's classes; Figs 12, 16).
+
+
+rule boundaries:
+    output:
+        f"{RES}/boundaries/{{bnd}}.nc",
+    params:
+        spec=lambda w: BOUNDARIES[w.bnd],
+        model=MODEL,
+        code=CODE,
+    conda:
+        "../envs/vines.yaml"
+    log:
+        f"{RES}/logs/boundaries/{{bnd}}.log",
+    benchmark:
+        f"{RES}/benchmarks/boundaries/{{bnd}}.tsv"
+    script:
+        "../scripts/boundaries.py"
