@@ -147,9 +147,10 @@ class Tracer:
         return best
 
     def bisect(self, step: Step, flag, flag0, tol=1e-10):
-        """(tau, z, t) where the boolean flag(z, t) changes from flag0 along a step."""
+        """Where the boolean flag(z, t) changes from flag0 along a step: the (tau, z, t)
+        just after the change and the one just before it (flag still flag0)."""
         a, b = 0.0, step.h
-        best = (b, step.z1, step.t1)
+        after, before = (b, step.z1, step.t1), (a, step.z0, step.t0)
         while b - a > tol:
             tau = 0.5 * (a + b)
             pt = self.point_at(step, tau)
@@ -157,7 +158,8 @@ class Tracer:
                 break
             if flag(*pt) == flag0:
                 a = tau
+                before = (tau, pt[0], pt[1])
             else:
                 b = tau
-                best = (tau, pt[0], pt[1])
-        return best
+                after = (tau, pt[0], pt[1])
+        return after, before

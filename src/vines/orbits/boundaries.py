@@ -14,7 +14,11 @@
 3. fold, flip, neimark-sacker and symmetry-breaking curves keep only their stretches on
    admissible orbits (elsewhere they are no edge of a stability class); neimark-sacker
    curves only where the crossing pair is complex (the second compound matrix also
-   vanishes at real pairs lambda_1 lambda_2 = 1).
+   vanishes at real pairs lambda_1 lambda_2 = 1);
+4. seeds a scan line never meets (e.g. an unstable family whose arrival velocity vanishes
+   along a whole curve): on a coarse stability map (``stability_map``), every pair of
+   neighbouring cells of different class with no kept curve within 1.5 cells is joined by
+   a short one-parameter continuation from each admissible end; its events seed step 2.
 
 These curves are the edges of the classes of ``stability_map`` (Fig 16).
 """
@@ -33,6 +37,7 @@ from .branches import is_ns, orbit_at
 
 CURVE_TYPES = ("fold", "flip", "neimark-sacker", "symmetry-breaking", "grazing")
 U_WEIGHT = 0.2          # weight of the orbit unknowns in the arclength (eta, omega: 1)
+BOX_TOL = 1e-9          # a located exit lies this close to the box side (then set on it)
 
 
 @dataclass
@@ -107,15 +112,22 @@ class _CurveTracer:
         return out, "max_points"
 
     def _exit(self, tr, st):
-        """The point where the step leaves the box (None if it cannot be located)."""
+        """The point where the step leaves the box: the first crossing of a box side
+        along the step (None if no crossing can be located inside the box)."""
         (e0, e1), (w0, w1) = self.box
         z = st.z1
+        best = None
         for k, lo, hi in ((-2, e0, e1), (-1, w0, w1)):
-            if z[k] > hi or z[k] < lo:
-                b = hi if z[k] > hi else lo
-                loc = tr.locate(st, lambda zz, t, k=k, b=b: zz[k] - b, st.z0[k] - b, z[k] - b)
-                return None if loc is None else loc[1]
-        return None
+            if lo <= z[k] <= hi:
+                continue
+            b = hi if z[k] > hi else lo
+            loc = tr.locate(st, lambda zz, t, k=k, b=b: zz[k] - b, st.z0[k] - b, z[k] - b)
+            if loc is None or abs(loc[1][k] - b) > BOX_TOL:
+                continue
+            loc[1][k] = b
+            if self.inside(loc[1]) and (best is None or loc[0] < best[0]):
+                best = loc
+        return None if best is None else best[1]
 
 
 def trace(model, family, kind, graze, z0, F, box, step=0.01, max_points=400) -> Curve:
@@ -125,11 +137,6 @@ def trace(model, family, kind, graze, z0, F, box, step=0.01, max_points=400) -> 
     fwd, why_f = ct.half(np.asarray(z0, float), 1.0)
     bwd, why_b = ct.half(np.asarray(z0, float), -1.0)
     zs = np.array(bwd[::-1] + [np.asarray(z0, float)] + fwd)
-    (e0, e1), (w0, w1) = box
-    tol = 1e-9
-    inside = (zs[:, -2] >= e0 - tol) & (zs[:, -2] <= e1 + tol) & (zs[:, -1] >= w0 - tol) \
-        & (zs[:, -1] <= w1 + tol)
-    zs = zs[inside]          # a located exit can overshoot when its correction fails
     return Curve(kind, family, graze, zs[:, -2:].copy(), zs, [why_b, why_f])
 
 
@@ -176,26 +183,98 @@ def crossings(curve: Curve, model, F, omega: float) -> list:
 
 
 def boundaries(F, eta_range, omega_range, r=R_DEFAULT, d=D_DEFAULT, n_scan=5, step=0.01,
-               max_points=400) -> Boundaries:
-    """Codimension-one curves of 1:1 orbits in the box eta_range x omega_range at F."""
+               max_points=400, n_map=25) -> Boundaries:
+    """Codimension-one curves of 1:1 orbits in the box eta_range x omega_range at F.
+
+    ``n_scan`` scan lines per parameter seed the curves; then class changes of an
+    ``n_map`` x ``n_map`` stability map farther than 1.5 cells from every kept curve seed
+    more (module docstring, step 4; ``n_map = 0`` skips it)."""
     F = check_param("F", F)
     box = (_range("eta_range", eta_range), _range("omega_range", omega_range))
     n_scan = check_int("n_scan", n_scan, lo=1, hi=100)
     step = check_real("step", step, lo=1e-5, hi=1.0)
     max_points = check_int("max_points", max_points, lo=1, hi=100_000)
+    n_map = check_int("n_map", n_map, lo=0, hi=1000)
     model = sh.Model(r, d)
-    curves = []
+    traced = _Traced(model, F, box, step, max_points)
     for seed in _seeds(model, F, box, n_scan):
+        traced.add(seed)
+    if n_map >= 2:
+        for edge in _map_edges(model, F, box, n_map):
+            if not traced.explains(edge):
+                for seed in _edge_seeds(model, F, edge):
+                    traced.add(seed)
+    return Boundaries(F, box[0], box[1], traced.kept)
+
+
+class _Traced:
+    """The curves traced so far and their kept stretches (module docstring, step 3)."""
+
+    def __init__(self, model, F, box, step, max_points):
+        self.model, self.F, self.box = model, F, box
+        self.step, self.max_points = step, max_points
+        self.curves, self.kept = [], []
+
+    def add(self, seed):
+        """Trace the curve through a seed unless a curve of its kind passes there."""
         family, kind, graze, z0 = seed
-        if _on_curve(curves, seed, step):
-            continue
-        c = trace(model, family, kind, graze, z0, F, box, step, max_points)
+        (e0, e1), (w0, w1) = self.box
+        if not (e0 <= z0[-2] <= e1 and w0 <= z0[-1] <= w1) \
+                or _on_curve(self.curves, seed, self.step):
+            return
+        c = trace(self.model, family, kind, graze, z0, self.F, self.box, self.step,
+                  self.max_points)
         c.all_points = c.points
-        curves.append(c)
-    kept = []
-    for c in curves:
-        kept.extend(_keep(c, model, F))
-    return Boundaries(F, box[0], box[1], kept)
+        self.curves.append(c)
+        self.kept.extend(_keep(c, self.model, self.F))
+
+    def explains(self, edge) -> bool:
+        """A kept curve passes within 1.5 cells of the middle of a class-changing edge."""
+        if not self.kept:
+            return False
+        (a, b), cell = edge[:2], edge[2]
+        mid = 0.5 * (np.asarray(a) + np.asarray(b))
+        pts = np.concatenate([c.points for c in self.kept])
+        return float(np.min(np.hypot(*((pts - mid) / cell).T))) <= 1.5
+
+
+def _map_edges(model, F, box, n_map):
+    """((eta, omega) of both cells, cell size, classes) of every pair of neighbouring cells
+    of an n_map x n_map stability map whose classes differ."""
+    from .stability_map import stability_map
+    eta, omega = np.linspace(*box[0], n_map), np.linspace(*box[1], n_map)
+    cls = stability_map(eta, omega, F, r=model.r, d=model.d, n_threads=1)["cls"]
+    cell = np.array([eta[1] - eta[0], omega[1] - omega[0]])
+    for i in range(n_map):
+        for j in range(n_map):
+            for i2, j2 in ((i + 1, j), (i, j + 1)):
+                if i2 < n_map and j2 < n_map and cls[i, j] != cls[i2, j2]:
+                    yield ((eta[i], omega[j]), (eta[i2], omega[j2]), cell,
+                           (int(cls[i, j]), int(cls[i2, j2])))
+
+
+def _edge_seeds(model, F, edge):
+    """Seeds of one-parameter continuations along a class-changing edge, from each end
+    with an admissible 1:1 orbit towards the other (the event between them is the seed)."""
+    from .continuation import continue_branch
+    from .periodic import find_1to1
+    a, b, _, classes = edge
+    k = 0 if a[0] != b[0] else 1
+    param = ("eta", "omega")[k]
+    for start, stop, c in ((a, b, classes[0]), (b, a, classes[1])):
+        if c == 0:
+            continue
+        fixed = {"F": F, ("omega", "eta")[k]: float(start[1 - k])}
+        for o in find_1to1(start[0], start[1], F, r=model.r, d=model.d, simulation=False):
+            if not o.admissible:
+                continue
+            kind = "symmetric" if o.symmetric else "asymmetric"
+            br = continue_branch(param, float(start[k]), float(stop[k]),
+                                 abs(stop[k] - start[k]) / 10.0, fixed, orbit=o, r=model.r,
+                                 d=model.d, branch=kind, switch=kind == "symmetric",
+                                 max_inadmissible=5, max_points=200)
+            for bb in [br] + br.switched:
+                yield from _branch_seeds(model, bb, param, fixed, F)
 
 
 def _range(name, value) -> tuple:

@@ -193,7 +193,10 @@ class _Follower:
                 found.append((loc[0], typ, loc[1], loc[2]))
         if oa.admissible != ob.admissible:
             flag = (lambda z, t: bool(getattr(self.sys.orbit(z), "admissible", False)))
-            tau, z, t = self.tr.bisect(st, flag, oa.admissible)
+            after, before = self.tr.bisect(st, flag, oa.admissible)
+            # at a grazing arrival (impact velocity 0) the maps have a pole: the point just
+            # on the other side stands for the event when the maps fail at the first
+            tau, z, t = after if self.sys.orbit(after[1]) is not None else before
             found.append((tau, "admissibility-loss", z, t))
         p_end = st.z1[-1]
         bound = self.hi if p_end > self.hi else self.lo if p_end < self.lo else None
