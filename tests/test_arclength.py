@@ -171,3 +171,24 @@ def test_new_options_are_checked(kwargs, name):
 def test_max_points_ends_the_branch():
     br = continue_branch("F", 0.3, 0.01, 0.05, {"eta": 0.2, "omega": 1.0}, max_points=7)
     assert len(br) == 7 and br.stopped == "max_points = 7 reached"
+
+
+def test_map_solve_stores_the_asymmetric_branch():
+    """The branch dataset holds the continued symmetric branch (row 0) and the asymmetric
+    branch born at its symmetry-breaking point; at eta = 0.12 the latter is the stable
+    asymmetric orbit the map solver finds there (issue 14: lambda_max 0.821)."""
+    from vines.data.builders import ragged_rows
+    from vines.pipeline import stages
+    spec = {"param": "eta", "start": 0.1, "stop": 0.2, "step": 0.01,
+            "fixed": {"omega": 1.1, "F": 0.3077}}
+    ds = stages.map_solve(spec, model={"r": R_DEFAULT, "d": D_DEFAULT}, code="t", title="t")
+    assert ds["kind"].values.tolist() == ["symmetric", "asymmetric"]
+    assert ds["symmetric"].values.tolist() == [1] * int(ds["row_size"][0]) + [0] * int(
+        ds["row_size"][1])
+    assert abs(float(ds["born_at"][1]) - 0.1496) < 5e-4 and np.isnan(float(ds["born_at"][0]))
+    sb = ds["event_at"].values[ds["event_type"].values == "symmetry-breaking"]
+    assert abs(sb[0] - float(ds["born_at"][1])) < 1e-12
+    eta, lam = ragged_rows(ds, "eta")[1], ragged_rows(ds, "lambda_max")[1]
+    ref = [o for o in find_1to1(0.12, 1.1, 0.3077) if not o.symmetric and o.stable][0]
+    assert abs(ref.lambda_max - 0.821) < 1e-3
+    assert abs(np.interp(0.12, *zip(*sorted(zip(eta, lam)))) - ref.lambda_max) < 5e-3

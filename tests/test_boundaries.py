@@ -138,3 +138,47 @@ def test_api_refuses_bad_ranges():
     with pytest.raises(ParameterError) as err:
         boundaries(0.3, (0.2, 0.1), (0.9, 1.0))
     assert err.value.name == "eta_range"
+
+
+def test_curve_points_lie_in_the_box(curves):
+    """A curve ends on the box side it crosses first; no point lies outside the box."""
+    (e0, e1), (w0, w1) = BOX
+    for c in curves.curves:
+        e, w = c.points.T
+        assert ((e >= e0) & (e <= e1) & (w >= w0) & (w <= w1)).all(), (c.type, c.stopped)
+
+
+def _arrival_omega(F_, lo, hi):
+    """W where the free LO's steady amplitude is 1 (half the clearance): F^2 (1 + d^2 W^2)
+    = (1 - W^2)^2 + d^2 W^2 (forcing F sin + d W F cos, SPEC section 1)."""
+    from scipy.optimize import brentq
+    d = D_DEFAULT
+    return brentq(lambda w: (1 - w * w) ** 2 + (d * w) ** 2 - F_ * F_ * (1 + (d * w) ** 2),
+                  lo, hi, xtol=1e-15)
+
+
+def test_arrival_grazing_line_found_from_the_map_and_matches_the_closed_form():
+    """A symmetric orbit with zero relative velocity at its impacts has the ball at rest
+    and the LO in its free steady state touching both walls: amplitude 1, the same W for
+    every eta. No scan line of this box meets the family; the class change of the coarse
+    stability map seeds it."""
+    box = ((0.5, 1.0), (0.85, 0.95))
+    W = _arrival_omega(0.2, 0.8, 0.95)
+    arrival = [c for c in boundaries(0.2, *box, n_scan=1, n_map=6).curves
+               if c.type == "grazing" and c.graze[1] == "arrival"]
+    assert len(arrival) == 1
+    e, w = arrival[0].points.T
+    np.testing.assert_allclose(w, W, rtol=0, atol=1e-9)
+    assert e.min() == box[0][0] and e.max() == box[0][1]
+    assert not [c for c in boundaries(0.2, *box, n_scan=1, n_map=0).curves
+                if c.type == "grazing" and c.graze[1] == "arrival"]
+
+
+def test_admissibility_loss_at_a_grazing_arrival_is_an_event():
+    """The maps have a pole where the arrival velocity vanishes; the event is still
+    reported, at the closed-form W (to 1e-6: the corrector fails closer to the pole)."""
+    br = continue_branch("omega", 0.896, 0.85, 0.001, {"eta": 0.7, "F": 0.2},
+                         max_inadmissible=5)
+    ev = [e for e in br.events if e["type"] == "admissibility-loss"]
+    assert len(ev) == 1
+    assert abs(ev[0]["at"] - _arrival_omega(0.2, 0.8, 0.95)) < 1e-6

@@ -183,12 +183,14 @@ def crossings(curve: Curve, model, F, omega: float) -> list:
 
 
 def boundaries(F, eta_range, omega_range, r=R_DEFAULT, d=D_DEFAULT, n_scan=5, step=0.01,
-               max_points=400, n_map=25) -> Boundaries:
+               max_points=400, n_map=25, class_map=None) -> Boundaries:
     """Codimension-one curves of 1:1 orbits in the box eta_range x omega_range at F.
 
     ``n_scan`` scan lines per parameter seed the curves; then class changes of an
     ``n_map`` x ``n_map`` stability map farther than 1.5 cells from every kept curve seed
-    more (module docstring, step 4; ``n_map = 0`` skips it)."""
+    more (module docstring, step 4; ``n_map = 0`` skips it). ``class_map`` = (eta, omega,
+    cls): a stability map already computed at this F (``stability_map``), whose class
+    changes are used instead of the n_map x n_map one."""
     F = check_param("F", F)
     box = (_range("eta_range", eta_range), _range("omega_range", omega_range))
     n_scan = check_int("n_scan", n_scan, lo=1, hi=100)
@@ -199,11 +201,14 @@ def boundaries(F, eta_range, omega_range, r=R_DEFAULT, d=D_DEFAULT, n_scan=5, st
     traced = _Traced(model, F, box, step, max_points)
     for seed in _seeds(model, F, box, n_scan):
         traced.add(seed)
-    if n_map >= 2:
-        for edge in _map_edges(model, F, box, n_map):
-            if not traced.explains(edge):
-                for seed in _edge_seeds(model, F, edge):
-                    traced.add(seed)
+    if class_map is not None:
+        edges = class_edges(*class_map)
+    else:
+        edges = _map_edges(model, F, box, n_map) if n_map >= 2 else []
+    for edge in edges:
+        if not traced.explains(edge):
+            for seed in _edge_seeds(model, F, edge):
+                traced.add(seed)
     return Boundaries(F, box[0], box[1], traced.kept)
 
 
@@ -239,18 +244,26 @@ class _Traced:
 
 
 def _map_edges(model, F, box, n_map):
-    """((eta, omega) of both cells, cell size, classes) of every pair of neighbouring cells
-    of an n_map x n_map stability map whose classes differ."""
+    """The class-changing edges (``class_edges``) of an n_map x n_map stability map."""
     from .stability_map import stability_map
     eta, omega = np.linspace(*box[0], n_map), np.linspace(*box[1], n_map)
     cls = stability_map(eta, omega, F, r=model.r, d=model.d, n_threads=1)["cls"]
-    cell = np.array([eta[1] - eta[0], omega[1] - omega[0]])
-    for i in range(n_map):
-        for j in range(n_map):
+    return class_edges(eta, omega, cls)
+
+
+def class_edges(eta, omega, cls):
+    """((eta, omega) of both cells, cell size, their classes) of every pair of neighbouring
+    cells of a stability map (classes ``cls`` over the axes eta, omega) that differ."""
+    eta, omega, cls = np.asarray(eta, float), np.asarray(omega, float), np.asarray(cls)
+    cell = np.array([np.min(np.diff(eta)), np.min(np.diff(omega))])
+    out = []
+    for i in range(eta.size):
+        for j in range(omega.size):
             for i2, j2 in ((i + 1, j), (i, j + 1)):
-                if i2 < n_map and j2 < n_map and cls[i, j] != cls[i2, j2]:
-                    yield ((eta[i], omega[j]), (eta[i2], omega[j2]), cell,
-                           (int(cls[i, j]), int(cls[i2, j2])))
+                if i2 < eta.size and j2 < omega.size and cls[i, j] != cls[i2, j2]:
+                    out.append(((eta[i], omega[j]), (eta[i2], omega[j2]), cell,
+                                (int(cls[i, j]), int(cls[i2, j2]))))
+    return out
 
 
 def _edge_seeds(model, F, edge):

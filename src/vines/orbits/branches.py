@@ -34,7 +34,7 @@ import math
 import numpy as np
 
 from ..core.exact import oscillators
-from ..core.params import ModelParams
+from ..core.params import ModelParams, ParameterError
 from ..core.walls import WALL_L, WALL_R
 from . import shooting as sh
 from .arclength import Step, Tracer
@@ -67,7 +67,11 @@ class FamilySystem:
                            phi=self.m.phi)
 
     def orbit(self, z) -> PeriodicOrbit | None:
-        return orbit_at(self.params(z), self.family, z[:-1])
+        """The orbit at z; None where the maps fail or a step left the valid parameters."""
+        try:
+            return orbit_at(self.params(z), self.family, z[:-1])
+        except ParameterError:
+            return None
 
 
 def orbit_at(p: ModelParams, family: str, u) -> PeriodicOrbit | None:
@@ -147,6 +151,7 @@ class _Follower:
             o = self.sys.orbit(st.z1)
             if o is None:
                 self.stopped = "the maps have no root (end of the branch)"
+                self._leave(st, s)
                 return
             tv = test_values(self.sys.family, o, st.z1, st.t1)
             end = self._events(st, s, o_prev, tv_prev, o, tv)
@@ -163,6 +168,19 @@ class _Follower:
                 self.stopped = "the branch closed on itself"
                 return
             o_prev, tv_prev = o, tv
+
+    def _leave(self, st: Step, s):
+        """A step the maps fail at the end of that crossed an end of the parameter interval
+        (e.g. into eta < 0): the crossing point ends the branch."""
+        p_end = st.z1[-1]
+        bound = self.hi if p_end > self.hi else self.lo if p_end < self.lo else None
+        if bound is None:
+            return
+        loc = self.tr.locate(st, lambda z, t: z[-1] - bound, st.z0[-1] - bound, p_end - bound)
+        if loc is not None:
+            loc[1][-1] = bound
+            if self.add(loc[1], loc[2], s + loc[0]) is not None:
+                self.stopped = "left the parameter interval"
 
     def _closed(self, z) -> bool:
         if len(self.pts) < 5:

@@ -137,6 +137,14 @@ def check_boundaries(config: dict, model: dict, limits: dict) -> None:
             if not lo < hi:
                 raise ConfigError(f"{key}.{dim}_range", f"{[lo, hi]} must be [lo, hi], lo < hi")
         _check_param(f"{key}.F", "F", bd["F"], model)
+        name_map = bd.get("stability_map")
+        if name_map is not None:
+            if name_map not in config["stability_maps"]:
+                raise ConfigError(f"{key}.stability_map", f"{name_map!r} is not a "
+                                  f"stability_maps entry ({sorted(config['stability_maps'])})")
+            if float(config["stability_maps"][name_map]["F"]) != float(bd["F"]):
+                raise ConfigError(f"{key}.stability_map", f"{name_map!r} has F = "
+                                  f"{config['stability_maps'][name_map]['F']}, not {bd['F']}")
 
 
 def check_studies(config: dict, model: dict, limits: dict) -> None:

@@ -181,12 +181,19 @@ def map_solve(spec: dict, *, model: dict, code: str, title: str):
     return builders.branch_dataset(br, attrs)
 
 
-def boundaries(spec: dict, *, model: dict, code: str, title: str):
+def boundaries(spec: dict, *, model: dict, code: str, title: str, stability_path=None):
     """Dataset of the boundary curves (fold, flip, Neimark-Sacker, symmetry-breaking,
     grazing) of 1:1 orbits in the box ``spec['eta_range']`` x ``spec['omega_range']`` at
-    ``spec['F']``."""
+    ``spec['F']``; the class changes of the stability map at ``stability_path`` (a
+    ``stability_map`` dataset at this F), if given, seed the curves no scan line meets."""
     from ..orbits.boundaries import boundaries as curves_at
-    kw = {k: spec[k] for k in ("n_scan", "step", "max_points") if k in spec}
+    kw = {k: spec[k] for k in ("n_scan", "step", "max_points", "n_map") if k in spec}
+    if stability_path is not None:
+        smap = read_dataset(stability_path)
+        if float(smap.attrs["F"]) != float(spec["F"]):
+            raise ValueError(f"{stability_path}: stability map at F = {smap.attrs['F']}, "
+                             f"boundaries at F = {spec['F']}")
+        kw["class_map"] = (smap["eta"].values, smap["omega"].values, smap["cls"].values)
     res = curves_at(float(spec["F"]), spec["eta_range"], spec["omega_range"],
                     r=model["r"], d=model["d"], **kw)
     attrs = provenance_attrs(title=title, config_subset={"spec": spec, "model": model},
