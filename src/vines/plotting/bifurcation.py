@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 import xarray as xr
+from matplotlib import patheffects
 from matplotlib.lines import Line2D
 
 from ..data.builders import ragged_rows
@@ -17,10 +18,12 @@ from .draw import LABELS
 
 #: colour of the asymmetric 1:1 branches (the symmetric one is C_BRANCH, red)
 C_ASYMMETRIC = "tab:blue"
-#: colour and line style of each boundary curve type
-CURVE_STYLES = {"fold": ("tab:cyan", "-"), "flip": ("magenta", "-"),
-                "neimark-sacker": ("lime", "-"), "symmetry-breaking": ("tab:red", "-"),
-                "grazing": ("yellow", "--")}
+#: colour and line style of each boundary curve type (drawn over a thin white halo, so
+#: they show on every class colour and colour map)
+CURVE_STYLES = {"fold": ("tab:blue", "-"), "flip": ("darkmagenta", "-"),
+                "neimark-sacker": ("green", "-"), "symmetry-breaking": ("red", "-"),
+                "grazing": ("saddlebrown", "--")}
+HALO = [patheffects.Stroke(linewidth=2.4, foreground="white"), patheffects.Normal()]
 
 
 # ------------------------------------------------------------------ branches (Figs 6, 15)
@@ -99,7 +102,7 @@ def draw_curves(ax, ds: xr.Dataset) -> set:
     types = ds["curve_type"].values.tolist()
     for typ, e, w in zip(types, etas, omegas):
         colour, ls = CURVE_STYLES[typ]
-        ax.plot(e, w, ls, color=colour, lw=1.1)
+        ax.plot(e, w, ls, color=colour, lw=1.1, path_effects=HALO)
     ax.set_xlim(xlim)
     ax.set_ylim(ylim)
     return set(types)
@@ -119,8 +122,6 @@ def draw_on_panels(fig, axes, F_values, paths):
                       label=t.replace("-", " ") + " curve")
                for t in CURVE_STYLES if t in drawn]
     if handles:
-        leg = fig.legend(handles=handles, loc="outside lower center", ncol=len(handles),
-                         fontsize=8, frameon=True, facecolor="0.35", labelcolor="white",
-                         title=f"boundaries in ({LABELS['eta'].split()[-1]}, "
-                               f"{LABELS['omega'].split()[-1]})", title_fontsize=8)
-        leg.get_title().set_color("white")
+        fig.legend(handles=handles, loc="outside lower center", ncol=len(handles), fontsize=8,
+                   frameon=False, title=f"boundaries in ({LABELS['eta'].split()[-1]}, "
+                                        f"{LABELS['omega'].split()[-1]})", title_fontsize=8)
