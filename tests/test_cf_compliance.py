@@ -1,7 +1,7 @@
 """CF compliance of the pipeline's datasets (docs/cf-compliance.md).
 
 Tiny datasets of every pipeline stage (grid chunk, measures, sweep, branch, stability map,
-time history) are built with the stage functions, written with ``write_dataset`` and checked
+boundary curves, time history) are built with the stage functions, written with ``write_dataset`` and checked
 
 * by the IOOS compliance checker, suite ``cf:1.10``: no high- or medium-priority failure
   except the documented ones (see ``KNOWN``), no checker exception except the documented one;
@@ -37,8 +37,10 @@ STABILITY = {"eta": {"start": 0.05, "stop": 1.0, "num": 3},
 TIMEHISTORY = {"points": [{"eta": 0.05, "omega": 1.0, "F": 0.05},
                           {"eta": 0.2, "omega": 0.9, "F": 0.4}],
                "n_periods": 3, "samples_per_period": 10}
-KINDS = ("grid_chunk", "measures", "sweep", "branch", "stability", "timehistory")
-RAGGED = ("sweep", "timehistory")
+BOUNDARIES = {"F": 0.3077, "eta_range": [0.05, 1.0], "omega_range": [0.7, 1.4], "n_scan": 1,
+              "n_map": 0}
+KINDS = ("grid_chunk", "measures", "sweep", "branch", "stability", "boundaries", "timehistory")
+RAGGED = ("sweep", "branch", "boundaries", "timehistory")
 
 #: documented findings of the IOOS checker (docs/cf-compliance.md): it recognises a DSG
 #: feature only from latitude/longitude/depth/time coordinates, which these parameter-space
@@ -66,6 +68,7 @@ def datasets(tmp_path_factory):
     put("sweep", stages.bifurcation_sweep(SWEEP, model=MODEL, **kw))
     put("branch", stages.map_solve(BRANCH, model=MODEL, **kw))
     put("stability", stages.stability_map(STABILITY, model=MODEL, **kw))
+    put("boundaries", stages.boundaries(BOUNDARIES, model=MODEL, **kw))
     put("timehistory", stages.timehistory(TIMEHISTORY, model=MODEL, simulation=SIM, **kw))
     return out
 

@@ -122,7 +122,7 @@ def test_continue_ranges(args, fragments):
 def test_max_points_is_configurable():
     """4 steps of 0.005 from 0.05 to 0.03: refused with --max-points 3, run with 4."""
     args = ["--param", "eta", "--start", "0.05", "--stop", "0.03", "--step", "0.005",
-            "--omega", "1", "--F", "0.05"]
+            "--omega", "1", "--F", "0.05", "--method", "natural"]
     check(refused("continue", *args, "--max-points", "3"), "--step", "--max-points = 3")
     proc = run_vines("continue", *args, "--max-points", "4", "--json", timeout=120)
     assert proc.returncode == 0, proc.stderr

@@ -46,7 +46,7 @@ def test_periodic_text():
 
 def test_continue_json():
     proc = run_vines("continue", "--param", "eta", "--start", "0.05", "--stop", "0.03",
-                     "--step", "0.005", "--omega", "1", "--F", "0.05", "--json")
+                     "--step", "0.005", "--omega", "1", "--F", "0.05", "--method", "natural", "--json")
     assert proc.returncode == 0, proc.stderr
     out = json.loads(proc.stdout)
     assert {"branch", "events"} <= set(out)
@@ -98,3 +98,43 @@ def test_bad_input_exits_2_with_one_line(cmd, args, fragments):
     assert lines[0].startswith(f"vines {cmd}: error: "), lines[0]
     for frag in fragments:
         assert frag in lines[0], (frag, lines[0])
+
+
+def test_continue_through_the_fold_and_asymmetric_branch():
+    """Issue 14 acceptance through the CLI: fold passing, asymmetric branch ending on the
+    symmetric one, switching."""
+    proc = run_vines("continue", "--param", "F", "--start", "0.3", "--stop", "0.01",
+                     "--eta", "0.2", "--omega", "1", "--json")
+    assert proc.returncode == 0, proc.stderr
+    out = json.loads(proc.stdout)
+    fold = [e for e in out["events"] if e["type"] == "fold"]
+    assert len(fold) == 1 and abs(fold[0]["at"] - 0.01199) < 1e-4
+    assert max(p["F"] for p in out["branch"][fold[0]["index"]:]) > 0.05
+    proc = run_vines("continue", "--param", "eta", "--start", "0.12", "--stop", "0.3",
+                     "--omega", "1.1", "--F", "0.3077", "--branch", "asymmetric", "--json")
+    out = json.loads(proc.stdout)
+    assert out["kind"] == "asymmetric"
+    assert out["branch"][0]["lambda_max"] == pytest.approx(0.821, abs=5e-4)
+    assert out["events"][-1]["type"] == "symmetry-breaking"
+    assert out["events"][-1]["connects"] == "symmetric"
+    assert abs(out["events"][-1]["at"] - 0.1496) < 1e-4
+    proc = run_vines("continue", "--param", "eta", "--start", "0.12", "--stop", "0.3",
+                     "--omega", "1.1", "--F", "0.3077", "--switch")
+    assert proc.returncode == 0, proc.stderr
+    assert "meets the asymmetric branch" in proc.stdout and "asymmetric branch" in proc.stdout
+
+
+@pytest.mark.parametrize("extra, fragments", [
+    (["--branch", "both"], ["--branch", "both"]),
+    (["--method", "secant"], ["--method", "secant"]),
+    (["--max-inadmissible", "0"], ["--max-inadmissible", "0", ">= 1"]),
+    (["--switch", "--method", "natural"], ["--switch", "natural"]),
+    (["--switch", "--branch", "asymmetric"], ["--switch", "asymmetric"]),
+])
+def test_continue_new_options_refused(extra, fragments):
+    proc = run_vines("continue", "--param", "eta", "--start", "0.1", "--stop", "0.2",
+                     "--omega", "1", "--F", "0.1", *extra)
+    assert proc.returncode == 2 and proc.stdout == ""
+    lines = proc.stderr.strip().splitlines()
+    assert len(lines) == 1 and "Traceback" not in proc.stderr, proc.stderr
+    assert all(f in lines[0] for f in fragments), lines[0]

@@ -211,7 +211,8 @@ def _copy_datasets(tmp_path, subdirs):
 @pytest.mark.skipif(not (SMOKE / "measures").is_dir(), reason="no smoke datasets")
 def test_editing_a_figure_script_reruns_only_its_figures(tmp_path):
     _copy_workflow(tmp_path, with_src_copy=True)
-    dst = _copy_datasets(tmp_path, ("grid", "measures", "stability", "timehistories"))
+    dst = _copy_datasets(tmp_path, ("grid", "measures", "stability", "boundaries",
+                                    "timehistories"))
     smoke = ["--configfile", str(tmp_path / "config" / "smoke.yaml")]
     names = ("fig2", "fig16") + TH_FIGURES
     figs = [f"results/smoke/figures/{f}.{e}" for f in names for e in ("pdf", "png")]

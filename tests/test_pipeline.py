@@ -278,6 +278,7 @@ def test_dry_run_plans_the_full_study_and_the_smoke_run(tmp_path):
     assert full["timehistory"] == len(cfg["timehistories"])
     assert full["map_solve"] == len(cfg["branches"])
     assert full["stability_map"] == len(cfg["stability_maps"])
+    assert full["boundaries"] == len(cfg["boundaries"])
     assert all(len(c["eta"]) * len(c["omega"]) * len(c["F"]) <= cfg["chunk_size"]
                for g in cfg["grids"].values() for c in grid_chunks(grid_axes(g), cfg["chunk_size"]))
     smoke = _planned(_smk(tmp_path, "-n", "--configfile", str(tmp_path / "config" / "smoke.yaml")))

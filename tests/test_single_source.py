@@ -48,6 +48,14 @@ def test_timehistory_defaults_equal_the_api():
     assert th["window_samples_per_period"]["default"] == api["window_samples_per_period"]
 
 
+def test_boundaries_defaults_equal_the_api():
+    from vines.orbits.boundaries import boundaries
+    bd = PROPS["boundaries"]["additionalProperties"]["properties"]
+    api = _defaults(boundaries)
+    for key in ("n_scan", "step", "max_points", "n_map"):
+        assert bd[key]["default"] == api[key], key
+
+
 def test_work_precision_defaults_equal_the_api():
     wp = PROPS["work_precision"]["properties"]
     assert wp["dps"]["default"] == DPS_DEFAULT

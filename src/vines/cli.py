@@ -27,7 +27,8 @@ from typing import NoReturn, Sequence
 
 from . import __version__
 from .core.simulation import SOLVERS
-from .core.params import (PARAM_BOUNDS, PARAM_NAMES, RTOL_DEFAULT, RTOL_MAX, RTOL_MIN, D_DEFAULT,
+from .core.params import (BRANCH_KINDS, CONTINUATION_METHODS, MAX_INADMISSIBLE_DEFAULT,
+                          PARAM_BOUNDS, PARAM_NAMES, RTOL_DEFAULT, RTOL_MAX, RTOL_MIN, D_DEFAULT,
                           MAX_IMPACTS_DEFAULT, MAX_IMPACTS_MAX, MAX_POINTS_DEFAULT,
                           MAX_POINTS_MAX, R_DEFAULT, T_END_DEFAULT,
                           T_END_MAX, T_TRANSIENT_DEFAULT, V_STICK_DEFAULT, V_STICK_MAX,
@@ -292,9 +293,11 @@ def _add_continue(subparsers) -> VinesArgumentParser:
     p = subparsers.add_parser(
         "continue",
         help="continue a 1:1 orbit in eta, omega or F and report bifurcation events",
-        description="Natural-parameter continuation (secant predictor, Newton corrector) of "
-                    "the preferred 1:1 orbit at --start; events (fold, flip, neimark-sacker, "
-                    "admissibility-loss, symmetry-breaking) are located to 1e-6.",
+        description="Pseudo-arclength continuation (through folds) of the preferred 1:1 "
+                    "orbit of the chosen --branch at --start, until the parameter leaves "
+                    "[start, stop]; events (fold, flip, neimark-sacker, admissibility-loss, "
+                    "symmetry-breaking) are located along the arclength. --method natural: "
+                    "natural-parameter continuation from --start to --stop (ends at a fold).",
     )
     p.add_argument("--param", choices=_CONT_PARAMS, required=True,
                    help="the parameter to vary")
@@ -308,8 +311,22 @@ def _add_continue(subparsers) -> VinesArgumentParser:
                        help=f"{help} [{allowed}]")
     p.allowed_values["--step"] = "a number > 0 with |stop - start|/step <= max-points"
     p.add_argument("--step", metavar="H", default=None,
-                   help="parameter step [> 0 and >= |stop - start|/max-points; "
-                        "default (stop - start)/100]")
+                   help="parameter step (natural) or largest arclength step (arclength) "
+                        "[> 0 and >= |stop - start|/max-points; default (stop - start)/100]")
+    p.add_argument("--method", choices=CONTINUATION_METHODS, default="arclength",
+                   help="arclength (default: through folds) or natural")
+    p.allowed_values["--method"] = "one of " + ", ".join(CONTINUATION_METHODS)
+    p.add_argument("--branch", choices=BRANCH_KINDS, default="symmetric",
+                   help="the orbit to start from: symmetric (default) or asymmetric")
+    p.allowed_values["--branch"] = "one of " + ", ".join(BRANCH_KINDS)
+    p.add_argument("--switch", action="store_true",
+                   help="also continue the asymmetric branch born at every symmetry-breaking "
+                        "point of the symmetric branch (JSON key switched; arclength only)")
+    p.allowed_values["--max-inadmissible"] = f"an integer >= 1 and <= {MAX_POINTS_MAX}"
+    p.add_argument("--max-inadmissible", metavar="N", default=MAX_INADMISSIBLE_DEFAULT,
+                   help="end the branch after N consecutive non-admissible points "
+                        f"(arclength) [integer >= 1 and <= {MAX_POINTS_MAX}; default "
+                        f"{MAX_INADMISSIBLE_DEFAULT}]")
     p.allowed_values["--max-points"] = f"an integer >= 1 and <= {MAX_POINTS_MAX}"
     p.add_argument("--max-points", metavar="N", default=MAX_POINTS_DEFAULT,
                    help="refuse a step that needs more than N continuation points "
@@ -353,27 +370,97 @@ def _cmd_continue(args: argparse.Namespace) -> int:
         step = check_real("step", args.step, lo=0.0, lo_open=True)
         check_step_points(args.step, abs(values["stop"] - values["start"]), step, max_points,
                           "--max-points")
+    max_inadmissible = check_int("max_inadmissible", args.max_inadmissible, lo=1,
+                                 hi=MAX_POINTS_MAX)
+    if args.switch and (args.method != "arclength" or args.branch != "symmetric"):
+        sub.error(f"argument --switch: not allowed with --method {args.method} --branch "
+                  f"{args.branch} (only with --method arclength --branch symmetric)")
     fixed = {q: getattr(params, q) for q in others}
     from .orbits.continuation import continue_branch
 
     with contextlib.redirect_stdout(sys.stderr):
         br = continue_branch(args.param, values["start"], values["stop"], step, fixed,
-                             r=params.r, d=params.d, max_points=max_points)
+                             r=params.r, d=params.d, max_points=max_points,
+                             method=args.method, branch=args.branch, switch=args.switch,
+                             max_inadmissible=max_inadmissible)
     d = br.to_dict()
     if args.json:
-        out = {"branch": d["branch"], "events": d["events"], "param": args.param,
-               "stopped": d["stopped"]}
-        sys.stdout.write(json.dumps(_jsonable(out), allow_nan=False) + "\n")
+        sys.stdout.write(json.dumps(_jsonable(d), allow_nan=False) + "\n")
     else:
-        lines = [f"continuation in {args.param} from {values['start']:g} to {values['stop']:g}: "
-                 f"{len(d['branch'])} points ({d['stopped']})"]
-        for pt in d["branch"]:
-            lines.append(f"  {args.param} = {pt[args.param]:.6g}  |lambda_max| = "
-                         f"{pt['lambda_max']:.6g}  stable = {pt['stable']}  symmetric = "
-                         f"{pt['symmetric']}  admissible = {pt['admissible']}  "
-                         f"dw_L = {pt['dw_L']:.6g}")
-        for ev in d["events"]:
-            lines.append(f"  event {ev['type']} at {args.param} = {ev['at']:.7g}")
+        sys.stdout.write(_branch_text(d, values) + "\n")
+    sys.stdout.flush()
+    return 0
+
+
+def _branch_text(d: dict, values: dict, indent: str = "") -> str:
+    """Table of a ``Branch.to_dict()`` (and of the branches switched to)."""
+    param = d["param"]
+    lines = [f"{indent}{d['kind']} branch in {param} from {values['start']:g} towards "
+             f"{values['stop']:g}: {len(d['branch'])} points ({d['stopped']})"]
+    for pt in d["branch"]:
+        lines.append(f"{indent}  {param} = {pt[param]:.6g}  |lambda_max| = "
+                     f"{pt['lambda_max']:.6g}  stable = {pt['stable']}  symmetric = "
+                     f"{pt['symmetric']}  admissible = {pt['admissible']}  "
+                     f"dw_L = {pt['dw_L']:.6g}")
+    for ev in d["events"]:
+        con = f" (meets the {ev['connects']} branch)" if ev.get("connects") else ""
+        lines.append(f"{indent}  event {ev['type']} at {param} = {ev['at']:.7g}{con}")
+    for sw in d["switched"]:
+        lines.append(_branch_text(sw, values, indent + "  "))
+    return "\n".join(lines)
+
+
+# --------------------------------------------------------------------------- boundaries
+
+def _add_boundaries(subparsers) -> VinesArgumentParser:
+    p = subparsers.add_parser(
+        "boundaries",
+        help="curves of fold, flip, neimark-sacker, symmetry-breaking and grazing points of "
+             "1:1 orbits in the (eta, omega) plane at fixed F",
+        description="Seed from one-parameter continuations along lines of the box, then "
+                    "continue every codimension-one point of the 1:1 orbits (augmented "
+                    "systems, exact Jacobians) in (eta, omega) at fixed F: the edges of the "
+                    "classes of the stability map (Fig 16).",
+    )
+    p.allowed_values["--F"] = _param_allowed("F")
+    p.add_argument("--F", metavar="F", required=True,
+                   help=f"forcing amplitude A/L [{_param_allowed('F')}]")
+    for name, default in (("eta", (0.05, 1.0)), ("omega", (0.7, 1.4))):
+        flag = f"--{name}-range"
+        p.allowed_values[flag] = f"two numbers lo < hi, each {_param_allowed(name)}"
+        p.add_argument(flag, nargs=2, metavar=("LO", "HI"), default=list(default),
+                       help=f"{name} interval of the box [{p.allowed_values[flag]}; default "
+                            f"{default[0]:g} {default[1]:g}]")
+    opt = p.add_argument_group("model parameters (optional)")
+    for flag, default, help in (("--r", R_DEFAULT, "coefficient of restitution"),
+                                ("--d", D_DEFAULT, "LO damping c/(M w0)")):
+        p.allowed_values[flag] = _param_allowed(flag[2:])
+        opt.add_argument(flag, metavar=flag[2:].upper(), default=default,
+                         help=f"{help} [{_param_allowed(flag[2:])}; default {default:g}]")
+    p.add_argument("--json", action="store_true",
+                   help="print one JSON object on stdout (key: curves)")
+    p.set_defaults(handler=_cmd_boundaries)
+    return p
+
+
+def _cmd_boundaries(args: argparse.Namespace) -> int:
+    params = ModelParams(eta=0.1, omega=1.0, F=args.F, r=args.r, d=args.d)
+    from .orbits.boundaries import boundaries
+
+    with contextlib.redirect_stdout(sys.stderr):
+        res = boundaries(params.F, args.eta_range, args.omega_range, r=params.r, d=params.d)
+    d = res.to_dict()
+    if args.json:
+        sys.stdout.write(json.dumps(_jsonable(d), allow_nan=False) + "\n")
+    else:
+        lines = [f"F = {params.F:g}, eta in {d['eta_range']}, omega in {d['omega_range']}: "
+                 f"{len(d['curves'])} curve(s)"]
+        for c in d["curves"]:
+            (e0, w0), (e1, w1) = c["points"][0], c["points"][-1]
+            where = f" (flight {c['flight']}, {c['wall']})" if "wall" in c else ""
+            lines.append(f"  {c['type']}{where} of {c['family']} orbits: {len(c['points'])} "
+                         f"points from (eta, omega) = ({e0:.4g}, {w0:.4g}) to ({e1:.4g}, "
+                         f"{w1:.4g})")
         sys.stdout.write("\n".join(lines) + "\n")
     sys.stdout.flush()
     return 0
@@ -381,7 +468,7 @@ def _cmd_continue(args: argparse.Namespace) -> int:
 
 # --------------------------------------------------------------------------- main
 
-_COMMANDS = (_add_simulate, _add_periodic, _add_continue)
+_COMMANDS = (_add_simulate, _add_periodic, _add_continue, _add_boundaries)
 
 
 def _value_flags(subparsers_map: dict) -> set[str]:

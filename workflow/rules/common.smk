@@ -42,6 +42,7 @@ CHUNKS = {name: chunk_map(AXES[name], config["chunk_size"]) for name in GRIDS}
 SWEEPS = config["sweeps"]
 BRANCHES = config["branches"]
 SMAPS = config["stability_maps"]
+BOUNDARIES = config["boundaries"]
 THIST = config["timehistories"]
 WPREC = config["work_precision"]
 WPREC_SETTINGS = {k: v for k, v in WPREC.items() if k != "cases"}
@@ -62,6 +63,7 @@ wildcard_constraints:
     sweep="[A-Za-z0-9_.-]+",
     branch="[A-Za-z0-9_.-]+",
     smap="[A-Za-z0-9_.-]+",
+    bnd="[A-Za-z0-9_.-]+",
     th="[A-Za-z0-9_.-]+",
 
 
@@ -74,6 +76,7 @@ def all_datasets():
     out += [f"{RES}/sweeps/{s}.nc" for s in SWEEPS]
     out += [f"{RES}/branches/{b}.nc" for b in BRANCHES]
     out += [f"{RES}/stability/{m}.nc" for m in SMAPS]
+    out += [f"{RES}/boundaries/{b}.nc" for b in BOUNDARIES]
     out += [f"{RES}/timehistories/{t}.nc" for t in THIST]
     out += [f"{RES}/workprecision/{c}.nc" for c in WPREC["cases"]]
     out += [f"{RES}/convergence/{s}.nc" for s in CONV]

@@ -1,7 +1,7 @@
 # Figure inputs and targets: FIG_INPUTS, REQUESTED_FIGURES, figure_rule, figure_script,
 # fig_out, all_figures, all_targets. A figure takes its datasets by name from the config
-# sections: grids, sweeps, branches, stability maps and time histories named `figN` or
-# `figN_<anything>` (see docs/figures.md). A figure whose datasets are not all configured
+# sections: grids, sweeps, branches, stability maps, boundaries and time histories named
+# `figN` or `figN_<anything>` (see docs/figures.md). A figure whose datasets are not all configured
 # (e.g. a test config) is not requested. Included by workflow/rules/figures.smk.
 
 
@@ -26,6 +26,10 @@ def _smaps(p):
     return _named(SMAPS, p, "stability")
 
 
+def _boundaries(p):
+    return _named(BOUNDARIES, p, "boundaries")
+
+
 def _th(p):
     return _named(THIST, p, "timehistories")
 
@@ -42,12 +46,13 @@ FIG_INPUTS = {
     "fig9": {"th": _th("fig9")},
     "fig10": {"th": _th("fig10")},
     "fig11": {"measures": _measures("fig11"), "th": _th("fig11")},
-    "fig12": {"measures": _measures("fig12"), "stability": _smaps("fig16")},
+    "fig12": {"measures": _measures("fig12"), "stability": _smaps("fig16"),
+              "boundaries": _boundaries("fig16")},
     "fig13": {"measures": _measures("fig12")},
     "fig14": {"sweeps": _sweeps("fig14")},
     "fig14_regimes": {"sweeps": _sweeps("fig14")},   # companion of Fig 14 (not in the paper)
     "fig15": {"sweep": _sweeps("fig15"), "branches": _branches("fig15")},
-    "fig16": {"stability": _smaps("fig16")},
+    "fig16": {"stability": _smaps("fig16"), "boundaries": _boundaries("fig16")},
     # beyond the paper: the solver studies
     "workprecision": {"cases": [f"{RES}/workprecision/{c}.nc" for c in WPREC["cases"]]},
     "convergence": {s: f"{RES}/convergence/{s}.nc" if s in CONV else ""

@@ -53,6 +53,9 @@ STATE_MAX = 1e12              # |z_m0|, |v_m0|, |z_b0|, |v_b0| of the initial st
 RTOL_MIN, RTOL_MAX = 1e-14, 1e-2   # rtol of the RK reference solver
 MAX_POINTS_DEFAULT = 100_000  # continuation points a step may need (``continue_branch``) ...
 MAX_POINTS_MAX = 10_000_000   # ... and the largest max_points allowed
+CONTINUATION_METHODS = ("arclength", "natural")   # ``continue_branch(method=...)``
+BRANCH_KINDS = ("symmetric", "asymmetric")        # the 1:1 orbit families
+MAX_INADMISSIBLE_DEFAULT = 1000   # consecutive non-admissible points that end a branch
 
 #: (lo, lo_open, hi) of each model parameter: lo < x (lo_open) or lo <= x, and x <= hi;
 #: phi is bounded in absolute value

@@ -7,7 +7,9 @@ Names, ``long_name`` and ``units`` come from ``vines.data.schema``. Layouts:
   int, with ``sample_dimension``) of the discrete sampling geometry ``featureType``
   ``timeSeries``: one instance per parameter point, whose (parameter, time) coordinates the
   ``coordinates`` attribute of every data variable names (docs/cf-compliance.md);
-* 1:1 branches over ``point`` (plus ``event``), stability maps over (eta, omega).
+* 1:1 branches (``branch`` instances of ``point`` samples, plus ``event``) and boundary
+  curves (``curve`` instances of ``point`` samples) as contiguous ragged arrays too;
+  stability maps over (eta, omega).
 """
 from __future__ import annotations
 
@@ -15,8 +17,8 @@ import numpy as np
 import xarray as xr
 
 from ..core.conventions import BATCH_FIELDS
-from .schema import (BATCH_ATTRS, BRANCH_ATTRS, COORD_ATTRS, COUNT_DTYPE, DERIVED_ATTRS, DIMS,
-                     FEATURE_TYPE, STABILITY_ATTRS, STABILITY_CLASS_FLAGS,
+from .schema import (BATCH_ATTRS, BOUNDARY_CURVE_ATTRS, BRANCH_ATTRS, COORD_ATTRS, COUNT_DTYPE,
+                     DERIVED_ATTRS, DIMS, FEATURE_TYPE, STABILITY_ATTRS, STABILITY_CLASS_FLAGS,
                      SWEEP_INSTANCE_ATTRS, SWEEP_SAMPLE_ATTRS, TIMEHISTORY_ATTRS, attrs as cf)
 
 #: fill value of a grid point no chunk provided, by dtype kind
@@ -180,27 +182,79 @@ def timehistory_dataset(points: list[dict], th: dict, attrs: dict) -> xr.Dataset
 
 # ------------------------------------------------------------------ orbits
 
+#: per-point variables of a branch dataset (besides eta, omega, F)
+BRANCH_POINT_VARS = ("lambda_max", "stable", "symmetric", "admissible", "dw_L", "dw_R",
+                     "phase_L", "phase_R")
+
+
+def _branch_rows(br) -> list:
+    """The continued branch, then the branches switched onto at its symmetry-breaking
+    points (``Branch.switched``), in that order."""
+    return [br] + list(getattr(br, "switched", []))
+
+
 def branch_dataset(br, attrs: dict) -> xr.Dataset:
-    """A continued 1:1 branch (``orbits.continuation.Branch``) over ``point``, with events."""
-    D = ("point",)
-    data = {k: xr.Variable(D, np.asarray(getattr(br, k)), COORD_ATTRS[k]) for k in DIMS}
-    for k in ("lambda_max", "stable", "symmetric", "admissible", "dw_L", "dw_R",
-              "phase_L", "phase_R"):
-        a = np.asarray(getattr(br, k))
-        if k in ("stable", "symmetric", "admissible"):
-            a = a.astype("i1")
-        data[k] = xr.Variable(D, a, cf(BRANCH_ATTRS, k))
-        if k == "lambda_max":
-            data["abs_eigenvalues"] = xr.Variable(
-                ("point", "eig"), np.asarray(br.abs_eigenvalues).reshape(-1, 4),
-                cf(BRANCH_ATTRS, "abs_eigenvalues"))
-    data["event_type"] = xr.Variable(("event",), np.asarray([e["type"] for e in br.events],
+    """A continued 1:1 branch (``orbits.continuation.Branch``) and the asymmetric branches
+    born at its symmetry-breaking points, as a CF contiguous ragged array: instance
+    ``branch`` (row 0 the continued branch, ``row_size`` points each), samples ``point``
+    in continuation order; events over ``event`` with the branch they lie on."""
+    rows = _branch_rows(br)
+    P = ("point",)
+    cat = {k: np.concatenate([np.asarray(getattr(b, k)) for b in rows])
+           for k in DIMS + BRANCH_POINT_VARS}
+    data = {k: xr.Variable(P, cat[k], COORD_ATTRS[k]) for k in DIMS}
+    for k in BRANCH_POINT_VARS:
+        a = cat[k].astype("i1") if k in ("stable", "symmetric", "admissible") else cat[k]
+        data[k] = xr.Variable(P, a, cf(BRANCH_ATTRS, k))
+    data["abs_eigenvalues"] = xr.Variable(
+        ("point", "eig"), np.concatenate([np.asarray(b.abs_eigenvalues).reshape(-1, 4)
+                                          for b in rows]),
+        cf(BRANCH_ATTRS, "abs_eigenvalues"))
+    B = ("branch",)
+    data["kind"] = xr.Variable(B, np.asarray([b.kind for b in rows], dtype="U16"),
+                               cf(BRANCH_ATTRS, "kind"))
+    data["stopped"] = xr.Variable(B, np.asarray([str(b.stopped) for b in rows], dtype="U64"),
+                                  cf(BRANCH_ATTRS, "stopped"))
+    data["born_at"] = xr.Variable(B, np.asarray(
+        [float(b.born_at["at"]) if getattr(b, "born_at", None) else np.nan for b in rows]),
+        cf(BRANCH_ATTRS, "born_at"))
+    data["row_size"] = count_variable(np.asarray([len(b) for b in rows]), "branch", "point",
+                                      "number of points of each branch")
+    events = [(i, e) for i, b in enumerate(rows) for e in b.events]
+    data["event_type"] = xr.Variable(("event",), np.asarray([e["type"] for _, e in events],
                                                              dtype="U32"),
                                      cf(BRANCH_ATTRS, "event_type"))
-    data["event_at"] = xr.Variable(("event",), np.asarray([float(e["at"]) for e in br.events],
+    data["event_at"] = xr.Variable(("event",), np.asarray([float(e["at"]) for _, e in events],
                                                           dtype=float),
                                    {"long_name": f"{br.param} value of the event", "units": "1"})
-    return xr.Dataset(data, attrs=attrs)
+    data["event_branch"] = xr.Variable(("event",), np.asarray([i for i, _ in events], "i4"),
+                                       cf(BRANCH_ATTRS, "event_branch"))
+    where = " ".join(DIMS)
+    return _dsg(data, attrs, {k: where for k in BRANCH_POINT_VARS + ("abs_eigenvalues",)})
+
+
+def boundaries_dataset(curves: list, F: float, attrs: dict) -> xr.Dataset:
+    """Boundary curves (``orbits.boundaries.Boundaries.curves``) at one F as a CF contiguous
+    ragged array: instance ``curve``, samples ``point`` = (eta, omega) along the curve."""
+    pts = [np.asarray(c.points, float).reshape(-1, 2) for c in curves]
+    allp = np.concatenate(pts) if pts else np.empty((0, 2))
+    inst = {
+        "curve_type": (np.asarray([c.type for c in curves], dtype="U32"),
+                       *BOUNDARY_CURVE_ATTRS["curve_type"]),
+        "family": (np.asarray([c.family for c in curves], dtype="U16"),
+                   *BOUNDARY_CURVE_ATTRS["family"]),
+        "flight": (np.asarray([c.graze[0] if c.graze else 0 for c in curves], "i4"),
+                   *BOUNDARY_CURVE_ATTRS["flight"]),
+        "wall": (np.asarray([c.graze[1] if c.graze else "" for c in curves], dtype="U16"),
+                 *BOUNDARY_CURVE_ATTRS["wall"]),
+    }
+    samples = {q: (allp[:, k], COORD_ATTRS[q]["long_name"], COORD_ATTRS[q]["units"])
+               for k, q in enumerate(("eta", "omega"))}
+    ds = ragged_dataset(inst, samples, np.asarray([len(p) for p in pts], dtype="i8"),
+                        instance_dim="curve", sample_dim="point", attrs={**attrs, "F": float(F)})
+    # a curve point is located by (eta, omega): each names the other as its coordinate
+    ds["eta"].attrs["coordinates"], ds["omega"].attrs["coordinates"] = "omega", "eta"
+    return ds
 
 
 def stability_dataset(eta, omega, res: dict, attrs: dict) -> xr.Dataset:

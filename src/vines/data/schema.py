@@ -79,6 +79,20 @@ BRANCH_ATTRS = {
     "phase_L": ("phase of the L impact", "rad"),
     "phase_R": ("phase of the R impact", "rad"),
     "event_type": ("bifurcation / admissibility event type", ""),
+    "event_branch": ("index of the branch on which the event lies", "1"),
+    "kind": ("orbit family of the branch (symmetric or asymmetric)", ""),
+    "stopped": ("why the continuation of the branch ended", ""),
+    "born_at": ("continued-parameter value of the symmetry-breaking point the branch "
+                "starts from (NaN: the continued branch itself)", "1"),
+}
+
+#: boundary curves (boundaries): one instance per curve, one sample per curve point
+BOUNDARY_CURVE_ATTRS = {
+    "curve_type": ("codimension-one condition along the curve (fold, flip, "
+                   "neimark-sacker, symmetry-breaking, grazing)", ""),
+    "family": ("orbit family of the curve (symmetric or asymmetric)", ""),
+    "flight": ("grazing flight (1: L->R, 2: R->L; 0: not a grazing curve)", "1"),
+    "wall": ("grazing wall (start, target or arrival; empty: not a grazing curve)", ""),
 }
 
 #: stability maps over (eta, omega)

@@ -1,14 +1,20 @@
-"""Natural-parameter continuation of a 1:1 orbit in eta, omega or F.
+"""Continuation of a 1:1 orbit in eta, omega or F: ``continue_branch``.
 
-Predictor: secant through the last two points (the orbit's x_L with unwrapped impact time
-and the flight times, extrapolated linearly in the parameter); corrector: the Newton
-iteration of ``vines.periodic`` on P2∘P1. A failed correction halves the step; when the
-step falls below ``min_step`` the branch has (almost surely) reached a fold, which is
-recorded at the last converged parameter and ends the continuation (no pseudo-arclength:
-the branch is not followed around the fold).
+Two methods:
 
-Events between consecutive points are located by bisection to ``event_tol`` in the
-parameter:
+* ``arclength`` (default): pseudo-arclength continuation of the family's shooting system
+  through folds, events located along the arclength (``branches``); symmetric or
+  asymmetric orbits (``branch``), and with ``switch`` the asymmetric branches born at the
+  symmetric branch's symmetry-breaking points.
+* ``natural``: natural-parameter continuation. Predictor: secant through the last two
+  points (the orbit's x_L with unwrapped impact time and the flight times, extrapolated
+  linearly in the parameter); corrector: the Newton iteration of ``vines.periodic`` on
+  P2∘P1. A failed correction halves the step; when the step falls below ``min_step`` the
+  branch has (almost surely) reached a fold, which is recorded at the last converged
+  parameter and ends the continuation.
+
+Natural mode locates events between consecutive points by bisection to ``event_tol`` in
+the parameter:
 
 * the number of eigenvalues of J_P2 J_P1 outside the unit circle changes: the crossing
   eigenvalue (the one closest to the unit circle at the located point) gives the type:
@@ -21,55 +27,21 @@ parameter:
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
 
 import numpy as np
 
 from ..core.exact import oscillators
 from ..core.walls import WALL_L, WALL_R
-from ..core.params import (MAX_POINTS_DEFAULT, MAX_POINTS_MAX, PARAM_NAMES, D_DEFAULT,
+from ..core.params import (BRANCH_KINDS, CONTINUATION_METHODS, MAX_INADMISSIBLE_DEFAULT,
+                           MAX_POINTS_DEFAULT, MAX_POINTS_MAX, PARAM_NAMES, D_DEFAULT,
                            R_DEFAULT, ModelParams, ParameterError, check_int, check_param,
                            check_real, check_step_points)
+from .branch import EVENT_TYPES, Branch, make_branch
 from .periodic import PeriodicOrbit, find_1to1, solve_orbit
 
 PARAMS = PARAM_NAMES
-EVENT_TYPES = ("fold", "flip", "neimark-sacker", "admissibility-loss", "symmetry-breaking")
 MIRROR = np.diag([-1.0, -1.0, -1.0, 1.0])
-
-
-@dataclass
-class Branch:
-    """A continued 1:1 branch: one entry per converged point, in continuation order."""
-
-    param: str
-    values: np.ndarray
-    eta: np.ndarray
-    omega: np.ndarray
-    F: np.ndarray
-    lambda_max: np.ndarray
-    abs_eigenvalues: np.ndarray          # (n, 4), sorted decreasing
-    stable: np.ndarray
-    symmetric: np.ndarray
-    admissible: np.ndarray
-    dw_L: np.ndarray
-    dw_R: np.ndarray
-    phase_L: np.ndarray
-    phase_R: np.ndarray
-    events: list = field(default_factory=list)
-    orbits: list = field(default_factory=list, repr=False)
-    stopped: str = "done"
-
-    def __len__(self):
-        return len(self.values)
-
-    def to_dict(self) -> dict:
-        pts = [{"eta": float(self.eta[i]), "omega": float(self.omega[i]), "F": float(self.F[i]),
-                "lambda_max": float(self.lambda_max[i]), "stable": bool(self.stable[i]),
-                "symmetric": bool(self.symmetric[i]), "admissible": bool(self.admissible[i]),
-                "dw_L": float(self.dw_L[i])} for i in range(len(self.values))]
-        return {"param": self.param, "branch": pts,
-                "events": [{"type": e["type"], "at": float(e["at"])} for e in self.events],
-                "stopped": self.stopped}
+__all__ = ["continue_branch", "Branch", "EVENT_TYPES"]
 
 
 def _n_outside(o: PeriodicOrbit) -> int:
@@ -145,19 +117,61 @@ def _interp(v, va, oa, vb, ob):
 
 def continue_branch(param: str, start, stop, step=None, fixed: dict | None = None,
                     orbit: PeriodicOrbit | None = None, r=R_DEFAULT, d=D_DEFAULT, phi=0.0,
-                    min_step=1e-6, event_tol=1e-6,
-                    max_points=MAX_POINTS_DEFAULT) -> Branch:
-    """Follow a 1:1 orbit from param = start to stop (both included when reached).
+                    min_step=1e-6, event_tol=1e-6, max_points=MAX_POINTS_DEFAULT,
+                    method: str = "arclength", branch: str = "symmetric",
+                    switch: bool = False,
+                    max_inadmissible: int = MAX_INADMISSIBLE_DEFAULT) -> Branch:
+    """Follow a 1:1 orbit from param = start towards stop; returns a ``Branch``.
 
     ``fixed`` gives the two other parameters of eta/omega/F (not ``param`` itself).
-    ``orbit`` is the starting orbit (default: the preferred orbit of ``find_1to1`` at start:
-    stable and admissible first). ``step`` defaults to (stop - start)/100; its sign is taken
-    from stop - start. A step that needs more than ``max_points`` points (|stop - start|/step
-    > max_points, default 100000, at most 1e7) is refused; ``min_step`` and ``event_tol``
-    lie in [1e-12, 1].
+    ``orbit`` is the starting orbit (default: the preferred orbit of ``find_1to1`` at start
+    of the requested ``branch`` kind, symmetric or asymmetric: stable and admissible first).
+    ``method``: "arclength" (through folds, until the parameter leaves [start, stop], the
+    branch closes, ``max_inadmissible`` consecutive points are non-admissible or
+    ``max_points`` points) or "natural" (from start to stop, ends at a fold).
+    ``step``: the parameter step (natural) or the largest arclength step (arclength, in the
+    norm of the unknowns and the parameter); default (stop - start)/100. A step that needs
+    more than ``max_points`` points (|stop - start|/step > max_points, default 100000, at
+    most 1e7) is refused; ``min_step`` and ``event_tol`` lie in [1e-12, 1]. ``switch``
+    (arclength, symmetric branch): also continue the asymmetric branch born at every
+    symmetry-breaking point (``Branch.switched``).
     """
+    args = _checked(param, start, stop, step, fixed, min_step, event_tol, max_points, method,
+                    branch, switch, max_inadmissible)
+    param, start, stop, step, others = args
+    cont = _Continuer(param, others, r, d, phi)
+    p0 = cont.params(start)                 # validates every parameter
+    cont.params(stop)
+    if orbit is None:
+        cands = [o for o in find_1to1(p0, None, None)
+                 if o.symmetric == (branch == "symmetric")]
+        if not cands:
+            return _make_branch(param, [], [], f"no {branch} 1:1 orbit at start")
+        orbit = cands[0]
+    else:
+        orbit = cont.solve(start, orbit.x_L, *orbit.flight_times)
+        if orbit is None:
+            return _make_branch(param, [], [], "the given orbit does not converge at start")
+    if method == "natural":
+        br = _natural(cont, start, stop, step, orbit, min_step, event_tol)
+        br.kind = "symmetric" if orbit.symmetric else "asymmetric"
+        return br
+    return _arclength(param, start, stop, step, others, orbit, r, d, phi, min_step,
+                      max_points, branch, switch, max_inadmissible)
+
+
+def _checked(param, start, stop, step, fixed, min_step, event_tol, max_points, method,
+             branch, switch, max_inadmissible):
+    """Validated (param, start, stop, step, fixed others) of ``continue_branch``."""
     if not isinstance(param, str) or param not in PARAMS:
         raise ParameterError("param", param, "must be one of eta, omega, F")
+    if method not in CONTINUATION_METHODS:
+        raise ParameterError("method", method, "must be one of arclength, natural")
+    if branch not in BRANCH_KINDS:
+        raise ParameterError("branch", branch, "must be one of symmetric, asymmetric")
+    if switch not in (True, False):
+        raise ParameterError("switch", switch, "must be True or False")
+    check_int("max_inadmissible", max_inadmissible, lo=1, hi=MAX_POINTS_MAX)
     fixed = dict(fixed or {})
     if param in fixed:
         raise ParameterError(param, fixed[param],
@@ -176,27 +190,43 @@ def continue_branch(param: str, start, stop, step=None, fixed: dict | None = Non
     except ParameterError as err:
         raise ParameterError("stop", stop, f"{err.allowed} ({param})") from None
     max_points = check_int("max_points", max_points, lo=1, hi=MAX_POINTS_MAX)
-    min_step = check_real("min_step", min_step, lo=1e-12, hi=1.0)
-    event_tol = check_real("event_tol", event_tol, lo=1e-12, hi=1.0)
+    check_real("min_step", min_step, lo=1e-12, hi=1.0)
+    check_real("event_tol", event_tol, lo=1e-12, hi=1.0)
     if step is None:
         step = (stop - start) / 100.0 if stop != start else 1.0
     step = abs(check_real("step", step))
     if step == 0.0:
         raise ParameterError("step", step, "must be a number != 0")
     check_step_points(step, abs(stop - start), step, max_points)
+    return param, start, stop, step, {q: fixed[q] for q in others}
+
+
+def _arclength(param, start, stop, step, others, orbit, r, d, phi, min_step, max_points,
+               branch, switch, max_inadmissible) -> Branch:
+    from . import branches as bb
+    from . import shooting
+    model = shooting.Model(r, d, phi)
+    kind = "symmetric" if orbit.symmetric else "asymmetric"
+    bounds = (min(start, stop), max(start, stop))
     sign = 1.0 if stop >= start else -1.0
-    cont = _Continuer(param, {q: fixed[q] for q in others}, r, d, phi)
-    p0 = cont.params(start)                 # validates every parameter
-    cont.params(stop)
-    if orbit is None:
-        cands = find_1to1(p0, None, None)
-        if not cands:
-            return _make_branch(param, [], [], "no 1:1 orbit at start")
-        orbit = cands[0]
-    else:
-        orbit = cont.solve(start, orbit.x_L, *orbit.flight_times)
-        if orbit is None:
-            return _make_branch(param, [], [], "the given orbit does not converge at start")
+    kw = dict(step=step, min_step=min_step, max_points=max_points,
+              max_inadmissible=max_inadmissible)
+    br = bb.follow(model, kind, param, others, bb.start_unknowns(orbit, kind), start, bounds,
+                   sign, **kw)
+    if switch and kind == "symmetric":
+        for ev in br.events:
+            if ev["type"] == "symmetry-breaking":
+                sub = bb.switch_at(model, param, others, ev["z"], bounds, **kw)
+                if sub is not None:
+                    sub.born_at = ev
+                    br.switched.append(sub)
+    return br
+
+
+def _natural(cont, start, stop, step, orbit, min_step, event_tol) -> Branch:
+    """Natural-parameter continuation (module docstring)."""
+    sign = 1.0 if stop >= start else -1.0
+    param = cont.param
     pts = [(start, orbit)]
     events = []
     h = step
@@ -258,18 +288,4 @@ def _locate_events(cont, va, oa, vb, ob, events, tol):
 
 
 def _make_branch(param, pts, events, stopped, cont=None) -> Branch:
-    n = len(pts)
-    vals = np.array([v for v, _ in pts], float)
-    orbits = [o for _, o in pts]
-    par = {q: np.empty(n) for q in PARAMS}
-    for i, (v, o) in enumerate(pts):
-        p = o.params
-        par["eta"][i], par["omega"][i], par["F"][i] = p.eta, p.omega, p.F
-    absev = np.array([np.sort(np.abs(o.eigenvalues))[::-1] for o in orbits]).reshape(n, 4)
-    get = lambda name, dt=float: np.array([getattr(o, name) for o in orbits], dtype=dt)  # noqa
-    return Branch(param=param, values=vals, eta=par["eta"], omega=par["omega"], F=par["F"],
-                  lambda_max=get("lambda_max"), abs_eigenvalues=absev,
-                  stable=get("stable", bool), symmetric=get("symmetric", bool),
-                  admissible=get("admissible", bool), dw_L=get("dw_L"), dw_R=get("dw_R"),
-                  phase_L=get("phase_L"), phase_R=get("phase_R"), events=events,
-                  orbits=orbits, stopped=stopped)
+    return make_branch(param, pts, events, stopped)

@@ -126,6 +126,27 @@ def check_maps_and_points(config: dict, model: dict, limits: dict) -> None:
             _check_point(f"timehistories.{name}.points[{i}]", p, model)
 
 
+def check_boundaries(config: dict, model: dict, limits: dict) -> None:
+    """Ranges and F of every boundaries entry are parameters the model accepts."""
+    for name, bd in config["boundaries"].items():
+        key = f"boundaries.{name}"
+        for dim in ("eta", "omega"):
+            lo, hi = bd[f"{dim}_range"]
+            for v in (lo, hi):
+                _check_param(f"{key}.{dim}_range", dim, v, model)
+            if not lo < hi:
+                raise ConfigError(f"{key}.{dim}_range", f"{[lo, hi]} must be [lo, hi], lo < hi")
+        _check_param(f"{key}.F", "F", bd["F"], model)
+        name_map = bd.get("stability_map")
+        if name_map is not None:
+            if name_map not in config["stability_maps"]:
+                raise ConfigError(f"{key}.stability_map", f"{name_map!r} is not a "
+                                  f"stability_maps entry ({sorted(config['stability_maps'])})")
+            if float(config["stability_maps"][name_map]["F"]) != float(bd["F"]):
+                raise ConfigError(f"{key}.stability_map", f"{name_map!r} has F = "
+                                  f"{config['stability_maps'][name_map]['F']}, not {bd['F']}")
+
+
 def check_studies(config: dict, model: dict, limits: dict) -> None:
     wp = config["work_precision"]
     for name, case in wp["cases"].items():
@@ -162,5 +183,5 @@ def check_physical(config: dict) -> None:
                                    ("t_end", "t_transient", "v_stick", "max_impacts",
                                     "root_tol")}, limits)
     for check in (check_grids, check_sweeps, check_branches, check_maps_and_points,
-                  check_studies):
+                  check_boundaries, check_studies):
         check(config, model, limits)

@@ -2,7 +2,7 @@
 
 One function per stage, named as the rule, the rule file and the workflow script:
 ``simulate_grid``, ``extract_measures``, ``bifurcation_sweep``, ``map_solve``,
-``stability_map``, ``timehistory``. Each calls the numerics (``vines.core``,
+``stability_map``, ``boundaries``, ``timehistory``. Each calls the numerics (``vines.core``,
 ``vines.orbits``), lets ``vines.pipeline.execution`` spread independent tasks over dask,
 and hands plain arrays to ``vines.data.builders``. Results are assembled by index, so the
 numbers do not depend on workers, block size, chunk size or scheduler.
@@ -167,15 +167,39 @@ def bifurcation_sweep(spec: dict, *, model: dict, code: str, title: str, n_worke
 # ------------------------------------------------------------------ map-solve, stability-map
 
 def map_solve(spec: dict, *, model: dict, code: str, title: str):
-    """Dataset of one 1:1 branch continued in ``spec['param']`` with stability and events."""
+    """Dataset of one 1:1 branch continued in ``spec['param']`` with stability and events,
+    and (``spec['switch']``, default true) the asymmetric branches born at its
+    symmetry-breaking points."""
     from ..orbits.continuation import continue_branch
     fixed = {k: float(v) for k, v in spec["fixed"].items()}
+    switch = bool(spec.get("switch", True))
     br = continue_branch(spec["param"], spec["start"], spec["stop"], spec["step"], fixed,
-                         r=model["r"], d=model["d"])
+                         r=model["r"], d=model["d"], switch=switch)
     attrs = provenance_attrs(title=title, config_subset={"spec": spec, "model": model},
                              settings=model, code_version=code)
     attrs.update(continued_parameter=spec["param"], stopped=str(br.stopped))
     return builders.branch_dataset(br, attrs)
+
+
+def boundaries(spec: dict, *, model: dict, code: str, title: str, stability_path=None):
+    """Dataset of the boundary curves (fold, flip, Neimark-Sacker, symmetry-breaking,
+    grazing) of 1:1 orbits in the box ``spec['eta_range']`` x ``spec['omega_range']`` at
+    ``spec['F']``; the class changes of the stability map at ``stability_path`` (a
+    ``stability_map`` dataset at this F), if given, seed the curves no scan line meets."""
+    from ..orbits.boundaries import boundaries as curves_at
+    kw = {k: spec[k] for k in ("n_scan", "step", "max_points", "n_map") if k in spec}
+    if stability_path is not None:
+        smap = read_dataset(stability_path)
+        if float(smap.attrs["F"]) != float(spec["F"]):
+            raise ValueError(f"{stability_path}: stability map at F = {smap.attrs['F']}, "
+                             f"boundaries at F = {spec['F']}")
+        kw["class_map"] = (smap["eta"].values, smap["omega"].values, smap["cls"].values)
+    res = curves_at(float(spec["F"]), spec["eta_range"], spec["omega_range"],
+                    r=model["r"], d=model["d"], **kw)
+    attrs = provenance_attrs(title=title, config_subset={"spec": spec, "model": model},
+                             settings=model, code_version=code)
+    attrs.update(eta_range=list(res.eta_range), omega_range=list(res.omega_range))
+    return builders.boundaries_dataset(res.curves, res.F, attrs)
 
 
 def stability_map(spec: dict, *, model: dict, code: str, title: str, n_workers: int = 1):

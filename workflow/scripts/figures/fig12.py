@@ -2,13 +2,15 @@
 W = 1/sqrt(1+eta)) and the KE ratio (d-f), one column per F (grids fig12_*, stability maps
 fig16_*). On (d-f): the stable 1:1 region of the stability map with the same F (white
 outline at |lambda_max| = 1, interpolated between map points), hatched where the grid's
-from-rest run reaches the 1:1 orbit, and the dotted lines W = 1 +- F outside which the LO
-started from rest never reaches the cavity wall."""
+from-rest run reaches the 1:1 orbit, the dotted lines W = 1 +- F outside which the LO
+started from rest never reaches the cavity wall, and the boundary curves of the same F
+(boundaries fig16_*, vines.plotting.bifurcation)."""
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.patches import Patch
 
 import vines.plotting as P
+from vines.plotting import bifurcation as B
 from vines.pipeline.jobs import run_job
 
 
@@ -75,8 +77,10 @@ def main(sm):
             axes[i, j].set_xlabel(P.LABELS["eta"])
             axes[i, j].set_ylabel(P.LABELS["omega"])
             P.panel_label(axes[i, j], i * n + j, rf"$F$ = {P.fmt(F)}")
-    fig.legend(handles=OVERLAY_HANDLES, loc="outside lower center", ncol=2, fontsize=8,
-               frameon=False)
+    curve_handles = B.draw_on_panels(fig, axes[1], [P.fixed_value(g, "F") for g in grids],
+                                     sm.input.boundaries, legend=False)
+    fig.legend(handles=OVERLAY_HANDLES + curve_handles, loc="outside lower center", ncol=3,
+               fontsize=8, frameon=False)
     P.save(fig, sm.output.pdf, sm.output.png)
 
 

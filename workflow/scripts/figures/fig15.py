@@ -1,11 +1,12 @@
 """Fig 15: zoomed bifurcation diagrams (black dots, sweep fig15) with the analytic 1:1
 branch (red, solid stable, dotted unstable) and |lambda| vs eta with the |lambda| = 1 line;
-one row per branch fig15_* (F = 0.3077, W = 0.9 and 1.1). Dots of swept points that sit on
-a stable asymmetric 1:1 orbit (vines.plotting.sweep_regimes) are drawn in blue and labelled:
-the analytic branch drawn is the symmetric one."""
+one row per branch fig15_* (F = 0.3077, W = 0.9 and 1.1), with the asymmetric branches born
+on it (blue lines, vines.plotting.bifurcation). Dots of swept points that sit on a stable
+asymmetric 1:1 orbit (vines.plotting.sweep_regimes) are drawn in blue and labelled."""
 import numpy as np
 
 import vines.plotting as P
+from vines.plotting import bifurcation as B
 from vines.pipeline.jobs import run_job
 
 #: colour of the dots on a stable asymmetric 1:1 orbit
@@ -32,7 +33,8 @@ def main(sm):
     brs = sorted((P.branch(p) for p in sm.input.branches),
                  key=lambda b: float(b["omega"][0]))
     outer_dim = sw.attrs.get("outer_parameter", "omega")
-    fig = P.zoom_figure(sw, brs, outer_dim=outer_dim)
+    fig = P.zoom_figure(sw, B.continued_branches(brs), outer_dim=outer_dim)
+    B.draw_switched(fig, brs)
     codes = P.sweep_regimes(sw)
     for i, br in enumerate(brs):
         label_asymmetric(fig.axes[2 * i], sw, float(br[outer_dim].values[0]), codes)

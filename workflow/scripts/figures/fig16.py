@@ -6,6 +6,7 @@ stable symmetric tongue just below W = 0.5 as what it is; a dashed line marks W 
 from matplotlib.lines import Line2D
 
 import vines.plotting as P
+from vines.plotting import bifurcation as B
 from vines.pipeline.jobs import run_job
 
 #: lower edge of the paper's Omega range (Figs 12, 16): marked when a map extends below it
@@ -43,6 +44,7 @@ def main(sm):
                               label=rf"$\Omega$ = {P.fmt(OMEGA_PAPER_MIN)} (lower edge of "
                               "Fig. 12)"))
     fig.legend(handles=handles, loc="outside right center", fontsize=8, frameon=False)
+    B.draw_on_panels(fig, axes[0], [float(m.attrs["F"]) for m in maps], sm.input.boundaries)
     P.save(fig, sm.output.pdf, sm.output.png)
 
 

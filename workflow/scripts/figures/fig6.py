@@ -2,13 +2,16 @@
 solid stable, dotted unstable) and |lambda| of J_P2 J_P1 vs eta with the |lambda| = 1 line;
 one row per branch fig6_* (F = 0.05, 0.1 at W = 1)."""
 import vines.plotting as P
+from vines.plotting import bifurcation as B
 from vines.pipeline.jobs import run_job
 
 
 def main(sm):
     sw = P.sweep(sm.input.sweep[0])
     brs = sorted((P.branch(p) for p in sm.input.branches), key=lambda b: float(b["F"][0]))
-    fig = P.zoom_figure(sw, brs, outer_dim=sw.attrs.get("outer_parameter", "F"))
+    fig = P.zoom_figure(sw, B.continued_branches(brs),
+                        outer_dim=sw.attrs.get("outer_parameter", "F"))
+    B.draw_switched(fig, brs)
     P.save(fig, sm.output.pdf, sm.output.png, dpi=200)
 
 

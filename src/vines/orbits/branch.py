@@ -1,0 +1,95 @@
+"""The result object of a continued 1:1 branch (``continuation.continue_branch``)."""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..core.params import PARAM_NAMES
+
+EVENT_TYPES = ("fold", "flip", "neimark-sacker", "admissibility-loss", "symmetry-breaking")
+
+
+@dataclass
+class Branch:
+    """A continued 1:1 branch: one entry per point, in continuation order.
+
+    kind        "symmetric" or "asymmetric" (the orbit family followed)
+    arclength   pseudo-arclength of each point from the start (natural mode: |param - start|)
+    events      dicts {type, at (parameter value), eta, omega, F, index (the branch point
+                where it was located), connects (the family met there, symmetry-breaking)}
+    switched    branches started at this branch's symmetry-breaking points (``switch``)
+    stopped     why the continuation ended
+    """
+
+    param: str
+    values: np.ndarray
+    eta: np.ndarray
+    omega: np.ndarray
+    F: np.ndarray
+    lambda_max: np.ndarray
+    abs_eigenvalues: np.ndarray          # (n, 4), sorted decreasing
+    stable: np.ndarray
+    symmetric: np.ndarray
+    admissible: np.ndarray
+    dw_L: np.ndarray
+    dw_R: np.ndarray
+    phase_L: np.ndarray
+    phase_R: np.ndarray
+    events: list = field(default_factory=list)
+    orbits: list = field(default_factory=list, repr=False)
+    stopped: str = "done"
+    kind: str = "symmetric"
+    arclength: np.ndarray | None = None
+    switched: list = field(default_factory=list)
+
+    def __len__(self):
+        return len(self.values)
+
+    def to_dict(self) -> dict:
+        pts = [{"eta": float(self.eta[i]), "omega": float(self.omega[i]), "F": float(self.F[i]),
+                "lambda_max": float(self.lambda_max[i]), "stable": bool(self.stable[i]),
+                "symmetric": bool(self.symmetric[i]), "admissible": bool(self.admissible[i]),
+                "dw_L": float(self.dw_L[i]),
+                "flight_times": [float(s) for s in self.orbits[i].flight_times]}
+               for i in range(len(self.values))]
+        return {"param": self.param, "kind": self.kind, "branch": pts,
+                "events": [_event_dict(e) for e in self.events], "stopped": self.stopped,
+                "switched": [b.to_dict() for b in self.switched]}
+
+
+def _event_dict(e: dict) -> dict:
+    out = {"type": e["type"], "at": float(e["at"])}
+    for key in ("eta", "omega", "F"):
+        if key in e:
+            out[key] = float(e[key])
+    if "index" in e:
+        out["index"] = int(e["index"])
+    if e.get("connects"):
+        out["connects"] = e["connects"]
+    return out
+
+
+def make_branch(param, pts, events, stopped, kind="symmetric", arclength=None) -> Branch:
+    """Branch from [(parameter value, PeriodicOrbit)] in continuation order."""
+    n = len(pts)
+    vals = np.array([v for v, _ in pts], float)
+    orbits = [o for _, o in pts]
+    par = {q: np.empty(n) for q in PARAM_NAMES}
+    for i, (_, o) in enumerate(pts):
+        p = o.params
+        par["eta"][i], par["omega"][i], par["F"][i] = p.eta, p.omega, p.F
+    absev = np.array([np.sort(np.abs(o.eigenvalues))[::-1] for o in orbits]).reshape(n, 4)
+
+    def get(name, dt=float):
+        return np.array([getattr(o, name) for o in orbits], dtype=dt)
+
+    if arclength is None:
+        arclength = np.abs(vals - vals[0]) if n else np.empty(0)
+    return Branch(param=param, values=vals, eta=par["eta"], omega=par["omega"], F=par["F"],
+                  lambda_max=get("lambda_max"), abs_eigenvalues=absev,
+                  stable=get("stable", bool), symmetric=get("symmetric", bool),
+                  admissible=get("admissible", bool), dw_L=get("dw_L"), dw_R=get("dw_R"),
+                  phase_L=get("phase_L"), phase_R=get("phase_R"), events=events,
+                  orbits=orbits, stopped=stopped, kind=kind,
+                  arclength=np.asarray(arclength, float))

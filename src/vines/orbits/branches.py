@@ -1,0 +1,341 @@
+"""Pseudo-arclength continuation of 1:1 branches (symmetric or asymmetric) with events.
+
+The unknowns are those of the family's shooting system (``shooting``) plus the continued
+parameter; ``arclength.Tracer`` follows the curve, through folds. Every accepted point is
+classified on the exact maps (``periodic._orbit``: admissibility, eigenvalues of
+J_P2 J_P1). Test functions of consecutive points (A = Mirror J_P1 the half-map of a
+symmetric orbit, B = J_P2 J_P1):
+
+    fold                 d(param)/d(arclength) (the tangent's parameter component)
+    symmetry-breaking    det(A + I) (symmetric); s1 - s2 (asymmetric: the branch reaches
+                         the symmetric branch, where it ends: the mirror pair counts once)
+    flip                 det(B + I) (asymmetric; on symmetric orbits -1 is not generic)
+    neimark-sacker       det(A (x) A - I) resp. det(B (x) B - I) (second compound matrix:
+                         products of eigenvalue pairs = 1), kept when a complex pair sits
+                         on the unit circle (not a real reciprocal pair)
+    admissibility-loss   the admissibility flag (either direction)
+
+A sign change between two points is located along the arclength (``Tracer.locate``,
+``Tracer.bisect``) and the located point is inserted into the branch.
+
+Termination: the parameter leaves [min(start, stop), max(start, stop)] (the crossing is
+located and kept), the branch closes on itself, ``max_inadmissible`` consecutive points are
+non-admissible, ``max_points`` points, the asymmetric branch reaches the symmetric one, or
+the step falls below ``min_step``.
+
+``switch_at`` starts the asymmetric branch born at a symmetry-breaking point of the
+symmetric branch: the direction is the null vector of the asymmetric system's Jacobian
+there that is not the symmetric branch's tangent.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..core.exact import oscillators
+from ..core.params import ModelParams, ParameterError
+from ..core.walls import WALL_L, WALL_R
+from . import shooting as sh
+from .arclength import Step, Tracer
+from .branch import make_branch
+from .maps import map_kernel
+from .periodic import PeriodicOrbit, _orbit
+
+TESTS = {"symmetric": ("fold", "symmetry-breaking", "neimark-sacker"),
+         "asymmetric": ("fold", "flip", "neimark-sacker", "symmetry-breaking")}
+NS_TOL = 1e-3          # |(|lambda| - 1)| of the complex pair at a located neimark-sacker
+
+
+class FamilySystem:
+    """The shooting system of one family with one free parameter: z = (u, param)."""
+
+    def __init__(self, model: sh.Model, family: str, param: str, fixed: dict):
+        self.m, self.family, self.param, self.fixed = model, family, param, dict(fixed)
+
+    def par(self, z) -> dict:
+        p = dict(self.fixed)
+        p[self.param] = float(z[-1])
+        return p
+
+    def __call__(self, z):
+        return sh.residual_jacobian(self.m, self.family, z[:-1], self.par(z), (self.param,))
+
+    def params(self, z) -> ModelParams:
+        p = self.par(z)
+        return ModelParams(eta=p["eta"], omega=p["omega"], F=p["F"], r=self.m.r, d=self.m.d,
+                           phi=self.m.phi)
+
+    def orbit(self, z) -> PeriodicOrbit | None:
+        """The orbit at z; None where the maps fail or a step left the valid parameters."""
+        try:
+            return orbit_at(self.params(z), self.family, z[:-1])
+        except ParameterError:
+            return None
+
+
+def orbit_at(p: ModelParams, family: str, u) -> PeriodicOrbit | None:
+    """The PeriodicOrbit of shooting unknowns u (maps, admissibility, eigenvalues)."""
+    osc = oscillators(p)[0]
+    x = np.array(u[:4], dtype=float)
+    s1, s2 = sh.flight_times(family, u, p.omega)
+    xR, y2 = np.empty(4), np.empty(4)
+    J1, J2 = np.empty((4, 4)), np.empty((4, 4))
+    f1 = map_kernel(osc, p.eta, p.r, p.omega, p.phi, x, WALL_L, WALL_R, s1, xR, J1)
+    f2 = map_kernel(osc, p.eta, p.r, p.omega, p.phi, xR, WALL_R, WALL_L, s2, y2, J2)
+    if not (math.isfinite(f1) and math.isfinite(f2)):
+        return None
+    res = float(np.max(np.abs(y2 - x - np.array([0.0, 0.0, 0.0, p.period]))))
+    o = _orbit(p, osc, x, xR, J1, J2, np.array([f1, f2]), res)
+    o.J1, o.J2 = J1, J2
+    return o
+
+
+def test_values(family: str, o: PeriodicOrbit, z, t) -> dict:
+    """The test functions of the module docstring at one point."""
+    if family == "symmetric":
+        A = sh.MIRROR @ o.J1
+        out = {"symmetry-breaking": np.linalg.det(A + np.eye(4))}
+    else:
+        A = o.J2 @ o.J1
+        out = {"flip": np.linalg.det(A + np.eye(4)),
+               "symmetry-breaking": o.flight_times[0] - o.flight_times[1]}
+    out["neimark-sacker"] = np.linalg.det(np.array(sh.compound2(A.tolist())) - np.eye(6))
+    out["fold"] = float(t[-1])
+    return out
+
+
+def is_ns(family: str, o: PeriodicOrbit, tol: float = NS_TOL) -> bool:
+    """A complex eigenvalue pair of A (symmetric) or B on the unit circle."""
+    A = sh.MIRROR @ o.J1 if family == "symmetric" else o.J2 @ o.J1
+    ev = np.linalg.eigvals(A)
+    k = int(np.argmin(np.abs(np.abs(ev) - 1.0)))
+    return abs(ev[k].imag) > 1e-6 and abs(abs(ev[k]) - 1.0) < tol
+
+
+class _Follower:
+    """State of one branch continuation (points, events, termination)."""
+
+    def __init__(self, system: FamilySystem, tracer: Tracer, bounds):
+        self.sys, self.tr = system, tracer
+        self.lo, self.hi = bounds
+        self.tr_start = tracer.z.copy()
+        self.pts, self.arc, self.events = [], [], []
+        self.stopped = "done"
+
+    def add(self, z, t, s):
+        o = self.sys.orbit(z)
+        if o is None:
+            return None
+        self.pts.append((float(z[-1]), o))
+        self.arc.append(s)
+        return o, test_values(self.sys.family, o, z, t)
+
+    def run(self, max_points, max_inadmissible):
+        z0, t0 = self.tr.z, self.tr.t
+        got = self.add(z0, t0, 0.0)
+        if got is None:
+            self.stopped = "the start point is no orbit"
+            return
+        o_prev, tv_prev = got
+        s = 0.0
+        n_bad = 0 if o_prev.admissible else 1
+        while True:
+            if len(self.pts) >= max_points:
+                self.stopped = f"max_points = {max_points} reached"
+                return
+            st = self.tr.step()
+            if st is None:
+                self.stopped = "step below min_step (singular point or end of the branch)"
+                return
+            o = self.sys.orbit(st.z1)
+            if o is None:
+                self.stopped = "the maps have no root (end of the branch)"
+                self._leave(st, s)
+                return
+            tv = test_values(self.sys.family, o, st.z1, st.t1)
+            end = self._events(st, s, o_prev, tv_prev, o, tv)
+            s += st.h
+            if end:
+                return
+            self.pts.append((float(st.z1[-1]), o))
+            self.arc.append(s)
+            n_bad = 0 if o.admissible else n_bad + 1
+            if n_bad >= max_inadmissible:
+                self.stopped = f"admissibility lost for good ({max_inadmissible} points)"
+                return
+            if self._closed(st.z1):
+                self.stopped = "the branch closed on itself"
+                return
+            o_prev, tv_prev = o, tv
+
+    def _leave(self, st: Step, s):
+        """A step the maps fail at the end of that crossed an end of the parameter interval
+        (e.g. into eta < 0): the crossing point ends the branch."""
+        p_end = st.z1[-1]
+        bound = self.hi if p_end > self.hi else self.lo if p_end < self.lo else None
+        if bound is None:
+            return
+        loc = self.tr.locate(st, lambda z, t: z[-1] - bound, st.z0[-1] - bound, p_end - bound)
+        if loc is not None:
+            loc[1][-1] = bound
+            if self.add(loc[1], loc[2], s + loc[0]) is not None:
+                self.stopped = "left the parameter interval"
+
+    def _closed(self, z) -> bool:
+        if len(self.pts) < 5:
+            return False
+        z0 = self.tr_start
+        d = z - z0
+        T = sh.period(self.sys.params(z).omega)
+        d[3] = (d[3] + 0.5 * T) % T - 0.5 * T
+        return float(np.sqrt(self.tr.dot(d, d))) < 0.5 * self.tr.h
+
+    def _events(self, st: Step, s, oa, tva, ob, tvb) -> bool:
+        """Locate the events of one step, insert their points; True when the branch ends."""
+        found = []
+        fam = self.sys.family
+        for typ in TESTS[fam]:
+            fa, fb = tva[typ], tvb[typ]
+            if not (np.isfinite(fa) and np.isfinite(fb)) or (fa > 0.0) == (fb > 0.0):
+                continue
+            test = (lambda z, t, typ=typ: self._test(z, t, typ))
+            loc = self.tr.locate(st, test, fa, fb)
+            if typ == "symmetry-breaking" and fam == "asymmetric":
+                loc = self._on_symmetric(st if loc is None else loc)
+                if loc is not None:
+                    found.append((loc[0], typ, loc[1], loc[2]))
+            # a sign change through a pole (the maps' Jacobians blow up where an impact
+            # velocity vanishes) is no event
+            elif loc is not None and abs(test(loc[1], loc[2])) <= 1e-3 * min(abs(fa), abs(fb)):
+                found.append((loc[0], typ, loc[1], loc[2]))
+        if oa.admissible != ob.admissible:
+            flag = (lambda z, t: bool(getattr(self.sys.orbit(z), "admissible", False)))
+            after, before = self.tr.bisect(st, flag, oa.admissible)
+            # at a grazing arrival (impact velocity 0) the maps have a pole: the point just
+            # on the other side stands for the event when the maps fail at the first
+            tau, z, t = after if self.sys.orbit(after[1]) is not None else before
+            found.append((tau, "admissibility-loss", z, t))
+        p_end = st.z1[-1]
+        bound = self.hi if p_end > self.hi else self.lo if p_end < self.lo else None
+        if bound is not None:
+            loc = self.tr.locate(st, lambda z, t: z[-1] - bound, st.z0[-1] - bound,
+                                 p_end - bound)
+            if loc is not None:
+                found.append((loc[0], "bound", loc[1], loc[2]))
+        found.sort(key=lambda f: f[0])
+        for tau, typ, z, t in found:
+            if typ == "bound":
+                z[-1] = bound
+                self.add(z, t, s + tau)
+                self.stopped = "left the parameter interval"
+                return True
+            got = self.add(z, t, s + tau)
+            if got is None:
+                continue
+            o = got[0]
+            if typ == "neimark-sacker" and not is_ns(fam, o):
+                continue
+            p = o.params
+            ev = {"type": typ, "at": float(z[-1]), "eta": p.eta, "omega": p.omega, "F": p.F,
+                  "index": len(self.pts) - 1, "z": z, "t": t}
+            if typ == "symmetry-breaking":
+                ev["connects"] = "asymmetric" if fam == "symmetric" else "symmetric"
+            self.events.append(ev)
+            if typ == "symmetry-breaking" and fam == "asymmetric":
+                self.stopped = "reached the symmetric branch (symmetry-breaking)"
+                return True
+        return False
+
+    def _on_symmetric(self, loc):
+        """The symmetry-breaking point on the symmetric branch near the located point of
+        an asymmetric branch (where the bordered system becomes singular): solved on the
+        symmetric family's augmented system; (tau, z as an asymmetric point, t) or None."""
+        from .augmented import Codim1System, solve
+        if isinstance(loc, Step):
+            tau, z, t = loc.h, loc.z1, loc.t1
+        else:
+            tau, z, t = loc
+        sys = Codim1System(self.sys.m, "symmetric", "symmetry-breaking", (self.sys.param,),
+                           self.sys.fixed)
+        zs = solve(sys, np.append(z[:4], z[-1]))
+        if zs is None:
+            return None
+        T = sh.period(self.sys.params(zs).omega)
+        return tau, np.concatenate([zs[:4], [0.5 * T, zs[-1]]]), t
+
+    def _test(self, z, t, typ):
+        if typ == "fold":
+            return float(t[-1])
+        o = self.sys.orbit(z)
+        if o is None:
+            return math.nan
+        return test_values(self.sys.family, o, z, t)[typ]
+
+
+def follow(model: sh.Model, family: str, param: str, fixed: dict, u0, start: float,
+           bounds, direction, step: float, min_step: float, max_points: int,
+           max_inadmissible: int):
+    """Continue the branch through (u0, start); returns a ``Branch``.
+
+    direction: the initial tangent's orientation (a vector of len(u0) + 1), or the sign of
+    the parameter's initial change (a number).
+    """
+    system = FamilySystem(model, family, param, fixed)
+    z0 = np.append(np.asarray(u0, dtype=float), start)
+    if np.isscalar(direction):
+        d = np.zeros(len(z0))
+        d[-1] = float(direction)
+        direction = d
+    tracer = Tracer(system, z0, direction, h=step, h_min=min_step, h_max=step)
+    f = _Follower(system, tracer, bounds)
+    f.run(max_points, max_inadmissible)
+    for e in f.events:
+        e.pop("t", None)
+    return make_branch(param, f.pts, f.events, f.stopped, kind=family, arclength=f.arc)
+
+
+def start_unknowns(o: PeriodicOrbit, family: str) -> np.ndarray:
+    u = list(o.x_L)
+    if family == "asymmetric":
+        u.append(o.flight_times[0])
+    return np.array(u)
+
+
+def switch_direction(model: sh.Model, param: str, fixed: dict, z_sym, t_sym=None):
+    """(z, v): the symmetric point z_sym = (u, param) as an asymmetric-system point and the
+    unit direction of the asymmetric branch born there."""
+    u = np.asarray(z_sym[:-1], dtype=float)
+    p = dict(fixed)
+    p[param] = float(z_sym[-1])
+    T = sh.period(p["omega"])
+    z = np.concatenate([u, [0.5 * T, z_sym[-1]]])
+    _, Jz = sh.residual_jacobian(model, "asymmetric", z[:-1], p, (param,))
+    V = np.linalg.svd(Jz)[2][-2:]            # the 2-dimensional null space at the branch point
+    # the symmetric branch keeps s1 - T/2 = 0: its tangent has d(s1) = d(T/2)/d(param) dp
+    dT2 = -0.5 * T / p["omega"] if param == "omega" else 0.0
+    c = np.array([0.0, 0.0, 0.0, 0.0, 1.0, -dT2])     # c . v = d(s1 - T/2)
+    v = V.T @ (V @ c)
+    v /= np.linalg.norm(v)
+    return z, v
+
+
+def switch_at(model: sh.Model, param: str, fixed: dict, z_sym, bounds, step: float,
+              min_step: float, max_points: int, max_inadmissible: int):
+    """The asymmetric branch born at the symmetry-breaking point z_sym of the symmetric
+    branch (a ``Branch`` starting one step away from the branch point), or None."""
+    z, v = switch_direction(model, param, fixed, z_sym)
+    system = FamilySystem(model, "asymmetric", param, fixed)
+    tracer = Tracer(system, z, v, h=step, h_min=min_step, h_max=step)
+    h = step
+    while h >= min_step:
+        got = tracer.correct(z + h * v, v, z, h)
+        if got is not None and abs(got[0][4] - z[4]) > 0.1 * h * abs(v[4]):
+            break
+        h *= 0.5
+    else:
+        return None
+    z1 = got[0]
+    br = follow(model, "asymmetric", param, fixed, z1[:-1], z1[-1], bounds, z1 - z, step,
+                min_step, max_points, max_inadmissible)
+    return br

@@ -1,0 +1,175 @@
+"""1:1 orbits as closed-form shooting systems, with exact derivatives (``jets``).
+
+Unlike ``periodic.newton_1to1`` (the impact time solved inside each map) the flight times
+are explicit here, as in multi-segment shooting for hybrid periodic orbits: every
+condition is then a closed-form function of the unknowns and of (eta, omega, F), so the
+derivatives with respect to the parameters, and the second derivatives needed by the
+augmented systems of ``boundaries``, come exactly from the Taylor jets of ``jets``.
+
+Families (unknowns u, residual E(u; eta, omega, F) = 0):
+
+* ``symmetric``: u = (z_m', z_b', z_b, t_L); the L->R flight lasts T/2 and ends on the
+  mirror image of the start: E = (w(T/2) + 1, z_m'(T/2) + z_m', z_b'+ + z_b',
+  z_b(T/2) + z_b) (the conditions of ``periodic._two_flights(sym=True)``).
+* ``asymmetric``: u = (z_m', z_b', z_b, t_L, s1); flights s1 (L->R) and s2 = T - s1:
+  E = (arrival at R, arrival at L, periodicity of z_m', z_b', z_b).
+
+The flight is the closed-form free flight of ``core.flow`` for the underdamped LO
+(0 < d < 2, mass 1, non-resonant particular solution), the impact law that of
+``core.walls``.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..core.params import ParameterError
+from ..core.walls import WALL_L, WALL_R
+from . import jets
+from .jets import cos, exp, sin, sqrt
+
+FAMILIES = ("symmetric", "asymmetric")
+N_UNKNOWNS = {"symmetric": 4, "asymmetric": 5}
+MIRROR = np.diag([-1.0, -1.0, -1.0, 1.0])
+
+
+class Model:
+    """Fixed constants r, d, phi of a shooting system (d in (0, 2): underdamped LO)."""
+
+    def __init__(self, r: float, d: float, phi: float = 0.0):
+        if not 0.0 < d < 2.0:
+            raise ParameterError("d", d, "must lie in (0, 2) for continuation (underdamped "
+                                         "LO with a non-resonant particular solution)")
+        self.r, self.d, self.phi = float(r), float(d), float(phi)
+        self.sigma = 0.5 * d
+        self.wd = math.sqrt(1.0 - self.sigma ** 2)
+
+
+def flight(m: Model, x, s, eta, omega, F, from_wall: int):
+    """Impact at from_wall, then free flight of local duration s from x = (z_m', z_b', z_b,
+    t). Returns (y, gap, w_dot): y = (z_m', z_b', z_b, t) at s, gap = w(s) - (-from_wall)
+    (zero on arrival at the other wall), w_dot = w'(s). Floats or jets throughout."""
+    vm, vb, zb, t = x
+    one = 1.0 + eta
+    vp = ((1.0 - m.r * eta) * vm + eta * (1.0 + m.r) * vb) / one
+    vbp = ((1.0 + m.r) * vm + (eta - m.r) * vb) / one
+    z, v = lo_state(m, zb + from_wall, vp, omega * t + m.phi, s, omega, F)
+    zb1 = zb + vbp * s
+    return (v, vbp, zb1, t + s), z - zb1 + from_wall, v - vbp
+
+
+def lo_state(m: Model, z0, v0, th0, s, omega, F):
+    """(z_m, z_m') at local time s of the forced damped LO from (z0, v0), forcing phase th0."""
+    d = m.d
+    det = 1.0 - omega * omega
+    dw = d * omega
+    den = det * det + dw * dw
+    ps = F * (det + dw * dw) / den
+    pc = -F * d * omega * omega * omega / den
+    th = th0 + omega * s
+    s0, c0, s1, c1 = sin(th0), cos(th0), sin(th), cos(th)
+    zp0, zp10 = ps * s0 + pc * c0, omega * (ps * c0 - pc * s0)
+    zp, zp1 = ps * s1 + pc * c1, omega * (ps * c1 - pc * s1)
+    e = exp(-m.sigma * s)
+    sw, cw = sin(m.wd * s), cos(m.wd * s)
+    S = e * sw / m.wd
+    C = e * cw + m.sigma * S
+    dS = e * cw - m.sigma * S
+    xh, vh = z0 - zp0, v0 - zp10
+    return zp + xh * C + vh * S, zp1 - xh * S + vh * dS
+
+
+def period(omega):
+    return 2.0 * math.pi / omega
+
+
+def residual(m: Model, family: str, u, eta, omega, F) -> list:
+    """E(u; eta, omega, F) of the family (module docstring); floats or jets."""
+    if family == "symmetric":
+        y, gap, _ = flight(m, u[:4], math.pi / omega, eta, omega, F, WALL_L)
+        return [gap, y[0] + u[0], y[1] + u[1], y[2] + u[2]]
+    y1, gap1, _ = flight(m, u[:4], u[4], eta, omega, F, WALL_L)
+    y2, gap2, _ = flight(m, y1, period(omega) - u[4], eta, omega, F, WALL_R)
+    return [gap1, gap2, y2[0] - u[0], y2[1] - u[1], y2[2] - u[2]]
+
+
+def flight_times(family: str, u, omega) -> tuple:
+    T = period(jets.value(omega))
+    s1 = 0.5 * T if family == "symmetric" else jets.value(u[4])
+    return s1, T - s1
+
+
+def residual_jacobian(m: Model, family: str, u, par: dict, free: tuple):
+    """(E, dE/d(u, free params)) at u with par = {eta, omega, F}; ``free`` names the
+    parameters differentiated (in that order, after u)."""
+    n = len(u)
+    z = jets.variables(list(u) + [par[q] for q in free])
+    p = dict(par)
+    for k, q in enumerate(free):
+        p[q] = z[n + k]
+    E = residual(m, family, z[:n], p["eta"], p["omega"], p["F"])
+    return jets.values(E), jets.jacobian(E, len(z))
+
+
+# --------------------------------------------------------------- map Jacobians as jets
+
+def map_jacobian_jets(m: Model, x, s, eta, omega, F, from_wall: int, inner: np.ndarray):
+    """Jacobian (4x4, as in ``maps.map_kernel``) of the map whose flight from x lasts s,
+    as order-1 jets over global variables; x, s, eta, omega, F are given as values and
+    inner[k] is the global gradient of local variable k of (x0..x3, s, eta, omega, F)."""
+    loc = jets.variables([jets.value(q) for q in (*x, s, eta, omega, F)], order=2)
+    y, gap, _ = flight(m, loc[:4], loc[4], loc[5], loc[6], loc[7], from_wall)
+    n = len(loc)
+    dgap = jets.lift(gap, n)
+    J = []
+    for yi in y:
+        dyi = jets.lift(yi, n)
+        J.append([jets.compose(dyi[k] - dyi[4] * dgap[k] / dgap[4], inner)
+                  for k in range(4)])
+    return J
+
+
+def monodromy_jets(m: Model, family: str, u, eta, omega, F):
+    """Half-map (symmetric: Mirror J_P1) or full (asymmetric: J_P2 J_P1) monodromy matrix
+    as order-1 jets over the global variables (u, eta, omega, F)."""
+    nu = len(u)
+    n = nu + 3
+    eye = np.eye(n)
+    ie, io, iF = nu, nu + 1, nu + 2
+    T = period(omega)
+    if family == "symmetric":
+        s_grad = eye[io] * (-0.5 * T / omega)
+        inner = np.array([eye[0], eye[1], eye[2], eye[3], s_grad, eye[ie], eye[io], eye[iF]])
+        J1 = map_jacobian_jets(m, u[:4], 0.5 * T, eta, omega, F, WALL_L, inner)
+        return [[-q for q in row] for row in J1[:3]] + [J1[3]]
+    inner1 = np.array([eye[0], eye[1], eye[2], eye[3], eye[4], eye[ie], eye[io], eye[iF]])
+    J1 = map_jacobian_jets(m, u[:4], u[4], eta, omega, F, WALL_L, inner1)
+    zv = jets.variables(list(u) + [eta, omega, F])
+    y1, _, _ = flight(m, zv[:4], zv[4], zv[5], zv[6], zv[7], WALL_L)
+    s2_grad = -eye[4] + eye[io] * (-T / omega)
+    inner2 = np.array([y1[0].g, y1[1].g, y1[2].g, y1[3].g, s2_grad, eye[ie], eye[io],
+                       eye[iF]])
+    J2 = map_jacobian_jets(m, [q.v for q in y1], T - u[4], eta, omega, F, WALL_R, inner2)
+    return matmul(J2, J1)
+
+
+def matmul(A, B):
+    n = len(A)
+    return [[sum((A[i][k] * B[k][j] for k in range(1, n)), A[i][0] * B[0][j])
+             for j in range(n)] for i in range(n)]
+
+
+def shifted(A, c):
+    """A + c I (lists of floats/jets)."""
+    return [[A[i][j] + (c if i == j else 0.0) for j in range(len(A))] for i in range(len(A))]
+
+
+def compound2(A):
+    """Second compound matrix (eigenvalues lambda_i lambda_j, i < j) of a 4x4 matrix."""
+    pairs = [(p, q) for p in range(len(A)) for q in range(p + 1, len(A))]
+    return [[A[p][r] * A[q][s] - A[p][s] * A[q][r] for (r, s) in pairs] for (p, q) in pairs]
+
+
+def jacobian_float(J) -> np.ndarray:
+    return np.array([[jets.value(q) for q in row] for row in J])
