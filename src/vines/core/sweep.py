@@ -40,10 +40,29 @@ def sweep_point(params: ModelParams, state, t_run: float, n_record: int, v_stick
                         state0=state)
     raw = run_exact(p, st, record_from=st.t_transient, periodic_shortcut=periodic_shortcut)
     fs = raw.solver_info["final_state"]
-    nxt = (float(fs[0]), float(fs[1]), float(fs[2]), float(fs[3]))
+    nxt = inside_cavity(float(fs[0]), float(fs[1]), float(fs[2]), float(fs[3]))
     if raw.status != "ok" or not np.all(np.isfinite(fs)):
         nxt = (0.0, 0.0, 0.0, 0.0)
     return raw, st, nxt, p.omega * raw.t_last + p.phi
+
+
+#: largest excess of |z_m - z_b| over 1, in units of the state's size, that is round-off
+WALL_ROUNDOFF = 8 * np.finfo(float).eps
+
+
+def inside_cavity(z_m, v_m, z_b, v_b) -> tuple:
+    """The state with z_b moved by round-off so that |z_m - z_b| <= 1 holds in floating point.
+
+    A ball at rest on a wall far from the origin (|z| ~ 10) can end a run 1 ulp outside the
+    cavity (z_m and z_b are kept separately); ``state0`` refuses |z_m - z_b| > 1. Larger
+    excesses are left alone (and refused downstream)."""
+    w = z_m - z_b
+    excess = abs(w) - 1.0
+    if 0.0 < excess <= WALL_ROUNDOFF * max(1.0, abs(z_m), abs(z_b)):
+        z_b = z_m - math.copysign(1.0, w)
+        while abs(z_m - z_b) > 1.0:
+            z_b = math.nextafter(z_b, z_m)
+    return z_m, v_m, z_b, v_b
 
 
 def bifurcation_sweep(param, values, *, eta=None, omega=None, F=None, r=R_DEFAULT, d=D_DEFAULT,
