@@ -169,12 +169,19 @@ def bifurcation_sweep(spec: dict, *, model: dict, code: str, title: str, n_worke
 def map_solve(spec: dict, *, model: dict, code: str, title: str):
     """Dataset of one 1:1 branch continued in ``spec['param']`` with stability and events,
     and (``spec['switch']``, default true) the asymmetric branches born at its
-    symmetry-breaking points."""
+    symmetry-breaking points.
+
+    The branch itself is continued in natural-parameter steps over the whole interval
+    [start, stop], as the paper draws it (admissible or not at every step); the asymmetric
+    branches are those a pseudo-arclength run of the same branch switches onto (that run
+    may end before ``stop``, e.g. after a long non-admissible stretch)."""
     from ..orbits.continuation import continue_branch
     fixed = {k: float(v) for k, v in spec["fixed"].items()}
-    switch = bool(spec.get("switch", True))
-    br = continue_branch(spec["param"], spec["start"], spec["stop"], spec["step"], fixed,
-                         r=model["r"], d=model["d"], switch=switch)
+    args = (spec["param"], spec["start"], spec["stop"], spec["step"], fixed)
+    br = continue_branch(*args, r=model["r"], d=model["d"], method="natural")
+    if bool(spec.get("switch", True)):
+        br.switched = continue_branch(*args, r=model["r"], d=model["d"], method="arclength",
+                                      switch=True).switched
     attrs = provenance_attrs(title=title, config_subset={"spec": spec, "model": model},
                              settings=model, code_version=code)
     attrs.update(continued_parameter=spec["param"], stopped=str(br.stopped))
