@@ -71,6 +71,12 @@ def chunk_files(wildcards):
     return [f"{RES}/grid/{wildcards.grid}/chunk_{k}.nc" for k in CHUNKS[wildcards.grid]]
 
 
+def boundaries_seed_map(wildcards):
+    """The stability map whose class changes seed the boundary curves (key stability_map)."""
+    name = BOUNDARIES[wildcards.bnd].get("stability_map")
+    return [f"{RES}/stability/{name}.nc"] if name else []
+
+
 def all_datasets():
     out = [f"{RES}/measures/{g}.nc" for g in GRIDS]
     out += [f"{RES}/sweeps/{s}.nc" for s in SWEEPS]
