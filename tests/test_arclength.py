@@ -187,8 +187,7 @@ def test_map_solve_stores_the_asymmetric_branch():
         ds["row_size"][1])
     assert abs(float(ds["born_at"][1]) - 0.1496) < 5e-4 and np.isnan(float(ds["born_at"][0]))
     sb = ds["event_at"].values[ds["event_type"].values == "symmetry-breaking"]
-    # the stored branch is continued in natural steps: its event is located to event_tol
-    assert abs(sb[0] - float(ds["born_at"][1])) < 1e-6
+    assert abs(sb[0] - float(ds["born_at"][1])) < 1e-12
     eta, lam = ragged_rows(ds, "eta")[1], ragged_rows(ds, "lambda_max")[1]
     ref = [o for o in find_1to1(0.12, 1.1, 0.3077) if not o.symmetric and o.stable][0]
     assert abs(ref.lambda_max - 0.821) < 1e-3

@@ -166,6 +166,12 @@ def bifurcation_sweep(spec: dict, *, model: dict, code: str, title: str, n_worke
 
 # ------------------------------------------------------------------ map-solve, stability-map
 
+#: parameter tolerance of the events of a stored branch (the smallest continue_branch
+#: accepts): a symmetry-breaking event then coincides with the exactly solved start of the
+#: asymmetric branch switched onto there
+BRANCH_EVENT_TOL = 1e-12
+
+
 def map_solve(spec: dict, *, model: dict, code: str, title: str):
     """Dataset of one 1:1 branch continued in ``spec['param']`` with stability and events,
     and (``spec['switch']``, default true) the asymmetric branches born at its
@@ -178,7 +184,8 @@ def map_solve(spec: dict, *, model: dict, code: str, title: str):
     from ..orbits.continuation import continue_branch
     fixed = {k: float(v) for k, v in spec["fixed"].items()}
     args = (spec["param"], spec["start"], spec["stop"], spec["step"], fixed)
-    br = continue_branch(*args, r=model["r"], d=model["d"], method="natural")
+    br = continue_branch(*args, r=model["r"], d=model["d"], method="natural",
+                         event_tol=BRANCH_EVENT_TOL)
     if bool(spec.get("switch", True)):
         br.switched = continue_branch(*args, r=model["r"], d=model["d"], method="arclength",
                                       switch=True).switched
