@@ -1,13 +1,19 @@
-"""Stale numba cache files are removed when any vines source changes."""
-from vines._numba_cache import STAMP, refresh
+"""Stale numba cache files are removed when a source of the compiled subpackages changes."""
+import re
+from pathlib import Path
+
+import vines
+from vines._numba_cache import COMPILED_SUBPACKAGES, STAMP, refresh
 
 
 def _pkg(tmp_path):
-    (tmp_path / "flow.py").write_text("x = 1\n")
-    (tmp_path / "maps.py").write_text("y = 2\n")
-    cache = tmp_path / "__pycache__"
+    for rel, text in (("core/flow.py", "x = 1\n"), ("orbits/maps.py", "y = 2\n"),
+                      ("plotting/draw.py", "z = 3\n"), ("cli.py", "c = 4\n")):
+        (tmp_path / rel).parent.mkdir(exist_ok=True)
+        (tmp_path / rel).write_text(text)
+    cache = tmp_path / "orbits" / "__pycache__"
     cache.mkdir()
-    for name in ("maps.f-10.py311.nbi", "maps.f-10.py311.1.nbc", "flow.cpython-311.pyc"):
+    for name in ("maps.f-10.py311.nbi", "maps.f-10.py311.1.nbc", "maps.cpython-311.pyc"):
         (cache / name).write_bytes(b"compiled")
     return cache
 
@@ -15,12 +21,33 @@ def _pkg(tmp_path):
 def test_cache_kept_while_sources_unchanged_and_dropped_after_a_change(tmp_path):
     cache = _pkg(tmp_path)
     refresh(tmp_path)                         # first import: no stamp yet -> clean start
-    assert (cache / STAMP).exists()
+    assert (tmp_path / "__pycache__" / STAMP).exists()
     (cache / "maps.f-10.py311.nbi").write_bytes(b"compiled")
     assert refresh(tmp_path) is False         # unchanged sources keep the cache
     assert (cache / "maps.f-10.py311.nbi").exists()
-    (tmp_path / "flow.py").write_text("x = 3\n")   # an inlined callee changes
+    (tmp_path / "core" / "flow.py").write_text("x = 3\n")   # an inlined callee changes
     assert refresh(tmp_path) is True
     assert not list(cache.glob("*.nb[ic]"))
-    assert (cache / "flow.cpython-311.pyc").exists()   # bytecode is Python's business
+    assert (cache / "maps.cpython-311.pyc").exists()   # bytecode is Python's business
     assert refresh(tmp_path) is False
+
+
+def test_edits_outside_the_compiled_subpackages_keep_the_cache(tmp_path):
+    cache = _pkg(tmp_path)
+    refresh(tmp_path)
+    (cache / "maps.f-10.py311.nbi").write_bytes(b"compiled")
+    (tmp_path / "plotting" / "draw.py").write_text("z = 4\n")
+    (tmp_path / "cli.py").write_text("c = 5\n")
+    assert refresh(tmp_path) is False
+    assert (cache / "maps.f-10.py311.nbi").exists()
+
+
+def test_every_module_with_numba_code_is_in_a_compiled_subpackage():
+    """The stamp covers all compiled code: no numba function outside those subpackages."""
+    pkg = Path(vines.__file__).parent
+    compiled = [f.relative_to(pkg) for f in pkg.rglob("*.py")
+                if re.search(r"@(numba\.|nb\.)?(njit|jit|vectorize|cfunc)\b|numba\.(njit|jit)\(",
+                             f.read_text())]
+    assert compiled, "no numba functions found: the pattern is wrong"
+    outside = [str(f) for f in compiled if f.parts[0] not in COMPILED_SUBPACKAGES]
+    assert not outside, f"numba code outside {COMPILED_SUBPACKAGES}: {outside}"

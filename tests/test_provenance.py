@@ -100,3 +100,18 @@ def test_jobs_run_their_own_checkout_not_another_on_pythonpath(tmp_path):
             os.environ["PYTHONPATH"] = saved
     ds = read_dataset(b / "results" / "tiny" / "timehistories" / "th.nc")
     assert ds.attrs["code_version"] == code_version(COMPUTE, b / "src" / "vines")
+
+
+def test_write_dataset_writes_dask_backed_and_in_memory_data_alike(tmp_path):
+    """The plain-lock writer must not drop lazily computed (dask) variables."""
+    import dask.array as da
+    import xarray as xr
+    cf = {"long_name": "a value", "units": "1"}
+    values = np.linspace(0.0, 1.0, 10)
+    lazy = xr.Dataset({"a": ("x", da.from_array(values, chunks=3), cf)},
+                      coords={"x": ("x", np.arange(10), cf)})
+    eager = lazy.compute()
+    write_dataset(lazy, tmp_path / "lazy.nc")
+    write_dataset(eager, tmp_path / "eager.nc")
+    np.testing.assert_array_equal(read_dataset(tmp_path / "lazy.nc")["a"].values, values)
+    assert (tmp_path / "lazy.nc").read_bytes() == (tmp_path / "eager.nc").read_bytes()

@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import numpy as np
 import xarray as xr
-from scipy.interpolate import RegularGridInterpolator
 
 #: margin given to grid points without an admissible 1:1 orbit (cls 0, lambda_max NaN)
 NO_ORBIT_MARGIN = -1.0
@@ -29,6 +28,7 @@ def stable_at(smap: xr.Dataset, eta, omega) -> np.ndarray:
     """True at the points (omega x eta, shape (len(omega), len(eta))) inside the stable 1:1
     region of ``smap`` (bilinear interpolation of ``stability_margin``); False outside the
     map's range."""
+    from scipy.interpolate import RegularGridInterpolator  # only figures that outline need it
     f = RegularGridInterpolator((smap["omega"].values, smap["eta"].values),
                                 stability_margin(smap), bounds_error=False,
                                 fill_value=NO_ORBIT_MARGIN)
