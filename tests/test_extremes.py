@@ -389,6 +389,24 @@ def test_long_runs_to_1e5_complete(eta, omega, F, opts):
     assert np.all(res.impact_dw * res.impacts["wall"] > 0)
 
 
+@pytest.mark.parametrize("t_end", [1e7, 1e9])
+def test_no_impact_runs_to_1e9_settle_on_the_linear_response(t_end):
+    """F 0.001 at resonance: the LO never reaches the ball, so its steady amplitude is that
+    of the LO alone (eta only enters at impacts). Runs with t_transient = t_end / 2 used to
+    stall (the section times t_tr + j T carry ulp(t_tr) of rounding, 5e-8 here, so returns
+    never agreed to 2e-10 and the 200 000-step segment limit ended the run); a periodic
+    end state without events is now one recorded segment, not one per period."""
+    res = vines.simulate(0.5, 1.0, 0.001, t_end=t_end, t_transient=t_end / 2)
+    a_lin = float(stuck_amplitude(0.0, 1.0, 0.001, d=D_DEFAULT))
+    assert res.status == "ok" and res.n_impacts == 0 and res.ke_ratio == 0.0
+    assert math.isfinite(res.shortcut_time) and res.shortcut_time < 1e4
+    # the phase of a time ~t_end is known to ulp(t_end) (1.2e-7 at 1e9): that bounds it
+    assert abs(res.xmax - a_lin) <= 1e-7 * a_lin
+    late = res.state_at(np.array([t_end / 2, t_end]))
+    assert np.all(np.abs(late[0]) <= a_lin * (1 + 1e-7))
+    assert np.all(np.abs(late[0] - late[2]) < 1.0)
+
+
 # ------------------------------------------------------------------ regressions of the fixes
 
 def test_safe_step_has_no_cancellation_when_leaving_a_wall():

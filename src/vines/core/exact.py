@@ -289,14 +289,18 @@ def _replicate(rows: np.ndarray, t_s: float, P: float, t_end: float) -> np.ndarr
 def _periodic_records(run: KernelRun, sec, orbit: _Orbit) -> tuple:
     """(impacts, segments) from record_from to t_end: the actual run's before t_s, then the
     orbit's period repeated (the same records an uninterrupted run would produce, to the
-    detection tolerance)."""
+    detection tolerance). An orbit without events (no impact, no stick or release) is one
+    segment from t_s, as the kernel would record it: memory does not grow with t_end."""
     t_s, P, t_end = orbit.t_s, orbit.P, run.t_end
     imp = run.imp[:int(run.cnt[eng.C_NIMP_REC])]
     seg = run.seg[:int(run.cnt[eng.C_NSEG_REC])]
     one_imp = orbit.one.imp[:int(orbit.one.cnt[eng.C_NIMP_REC])]
     one_seg = orbit.one.seg[:int(orbit.one.cnt[eng.C_NSEG_REC])]
     rep_imp = _replicate(one_imp[one_imp[:, 0] < t_s + P], t_s, P, t_end)
-    rep_seg = _replicate(one_seg[one_seg[:, 0] < t_s + P], t_s, P, t_end)
+    if one_imp.shape[0] == 0 and one_seg.shape[0] == 1:
+        rep_seg = one_seg       # no events: one segment from t_s on (not one per period)
+    else:
+        rep_seg = _replicate(one_seg[one_seg[:, 0] < t_s + P], t_s, P, t_end)
     lo = run.record_from
     rep_imp = rep_imp[rep_imp[:, 0] >= lo]
     rep_seg = rep_seg[max(np.searchsorted(rep_seg[:, 0], lo, side="right") - 1, 0):]

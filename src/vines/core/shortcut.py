@@ -78,6 +78,19 @@ I_K, I_J, I_FOUND, I_PMAX, I_NCONF, I_KSTART, I_NFAR, I_REST = range(8)
 F_T, F_TTR, F_TSTOP, F_SECTOL, F_ERRTOL, F_REF, F_FAR = range(7)
 
 
+def section_time_floor(T: float, t_transient: float, t_end: float) -> float:
+    """Relative change of the state over the rounding of the section times.
+
+    t_k = t_transient + j T is rounded to ~ulp(max(|t_transient|, |t_end|)); the state
+    moves at a relative rate of about max(1, omega) (natural frequency 1), so two returns
+    of an exactly periodic orbit can differ by this much. It is ~4e-12 for the defaults
+    (far below SEC_TOL) and ~4e-9 for t_transient = 2.5e6; the tolerances are never
+    tighter than it, or such runs would never be found periodic.
+    """
+    rate = max(1.0, 2.0 * math.pi / T)
+    return 4.0 * rate * math.ulp(max(abs(t_transient), abs(t_end)))
+
+
 def new_detector(T: float, t_transient: float, t_start: float, t_end: float,
                  p_max: int = P_MAX) -> tuple:
     """Detector state (hist, dr, ist, fst) for sections t_transient + j T > t_start.
@@ -95,7 +108,10 @@ def new_detector(T: float, t_transient: float, t_start: float, t_end: float,
     ist[2, :] = -1
     fst[0, F_T], fst[0, F_TTR] = T, t_transient
     fst[0, F_TSTOP] = t_end - END_MARGIN * T
-    fst[0, F_SECTOL], fst[0, F_ERRTOL], fst[0, F_REF] = SEC_TOL, ERR_TOL, DECAY_REF
+    floor = section_time_floor(T, t_transient, t_end)
+    fst[0, F_SECTOL] = max(SEC_TOL, floor)
+    fst[0, F_ERRTOL] = max(ERR_TOL, 2.0 * floor)
+    fst[0, F_REF] = DECAY_REF
     fst[0, F_FAR] = FAR
     return hist, dr, ist, fst
 
