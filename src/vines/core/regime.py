@@ -24,6 +24,8 @@ N_STROBE = 64
 def strobe_times(period: float, t_transient: float, t_end: float, n: int = N_STROBE) -> np.ndarray:
     """The last n stroboscopic times t_transient + k T inside the window."""
     k_max = int(np.floor((t_end - t_transient) / period + 1e-12))
+    if t_transient + k_max * period > t_end:     # a window of whole periods, rounded up
+        k_max -= 1
     k = np.arange(max(0, k_max - n + 1), k_max + 1)
     return t_transient + k * period
 
