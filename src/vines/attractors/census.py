@@ -27,7 +27,8 @@ import numpy as np
 from ..core.exact import oscillators
 from ..core.params import (D_DEFAULT, L_HALF_M, MAX_IMPACTS_DEFAULT, R_DEFAULT,
                            ROOT_TOL_DEFAULT, T_END_DEFAULT, T_TRANSIENT_DEFAULT,
-                           V_STICK_DEFAULT, ModelParams, SolverSettings)
+                           V_STICK_DEFAULT, ModelParams, ParameterError,
+                           SolverSettings)
 from ..core.shortcut import rel_diff
 from .endstate import EndState, settle, settle_states
 from .orbit import one_period, section_of_1to1
@@ -237,18 +238,30 @@ def _place_from_rest(groups: list, rest: EndState, T: float) -> _Group | None:
     return g
 
 
+def _check_states(states) -> np.ndarray:
+    """Given initial states as an (n, 4) array, each a valid ``state0``."""
+    arr = np.asarray(states, dtype=float)
+    if arr.ndim != 2 or arr.shape[1] != 4 or arr.shape[0] == 0:
+        raise ParameterError("states", f"shape {arr.shape}", "must be an (n, 4) array, n >= 1")
+    for row in arr:
+        SolverSettings(state0=tuple(row))       # raises ParameterError for a bad state
+    return arr
+
+
 def census(eta, omega, F, *, r=R_DEFAULT, d=D_DEFAULT, n=256, seed=0, box=DEFAULT_BOX,
-           t_end=T_END_DEFAULT, t_transient=T_TRANSIENT_DEFAULT, v_stick=V_STICK_DEFAULT,
-           max_impacts=MAX_IMPACTS_DEFAULT, root_tol=ROOT_TOL_DEFAULT,
-           n_threads=None) -> Census:
+           states=None, t_end=T_END_DEFAULT, t_transient=T_TRANSIENT_DEFAULT,
+           v_stick=V_STICK_DEFAULT, max_impacts=MAX_IMPACTS_DEFAULT,
+           root_tol=ROOT_TOL_DEFAULT, n_threads=None) -> Census:
     """Attractor census at (eta, omega, F) from n Sobol initial states in ``box``
-    (``sampling``; forcing phase 0 at t = 0), each run to t_end with the measures over
-    [t_transient, t_end] (module docstring). Raises ParameterError for bad input."""
+    (``sampling``; forcing phase 0 at t = 0), or from the given ``states`` (n, 4) =
+    (z_m, z_m', z_b, z_b') (then n, seed and box are not used), each run to t_end with the
+    measures over [t_transient, t_end] (module docstring). ``members`` of the result: the
+    attractor index of every state (-1: unsettled). Raises ParameterError for bad input."""
     p = ModelParams(eta=eta, omega=omega, F=F, r=r, d=d)
     st = SolverSettings(t_end=t_end, t_transient=t_transient, v_stick=v_stick,
                         max_impacts=max_impacts, root_tol=root_tol)
     box = check_box(box)
-    states = sample_states(n, seed, box)
+    states = sample_states(n, seed, box) if states is None else _check_states(states)
     ends = settle_states(p, st, states, n_threads)
     groups, n_unsettled = _group(ends, p.period)
     oscs = oscillators(p)
