@@ -1,7 +1,7 @@
 """CF compliance of the pipeline's datasets (docs/cf-compliance.md).
 
 Tiny datasets of every pipeline stage (grid chunk, measures, sweep, branch, stability map,
-boundary curves, time history) are built with the stage functions, written with ``write_dataset`` and checked
+boundary curves, time history, robust-TET map, basin slice) are built with the stage functions, written with ``write_dataset`` and checked
 
 * by the IOOS compliance checker, suite ``cf:1.10``: no high- or medium-priority failure
   except the documented ones (see ``KNOWN``), no checker exception except the documented one;
@@ -39,7 +39,11 @@ TIMEHISTORY = {"points": [{"eta": 0.05, "omega": 1.0, "F": 0.05},
                "n_periods": 3, "samples_per_period": 10}
 BOUNDARIES = {"F": 0.3077, "eta_range": [0.05, 1.0], "omega_range": [0.7, 1.4], "n_scan": 1,
               "n_map": 0}
-KINDS = ("grid_chunk", "measures", "sweep", "branch", "stability", "boundaries", "timehistory")
+ROBUST = {"eta": [0.1, 0.5], "omega": [0.9, 1.1], "F": 0.3077, "n": 4, "seed": 0,
+          "threshold": 0.7}
+SLICE = {"eta": 0.1, "omega": 0.8, "F": 0.2, "z_m0": [-1.0, 0.0, 1.0], "v_m0": [-1.0, 1.0]}
+KINDS = ("grid_chunk", "measures", "sweep", "branch", "stability", "boundaries", "timehistory",
+         "robust", "basin_slice")
 RAGGED = ("sweep", "branch", "boundaries", "timehistory")
 
 #: documented findings of the IOOS checker (docs/cf-compliance.md): it recognises a DSG
@@ -70,6 +74,8 @@ def datasets(tmp_path_factory):
     put("stability", stages.stability_map(STABILITY, model=MODEL, **kw))
     put("boundaries", stages.boundaries(BOUNDARIES, model=MODEL, **kw))
     put("timehistory", stages.timehistory(TIMEHISTORY, model=MODEL, simulation=SIM, **kw))
+    put("robust", stages.robust_map(ROBUST, model=MODEL, simulation=SIM, **kw))
+    put("basin_slice", stages.basin_slice(SLICE, model=MODEL, simulation=SIM, **kw))
     return out
 
 

@@ -5,10 +5,10 @@ from pathlib import Path
 
 import pytest
 
-from vines.pipeline.codeversion import (COMPUTE, FIGURES, NOT_TRACKED, PKG_DIR, STUDIES,
-                                        code_version, tracked_files)
+from vines.pipeline.codeversion import (ATTRACTORS, COMPUTE, FIGURES, NOT_TRACKED, PKG_DIR,
+                                        STUDIES, code_version, tracked_files)
 
-KINDS = {"compute": COMPUTE, "studies": STUDIES, "figures": FIGURES}
+KINDS = {"compute": COMPUTE, "studies": STUDIES, "attractors": ATTRACTORS, "figures": FIGURES}
 MODULES = sorted(p.relative_to(PKG_DIR) for p in PKG_DIR.rglob("*.py")
                  if p.name not in NOT_TRACKED or p.parent != PKG_DIR)
 
@@ -38,7 +38,9 @@ def test_editing_any_module_changes_a_code_version(pkg_copy, module):
     if module.parts[0] == "plotting":
         assert changed == {"figures"}
     if module.parts[0] in ("core", "orbits", "data", "pipeline"):
-        assert {"compute", "studies"} <= changed and "figures" not in changed
+        assert {"compute", "studies", "attractors"} <= changed and "figures" not in changed
+    if module.parts[0] == "attractors":
+        assert changed == {"attractors"}
 
 
 def test_cli_changes_no_code_version(pkg_copy):
@@ -53,7 +55,7 @@ def test_cli_changes_no_code_version(pkg_copy):
 
 def test_every_subpackage_is_known():
     subs = {p.parent.name for p in PKG_DIR.glob("*/__init__.py")}
-    assert subs == set(STUDIES) | set(FIGURES)
+    assert subs == set(STUDIES) | set(ATTRACTORS) | set(FIGURES)
     with pytest.raises(ValueError, match="no subpackage"):
         tracked_files(("nonexistent",))
     assert all(isinstance(p, Path) for p in tracked_files(COMPUTE))

@@ -15,7 +15,7 @@ os.environ.update(PYTHONPATH=os.pathsep.join(
 from vines.core.params import D_DEFAULT
 from vines.data.netcdf import unreadable_datasets
 from vines.pipeline.axes import chunk_map, grid_axes
-from vines.pipeline.codeversion import COMPUTE, FIGURES, STUDIES, code_version
+from vines.pipeline.codeversion import ATTRACTORS, COMPUTE, FIGURES, STUDIES, code_version
 from vines.pipeline.config import ConfigError, load_schema, validate_config
 
 try:
@@ -34,6 +34,7 @@ SIMULATION = dict(config["simulation"])
 # (Snakemake does not track imported modules).
 CODE = code_version(COMPUTE)
 CODE_STUDY = code_version(STUDIES)
+CODE_ATTRACTORS = code_version(ATTRACTORS)
 CODE_FIGURES = code_version(FIGURES)
 
 GRIDS = config["grids"]
@@ -44,6 +45,8 @@ BRANCHES = config["branches"]
 SMAPS = config["stability_maps"]
 BOUNDARIES = config["boundaries"]
 THIST = config["timehistories"]
+ROBUST = config["robust_maps"]
+SLICES = config["basin_slices"]
 WPREC = config["work_precision"]
 WPREC_SETTINGS = {k: v for k, v in WPREC.items() if k != "cases"}
 CONV = config["convergence"]
@@ -65,6 +68,8 @@ wildcard_constraints:
     smap="[A-Za-z0-9_.-]+",
     bnd="[A-Za-z0-9_.-]+",
     th="[A-Za-z0-9_.-]+",
+    rmap="[A-Za-z0-9_.-]+",
+    bslice="[A-Za-z0-9_.-]+",
 
 
 def chunk_files(wildcards):
@@ -84,6 +89,8 @@ def all_datasets():
     out += [f"{RES}/stability/{m}.nc" for m in SMAPS]
     out += [f"{RES}/boundaries/{b}.nc" for b in BOUNDARIES]
     out += [f"{RES}/timehistories/{t}.nc" for t in THIST]
+    out += [f"{RES}/robust/{m}.nc" for m in ROBUST]
+    out += [f"{RES}/basins/{s}.nc" for s in SLICES]
     out += [f"{RES}/workprecision/{c}.nc" for c in WPREC["cases"]]
     out += [f"{RES}/convergence/{s}.nc" for s in CONV]
     return out

@@ -34,6 +34,14 @@ def _th(p):
     return _named(THIST, p, "timehistories")
 
 
+def _robust(p):
+    return _named(ROBUST, p, "robust")
+
+
+def _slices(p):
+    return _named(SLICES, p, "basins")
+
+
 # figure -> named inputs (lists of dataset files); every list must be non-empty
 FIG_INPUTS = {
     "fig2": {"measures": _measures("fig2")},
@@ -53,6 +61,10 @@ FIG_INPUTS = {
     "fig14_regimes": {"sweeps": _sweeps("fig14")},   # companion of Fig 14 (not in the paper)
     "fig15": {"sweep": _sweeps("fig15"), "branches": _branches("fig15")},
     "fig16": {"stability": _smaps("fig16"), "boundaries": _boundaries("fig16")},
+    # beyond the paper: coexisting attractors (robust-TET maps beside Fig 12, basin slices)
+    "robust_tet": {"robust": _robust("robust"), "measures": _measures("fig12"),
+                   "stability": _smaps("fig16"), "boundaries": _boundaries("fig16")},
+    "basin_slices": {"slices": _slices("basin")},
     # beyond the paper: the solver studies
     "workprecision": {"cases": [f"{RES}/workprecision/{c}.nc" for c in WPREC["cases"]]},
     "convergence": {s: f"{RES}/convergence/{s}.nc" if s in CONV else ""

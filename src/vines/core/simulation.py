@@ -110,11 +110,21 @@ def simulate(eta, omega, F, r=R_DEFAULT, d=D_DEFAULT, phi=0.0, *, t_end=T_END_DE
                             _state_at=raw.state_at, **m)
 
 
-def _batch_point(eta, omega, F, r, d, phi, st: SolverSettings, shortcut: bool) -> tuple:
-    p = ModelParams(eta=eta, omega=omega, F=F, r=r, d=d, phi=phi)
-    raw = run_exact(p, st, record_from=st.t_transient, periodic_shortcut=shortcut)
+def run_measured(p: ModelParams, st: SolverSettings, state0=None,
+                 periodic_shortcut: bool = True) -> tuple[RawRun, dict]:
+    """One exact run from ``state0`` (default ``st.state0``) at t = 0 that records the
+    window only, and its measures (a dict holding every ``simulate_batch`` field). The
+    caller validates ``state0`` (``SolverSettings`` does)."""
+    raw = run_exact(p, st, record_from=st.t_transient, state0=state0,
+                    periodic_shortcut=periodic_shortcut)
     m = _measures(p, st, raw)
     m["status"] = raw.status
+    return raw, m
+
+
+def _batch_point(eta, omega, F, r, d, phi, st: SolverSettings, shortcut: bool) -> tuple:
+    p = ModelParams(eta=eta, omega=omega, F=F, r=r, d=d, phi=phi)
+    m = run_measured(p, st, periodic_shortcut=shortcut)[1]
     return tuple(m[k] for k in BATCH_FIELDS)
 
 

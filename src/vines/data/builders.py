@@ -17,8 +17,8 @@ import numpy as np
 import xarray as xr
 
 from ..core.conventions import BATCH_FIELDS
-from .schema import (BATCH_ATTRS, BOUNDARY_CURVE_ATTRS, BRANCH_ATTRS, COORD_ATTRS, COUNT_DTYPE,
-                     DERIVED_ATTRS, DIMS, FEATURE_TYPE, STABILITY_ATTRS, STABILITY_CLASS_FLAGS,
+from .schema import (BASIN_SLICE_ATTRS, BATCH_ATTRS, BOUNDARY_CURVE_ATTRS, BRANCH_ATTRS, COORD_ATTRS, COUNT_DTYPE,
+                     DERIVED_ATTRS, DIMS, FEATURE_TYPE, ROBUST_ATTRS, STABILITY_ATTRS, STABILITY_CLASS_FLAGS,
                      SWEEP_INSTANCE_ATTRS, SWEEP_SAMPLE_ATTRS, TIMEHISTORY_ATTRS, attrs as cf)
 
 #: fill value of a grid point no chunk provided, by dtype kind
@@ -272,6 +272,41 @@ def stability_dataset(eta, omega, res: dict, attrs: dict) -> xr.Dataset:
         "symmetric": xr.Variable(D, np.asarray(res["symmetric"], dtype="i1"),
                                  cf(STABILITY_ATTRS, "symmetric")),
     }
-    coords = {"eta": xr.Variable(("eta",), np.asarray(eta), COORD_ATTRS["eta"]),
-              "omega": xr.Variable(("omega",), np.asarray(omega), COORD_ATTRS["omega"])}
+    return xr.Dataset(data, coords=_eta_omega_coords(eta, omega), attrs=attrs)
+
+
+def _eta_omega_coords(eta, omega) -> dict:
+    return {"eta": xr.Variable(("eta",), np.asarray(eta, float), COORD_ATTRS["eta"]),
+            "omega": xr.Variable(("omega",), np.asarray(omega, float), COORD_ATTRS["omega"])}
+
+
+def robust_dataset(eta, omega, fields: dict, attrs: dict) -> xr.Dataset:
+    """A robust-TET map (``attractors.maps.robust_point`` fields) over (eta, omega)."""
+    D = ("eta", "omega")
+    shape = (np.size(eta), np.size(omega))
+    data = {}
+    for k in ROBUST_ATTRS:
+        arr = np.asarray(fields[k])
+        if arr.shape != shape:
+            raise ValueError(f"robust map field {k} has shape {arr.shape}, expected {shape}")
+        dtype = "i4" if k in ("n_attractors", "from_rest_efficient") else "f8"
+        data[k] = xr.Variable(D, arr.astype(dtype), cf(ROBUST_ATTRS, k))
+    return xr.Dataset(data, coords=_eta_omega_coords(eta, omega), attrs=attrs)
+
+
+def basin_slice_dataset(z_m0, v_m0, res: dict, attrs: dict) -> xr.Dataset:
+    """A basin slice (``attractors.maps.basin_slice``): attractor index over (z_m0, v_m0)
+    and the attractor table over ``attractor_index``."""
+    a = BASIN_SLICE_ATTRS
+    table = res["table"]
+    n_att = len(table["regime"])
+    data = {"attractor": xr.Variable(("z_m0", "v_m0"), np.asarray(res["attractor"], "i4"),
+                                     cf(a, "attractor")),
+            "from_rest": xr.Variable((), np.int32(res["from_rest"]), cf(a, "from_rest"))}
+    for k, dt in (("regime", "U16"), ("period", "i4"), ("ke_ratio", "f8"), ("xmax_m", "f8"),
+                  ("basin_fraction", "f8")):
+        data[k] = xr.Variable(("attractor_index",), np.asarray(table[k], dt).reshape(n_att),
+                              cf(a, k))
+    coords = {"z_m0": xr.Variable(("z_m0",), np.asarray(z_m0, float), cf(a, "z_m0")),
+              "v_m0": xr.Variable(("v_m0",), np.asarray(v_m0, float), cf(a, "v_m0"))}
     return xr.Dataset(data, coords=coords, attrs=attrs)

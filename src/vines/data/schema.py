@@ -132,6 +132,30 @@ TIMEHISTORY_ATTRS = {
 }
 
 
+#: robust-TET maps over (eta, omega) (``vines.attractors.maps.robust_point``)
+ROBUST_ATTRS = {
+    "efficient_fraction": ("basin fraction of attractors with KE ratio above the threshold", "1"),
+    "stable_1to1_fraction": ("basin fraction of the stable 1:1 orbit", "1"),
+    "unsettled_fraction": ("fraction of initial states whose run stopped early", "1"),
+    "n_attractors": ("number of attractors reached by the sampled initial states", "1"),
+    "from_rest_efficient": ("1 where the start from rest reaches KE ratio above the threshold", "1"),
+    "from_rest_ke_ratio": ("KE ratio of the attractor reached from rest", "1"),
+}
+
+#: basin slices (``vines.attractors.maps.basin_slice``): per slice point, per attractor
+BASIN_SLICE_ATTRS = {
+    "z_m0": ("initial LO displacement z_m(0) (units of L)", "1"),
+    "v_m0": ("initial LO velocity z_m'(0)", "1"),
+    "attractor": ("index of the attractor reached (-1: run stopped early)", "1"),
+    "regime": BATCH_ATTRS["regime"],
+    "period": ("period of the attractor in forcing periods (0: not periodic)", "1"),
+    "ke_ratio": ("KE ratio of the attractor (exact over one period, or mean)", "1"),
+    "xmax_m": DERIVED_ATTRS["xmax_m"],
+    "basin_fraction": ("fraction of the slice's points reaching the attractor", "1"),
+    "from_rest": ("index of the attractor reached from rest (-1: stopped early)", "1"),
+}
+
+
 def attrs(table: dict, name: str, **extra) -> dict:
     """CF attributes of ``name`` from one of the tables above (plus ``extra``)."""
     long_name, units = table[name]

@@ -10,7 +10,9 @@ from __future__ import annotations
 
 import math
 
-from ..core.params import ModelParams, ParameterError, SolverSettings
+import numpy as np
+
+from ..core.params import STATE_MAX, ModelParams, ParameterError, SolverSettings
 from .axes import DIMS, ConfigError, axis_values
 
 
@@ -126,6 +128,28 @@ def check_maps_and_points(config: dict, model: dict, limits: dict) -> None:
             _check_point(f"timehistories.{name}.points[{i}]", p, model)
 
 
+def check_attractor_maps(config: dict, model: dict, limits: dict) -> None:
+    """Robust-TET maps and basin slices: parameters the model accepts, sizes (grid points
+    times initial states) within limits.max_grid_points, slice states within the bound of
+    an initial state (|z_m(0)|, |z_m'(0)| <= STATE_MAX)."""
+    for name, rm in config["robust_maps"].items():
+        key = f"robust_maps.{name}"
+        n = _check_axis(f"{key}.eta", "eta", rm["eta"], model)
+        n *= _check_axis(f"{key}.omega", "omega", rm["omega"], model)
+        _check_param(f"{key}.F", "F", rm["F"], model)
+        _check_size(key, n * rm["n"], limits, "runs (grid points x n)")
+    for name, bs in config["basin_slices"].items():
+        key = f"basin_slices.{name}"
+        _check_point(key, bs, model)
+        n = 1
+        for dim in ("z_m0", "v_m0"):
+            vals = axis_values(bs[dim], key=f"{key}.{dim}")
+            n *= vals.size
+            if np.any(np.abs(vals) > STATE_MAX):
+                raise ConfigError(f"{key}.{dim}", f"values must lie in [-{STATE_MAX:g}, {STATE_MAX:g}]")
+        _check_size(key, n, limits, "slice points")
+
+
 def check_boundaries(config: dict, model: dict, limits: dict) -> None:
     """Ranges and F of every boundaries entry are parameters the model accepts."""
     for name, bd in config["boundaries"].items():
@@ -183,5 +207,5 @@ def check_physical(config: dict) -> None:
                                    ("t_end", "t_transient", "v_stick", "max_impacts",
                                     "root_tol")}, limits)
     for check in (check_grids, check_sweeps, check_branches, check_maps_and_points,
-                  check_boundaries, check_studies):
+                  check_attractor_maps, check_boundaries, check_studies):
         check(config, model, limits)

@@ -18,6 +18,7 @@ NOT_TRACKED = ("cli.py", "__main__.py")
 #: subpackages each kind of rule depends on
 COMPUTE = ("core", "orbits", "data", "pipeline")           # every dataset stage
 STUDIES = COMPUTE + ("reference", "studies")               # work-precision, convergence
+ATTRACTORS = COMPUTE + ("attractors",)                     # robust-TET maps, basin slices
 FIGURES = ("plotting",)                                    # figure rules (+ their script)
 
 

@@ -43,7 +43,7 @@ def _progress_callback_class():
             import sys
             import time
             name = key[0] if isinstance(key, tuple) else key
-            if not str(name).startswith(("_batch_block", "_sweep_line")):
+            if not str(name).startswith(("_batch_block", "_sweep_line", "_robust_block")):
                 return
             with self.lock:
                 self.done += 1

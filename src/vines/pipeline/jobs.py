@@ -25,8 +25,8 @@ def check_code_version(expected: str | None) -> None:
     """
     if not expected:
         return
-    from .codeversion import COMPUTE, FIGURES, PKG_DIR, STUDIES, code_version
-    if expected not in {code_version(kind) for kind in (COMPUTE, STUDIES, FIGURES)}:
+    from .codeversion import ATTRACTORS, COMPUTE, FIGURES, PKG_DIR, STUDIES, code_version
+    if expected not in {code_version(kind) for kind in (COMPUTE, STUDIES, ATTRACTORS, FIGURES)}:
         raise RuntimeError(f"this job imports vines from {PKG_DIR}, whose sources differ from "
                            f"the code version {expected} the workflow computed: run the "
                            "workflow of the checkout whose sources should run")

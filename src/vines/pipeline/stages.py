@@ -2,8 +2,8 @@
 
 One function per stage, named as the rule, the rule file and the workflow script:
 ``simulate_grid``, ``extract_measures``, ``bifurcation_sweep``, ``map_solve``,
-``stability_map``, ``boundaries``, ``timehistory``. Each calls the numerics (``vines.core``,
-``vines.orbits``), lets ``vines.pipeline.execution`` spread independent tasks over dask,
+``stability_map``, ``boundaries``, ``timehistory``, ``robust_map``, ``basin_slice``. Each calls the numerics (``vines.core``,
+``vines.orbits``, ``vines.attractors``), lets ``vines.pipeline.execution`` spread independent tasks over dask,
 and hands plain arrays to ``vines.data.builders``. Results are assembled by index, so the
 numbers do not depend on workers, block size, chunk size or scheduler.
 """
@@ -243,3 +243,58 @@ def timehistory(spec: dict, *, model: dict, simulation: dict, code: str, title: 
                                                          "simulation": simulation},
                              settings={**model, **simulation}, code_version=code)
     return builders.timehistory_dataset(points, th, attrs)
+
+
+# ------------------------------------------------------------------ robust-map, basin-slice
+
+#: census settings taken from the ``simulation`` section (the shortcut is always on)
+CENSUS_SETTINGS = ("t_end", "t_transient", "v_stick", "max_impacts", "root_tol")
+
+
+def _census_kw(model: dict, simulation: dict) -> dict:
+    return {"r": model["r"], "d": model["d"],
+            **{k: simulation[k] for k in CENSUS_SETTINGS if k in simulation}}
+
+
+def _robust_block(points, F, kw):
+    from ..attractors.maps import robust_point
+    return [robust_point(e, w, F, n_threads=1, **kw) for e, w in points]
+
+
+def robust_map(spec: dict, *, model: dict, simulation: dict, code: str, title: str,
+               n_workers: int = 1, block_size: int = 4, scheduler: str | None = None):
+    """Dataset of one robust-TET map over (eta, omega) at ``spec['F']``: a census of
+    ``spec['n']`` Sobol states (seed ``spec['seed']``) per point, in dask blocks."""
+    import dask
+    from ..attractors.maps import ROBUST_FIELDS
+    eta, omega = axis_values(spec["eta"]), axis_values(spec["omega"])
+    points = [(e, w) for e in eta for w in omega]
+    kw = {**_census_kw(model, simulation), "n": spec["n"], "seed": spec["seed"],
+          "threshold": spec["threshold"]}
+    bs = max(1, int(block_size))
+    tasks = [dask.delayed(_robust_block, pure=True)(points[i:i + bs], float(spec["F"]), kw)
+             for i in range(0, len(points), bs)]
+    rows = [r for part in compute(tasks, max(1, int(n_workers)), scheduler, True) for r in part]
+    fields = {k: np.array([r[k] for r in rows]).reshape(len(eta), len(omega))
+              for k in ROBUST_FIELDS}
+    attrs = provenance_attrs(title=title, config_subset={"spec": spec, "model": model,
+                                                         "simulation": simulation},
+                             settings={**model, **simulation}, code_version=code)
+    attrs.update(F=float(spec["F"]), threshold=float(spec["threshold"]),
+                 n_states=int(spec["n"]), seed=int(spec["seed"]))
+    return builders.robust_dataset(eta, omega, fields, attrs)
+
+
+def basin_slice(spec: dict, *, model: dict, simulation: dict, code: str, title: str,
+                n_workers: int = 1):
+    """Dataset of one basin slice: the attractor reached from each (z_m(0), z_m'(0)) with
+    the ball at rest in the middle of the cavity, at ``spec``'s (eta, omega, F)."""
+    from ..attractors.maps import basin_slice as solve_slice
+    z_m0, v_m0 = axis_values(spec["z_m0"]), axis_values(spec["v_m0"])
+    res = solve_slice(spec["eta"], spec["omega"], spec["F"], z_m0, v_m0,
+                      n_threads=max(1, int(n_workers)), **_census_kw(model, simulation))
+    attrs = provenance_attrs(title=title, config_subset={"spec": spec, "model": model,
+                                                         "simulation": simulation},
+                             settings={**model, **simulation}, code_version=code)
+    attrs.update(eta=float(spec["eta"]), omega=float(spec["omega"]), F=float(spec["F"]))
+    return builders.basin_slice_dataset(z_m0, v_m0, res, attrs)

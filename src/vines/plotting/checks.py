@@ -196,6 +196,29 @@ def stability(path) -> xr.Dataset:
     return ds
 
 
+def robust_map(path) -> xr.Dataset:
+    """A robust-TET map over (eta, omega): basin fractions in [0, 1], attributes F and
+    threshold."""
+    ds = load(path)
+    require(ds, coords=("eta", "omega"), min_size=2,
+            finite=("efficient_fraction", "stable_1to1_fraction"))
+    for k in ("F", "threshold", "n_states"):
+        if k not in ds.attrs:
+            raise FigureInputError(f"{_where(ds)}: global attribute {k!r} is missing")
+    return ds
+
+
+def basin_slice(path) -> xr.Dataset:
+    """A basin slice: attractor index over (z_m0, v_m0) within the attractor table."""
+    ds = load(path)
+    require(ds, coords=("z_m0", "v_m0"), min_size=2, variables=("attractor", "regime"),
+            finite=("ke_ratio",))
+    idx = ds["attractor"].values
+    if idx.min() < -1 or idx.max() >= ds.sizes["attractor_index"]:
+        raise FigureInputError(f"{_where(ds)}: 'attractor' indexes outside the table")
+    return ds
+
+
 def timehistory(path) -> xr.Dataset:
     """Time histories of single runs (at least 2 samples per point), their impacts and, if
     stored, the samples of the whole measurement window (``window_*``)."""

@@ -1,0 +1,279 @@
+"""Attractor census at one parameter point: which attractors coexist, and how likely each is.
+
+n initial states (``sampling.sample_states``) run until they settle (``endstate``); their
+end states are grouped into attractors:
+
+* 1:1 orbits (polished by the map's Newton solver) are one attractor when their pre-impact
+  states at L agree to GROUP_TOL (relative; impact times modulo T);
+* other confirmed periodic orbits when they have the same period and their section states
+  agree to GROUP_TOL up to a shift by whole forcing periods;
+* everything else by regime label ("chatter", "irregular", "no-impact", ...), split where
+  the sorted KE ratios of a label jump by more than KE_GAP.
+
+Each attractor gets its basin fraction (members / n) with a 95 % Wilson score interval
+(``scipy.stats.binomtest(...).proportion_ci(method="wilson")``), its KE ratio and x_max
+(periodic: exact over one period of the orbit; otherwise the mean and [min, max] of the
+members' window measures) and one initial state that reaches it. The from-rest start is
+classified the same way; if it reaches an attractor no sampled state reached, that
+attractor is listed with basin fraction 0. Runs that stopped early are the unsettled
+fraction: the fractions of the attractors and the unsettled fraction sum to 1.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..core.exact import oscillators
+from ..core.params import (D_DEFAULT, L_HALF_M, MAX_IMPACTS_DEFAULT, R_DEFAULT,
+                           ROOT_TOL_DEFAULT, T_END_DEFAULT, T_TRANSIENT_DEFAULT,
+                           V_STICK_DEFAULT, ModelParams, ParameterError,
+                           SolverSettings)
+from ..core.shortcut import rel_diff
+from .endstate import EndState, settle, settle_states
+from .orbit import one_period, section_of_1to1
+from .sampling import BOX_NAMES, DEFAULT_BOX, check_box, sample_states
+
+#: end states closer than this (relative) are the same periodic orbit
+GROUP_TOL = 1e-6
+#: non-periodic members of one regime label split where sorted KE ratios jump by this
+KE_GAP = 0.05
+#: confidence level of the basin fractions' intervals
+CI_LEVEL = 0.95
+CI_METHOD = "wilson"
+
+
+@dataclass
+class Attractor:
+    """One attractor of a census. ke_ratio, xmax_m: exact over one period (periodic) or
+    the members' mean; *_range: [min, max] over the members (a point for periodic ones);
+    ci: Wilson score interval of basin_fraction; example_state: an initial state
+    (z_m, z_m', z_b, z_b') that reaches it; section_state: a state of the orbit at
+    t = k T (periodic only); orbit: extra facts of a 1:1 orbit (lambda_max, dw_L, ...);
+    window_regimes: members by the regime label of their own measurement window (a member
+    that settled only inside the window, e.g. after a long chatter transient, keeps the
+    label of that transient there)."""
+
+    regime: str
+    period: int
+    periodic: bool
+    ke_ratio: float
+    ke_ratio_range: list
+    xmax_m: float
+    xmax_m_range: list
+    count: int
+    basin_fraction: float
+    ci: list
+    example_state: list
+    window_regimes: dict
+    section_state: list | None = None
+    orbit: dict | None = None
+
+    def to_dict(self) -> dict:
+        return dict(self.__dict__)
+
+
+@dataclass
+class Census:
+    """Result of ``census``: attractors sorted by basin fraction (largest first),
+    from_rest = index of the attractor reached from rest (None: that run stopped early), unsettled_fraction = share of
+    runs that stopped early."""
+
+    params: dict
+    settings: dict
+    n: int
+    seed: int
+    box: dict
+    attractors: list
+    from_rest: int | None
+    unsettled_fraction: float
+    ci_method: str = f"{CI_METHOD} score interval, {CI_LEVEL:.0%}"
+    members: np.ndarray = field(default=None, repr=False)
+
+    def to_dict(self) -> dict:
+        return {"attractors": [a.to_dict() for a in self.attractors],
+                "from_rest": self.from_rest, "unsettled_fraction": self.unsettled_fraction,
+                "n": self.n, "seed": self.seed, "box": self.box, "ci_method": self.ci_method,
+                "params": self.params, "settings": self.settings}
+
+
+class _Group:
+    def __init__(self, first: int, end: EndState):
+        self.first, self.end, self.members = first, end, []
+
+
+def _same_1to1(a, b, T) -> bool:
+    dt = abs(a.x_L[3] - b.x_L[3]) % T
+    return min(dt, T - dt) <= GROUP_TOL * (1.0 + T) and bool(
+        np.all(np.abs(a.x_L[:3] - b.x_L[:3]) <= GROUP_TOL * (1.0 + np.abs(a.x_L[:3]))))
+
+
+def _same_orbit(a: EndState, b: EndState) -> bool:
+    pp = a.section.shape[0]
+    if b.section.shape[0] != pp:
+        return False
+    for shift in range(pp):
+        if all(rel_diff(a.section[i], b.section[(i + shift) % pp]) <= GROUP_TOL
+               and a.modes[i] == b.modes[(i + shift) % pp] for i in range(pp)):
+            return True
+    return False
+
+
+def _matches(g: _Group, e: EndState, T: float) -> bool:
+    """Same periodic orbit (kinds 1:1, orbit); motions match by regime label here and are
+    split by KE ratio later (``_split_motions``)."""
+    if g.end.kind != e.kind:
+        return False
+    if e.kind == "1:1":
+        return _same_1to1(g.end.orbit, e.orbit, T)
+    if e.kind == "orbit":
+        return _same_orbit(g.end, e)
+    return g.end.regime == e.regime
+
+
+def _group(ends: list, T: float) -> tuple[list, int]:
+    """Groups in order of first appearance, and the number of unsettled runs."""
+    groups, unsettled = [], 0
+    for i, e in enumerate(ends):
+        if e.kind == "unsettled":
+            unsettled += 1
+            continue
+        g = next((g for g in groups if _matches(g, e, T)), None)
+        if g is None:
+            g = _Group(i, e)
+            groups.append(g)
+        g.members.append(i)
+    return _split_motions(groups, ends), unsettled
+
+
+def _split_motions(groups: list, ends: list) -> list:
+    """Split each non-periodic group where its sorted KE ratios jump by more than KE_GAP."""
+    out = []
+    for g in groups:
+        if g.end.kind != "motion":
+            out.append(g)
+            continue
+        order = sorted(g.members, key=lambda i: (ends[i].ke_ratio, i))
+        cur = [order[0]]
+        for a, b in zip(order[:-1], order[1:]):
+            if ends[b].ke_ratio - ends[a].ke_ratio > KE_GAP:
+                out.append(_subgroup(cur, ends))
+                cur = []
+            cur.append(b)
+        out.append(_subgroup(cur, ends))
+    return sorted(out, key=lambda g: g.first)
+
+
+def _subgroup(members: list, ends: list) -> _Group:
+    first = min(members)
+    g = _Group(first, ends[first])
+    g.members = sorted(members)
+    return g
+
+
+def _wilson(k: int, n: int) -> list:
+    from scipy.stats import binomtest
+    if n == 0:
+        return [0.0, 1.0]
+    ci = binomtest(k, n).proportion_ci(confidence_level=CI_LEVEL, method=CI_METHOD)
+    return [float(ci.low), float(ci.high)]
+
+
+def _periodic_summary(p, st, oscs, e: EndState) -> dict:
+    """Exact measures over one period of the orbit of end state e (kinds 1:1, orbit)."""
+    if e.kind == "1:1":
+        one = section_of_1to1(p, st, oscs, e.orbit)
+        o = e.orbit
+        extra = {"lambda_max": o.lambda_max, "stable": o.stable, "symmetric": o.symmetric,
+                 "dw_L": o.dw_L, "dw_R": o.dw_R, "phase_L": o.phase_L, "phase_R": o.phase_R,
+                 "x_L": [float(v) for v in o.x_L]}
+        return dict(regime="1:1", period=1, ke=one["ke_ratio"], xmax=one["xmax"],
+                    section=one["section_state"], orbit=extra)
+    pp = e.section.shape[0]
+    one = one_period(p, st, oscs, e.section[0], e.t_section, pp * p.period, int(e.modes[0]))
+    return dict(regime=one["regime"], period=pp, ke=one["ke_ratio"], xmax=one["xmax"],
+                section=e.section[0], orbit=None)
+
+
+def _attractor(p, st, oscs, g: _Group, ends: list, states: np.ndarray, n: int) -> Attractor:
+    k = len(g.members)
+    example = states[g.first] if g.first >= 0 else np.zeros(4)
+    labels = [ends[i].regime for i in g.members]
+    common = dict(count=k, basin_fraction=k / n, ci=_wilson(k, n),
+                  example_state=[float(v) for v in example],
+                  window_regimes={lab: labels.count(lab) for lab in sorted(set(labels))})
+    if g.end.kind in ("1:1", "orbit"):
+        s = _periodic_summary(p, st, oscs, g.end)
+        return Attractor(regime=s["regime"], period=s["period"], periodic=True,
+                         ke_ratio=s["ke"], ke_ratio_range=[s["ke"], s["ke"]],
+                         xmax_m=s["xmax"] * L_HALF_M,
+                         xmax_m_range=[s["xmax"] * L_HALF_M] * 2,
+                         section_state=[float(v) for v in s["section"]], orbit=s["orbit"],
+                         **common)
+    mem = [ends[i] for i in g.members] or [g.end]
+    ke = np.array([e.ke_ratio for e in mem])
+    xm = np.array([e.xmax for e in mem]) * L_HALF_M
+    return Attractor(regime=g.end.regime, period=0, periodic=False, ke_ratio=float(ke.mean()),
+                     ke_ratio_range=[float(ke.min()), float(ke.max())],
+                     xmax_m=float(xm.mean()), xmax_m_range=[float(xm.min()), float(xm.max())],
+                     **common)
+
+
+def _place_from_rest(groups: list, rest: EndState, T: float) -> _Group | None:
+    """The group the from-rest end state belongs to (a motion: the label's group with the
+    nearest mean KE ratio within KE_GAP), or a new empty group; None if unsettled."""
+    if rest.kind == "unsettled":
+        return None
+    if rest.kind != "motion":
+        g = next((g for g in groups if _matches(g, rest, T)), None)
+    else:
+        cands = [g for g in groups if g.end.kind == "motion" and g.end.regime == rest.regime]
+        g = None
+        if cands:
+            g = min(cands, key=lambda c: abs(c.end.ke_ratio - rest.ke_ratio))
+            g = g if abs(g.end.ke_ratio - rest.ke_ratio) <= KE_GAP else None
+    if g is None:
+        g = _Group(-1, rest)
+        groups.append(g)
+    return g
+
+
+def _check_states(states) -> np.ndarray:
+    """Given initial states as an (n, 4) array, each a valid ``state0``."""
+    arr = np.asarray(states, dtype=float)
+    if arr.ndim != 2 or arr.shape[1] != 4 or arr.shape[0] == 0:
+        raise ParameterError("states", f"shape {arr.shape}", "must be an (n, 4) array, n >= 1")
+    for row in arr:
+        SolverSettings(state0=tuple(row))       # raises ParameterError for a bad state
+    return arr
+
+
+def census(eta, omega, F, *, r=R_DEFAULT, d=D_DEFAULT, n=256, seed=0, box=DEFAULT_BOX,
+           states=None, t_end=T_END_DEFAULT, t_transient=T_TRANSIENT_DEFAULT,
+           v_stick=V_STICK_DEFAULT, max_impacts=MAX_IMPACTS_DEFAULT,
+           root_tol=ROOT_TOL_DEFAULT, n_threads=None) -> Census:
+    """Attractor census at (eta, omega, F) from n Sobol initial states in ``box``
+    (``sampling``; forcing phase 0 at t = 0), or from the given ``states`` (n, 4) =
+    (z_m, z_m', z_b, z_b') (then n, seed and box are not used), each run to t_end with the
+    measures over [t_transient, t_end] (module docstring). ``members`` of the result: the
+    attractor index of every state (-1: unsettled). Raises ParameterError for bad input."""
+    p = ModelParams(eta=eta, omega=omega, F=F, r=r, d=d)
+    st = SolverSettings(t_end=t_end, t_transient=t_transient, v_stick=v_stick,
+                        max_impacts=max_impacts, root_tol=root_tol)
+    box = check_box(box)
+    states = sample_states(n, seed, box) if states is None else _check_states(states)
+    ends = settle_states(p, st, states, n_threads)
+    groups, n_unsettled = _group(ends, p.period)
+    oscs = oscillators(p)
+    rest = _place_from_rest(groups, settle(p, st, oscs, (0.0, 0.0, 0.0, 0.0)), p.period)
+    groups.sort(key=lambda g: (-len(g.members), g.first if g.first >= 0 else len(ends)))
+    attractors = [_attractor(p, st, oscs, g, ends, states, len(ends)) for g in groups]
+    members = np.full(len(ends), -1, dtype=np.int64)
+    for j, g in enumerate(groups):
+        members[g.members] = j
+    return Census(params=p.as_dict(), settings=st.as_dict() | {"state0": None}, n=len(ends),
+                  seed=int(seed), box=dict(zip(BOX_NAMES, map(list, box))),
+                  attractors=attractors,
+                  from_rest=groups.index(rest) if rest is not None else None,
+                  unsettled_fraction=n_unsettled / len(ends), members=members)
+

@@ -1,0 +1,52 @@
+"""Censuses over parameter grids and slices of initial states (plain arrays out).
+
+* ``robust_point``: the basin fractions a designer needs at one (eta, omega, F): of
+  efficient motion (attractors whose KE ratio exceeds ``threshold``) and of the stable 1:1
+  orbit, with the unsettled share and whether the start from rest is efficient.
+* ``slice_states`` / ``basin_slice``: the attractor reached from every point of a 2-D
+  slice of initial states: z_m(0) against z_m'(0) with the ball at rest in the middle of
+  the cavity (z_b = z_m, z_b' = 0); the from-rest start is the slice's origin.
+"""
+from __future__ import annotations
+
+import numpy as np
+
+from .census import census
+
+#: what ``robust_point`` returns, in this order
+ROBUST_FIELDS = ("efficient_fraction", "stable_1to1_fraction", "unsettled_fraction",
+                 "n_attractors", "from_rest_efficient", "from_rest_ke_ratio")
+
+
+def robust_point(eta, omega, F, *, threshold: float, **census_kw) -> dict:
+    """ROBUST_FIELDS at one point from ``census(eta, omega, F, **census_kw)``: basin
+    fractions of the attractors with ke_ratio > threshold and of stable 1:1 orbits."""
+    c = census(eta, omega, F, **census_kw)
+    eff = sum(a.basin_fraction for a in c.attractors if a.ke_ratio > threshold)
+    one = sum(a.basin_fraction for a in c.attractors
+              if a.regime == "1:1" and a.orbit is not None and a.orbit["stable"])
+    rest = c.attractors[c.from_rest] if c.from_rest is not None else None
+    return dict(efficient_fraction=float(eff), stable_1to1_fraction=float(one),
+                unsettled_fraction=float(c.unsettled_fraction),
+                n_attractors=len([a for a in c.attractors if a.count > 0]),
+                from_rest_efficient=int(rest is not None and rest.ke_ratio > threshold),
+                from_rest_ke_ratio=float(rest.ke_ratio) if rest is not None else np.nan)
+
+
+def slice_states(z_m0, v_m0) -> np.ndarray:
+    """States (len(z_m0) * len(v_m0), 4) of the slice, z_m0 varying slowest: LO at
+    (z_m0, v_m0), ball at rest in the middle of the cavity (z_b = z_m0, z_b' = 0)."""
+    zm, vm = np.meshgrid(np.asarray(z_m0, float), np.asarray(v_m0, float), indexing="ij")
+    zm, vm = zm.ravel(), vm.ravel()
+    return np.stack([zm, vm, zm, np.zeros_like(zm)], axis=1)
+
+
+def basin_slice(eta, omega, F, z_m0, v_m0, **census_kw) -> dict:
+    """Attractor index over the slice (shape (len(z_m0), len(v_m0)), -1: unsettled) and
+    the attractor table (regime, period, ke_ratio, xmax_m, basin_fraction within the
+    slice), from_rest (index into the table) and the census for further use."""
+    c = census(eta, omega, F, states=slice_states(z_m0, v_m0), **census_kw)
+    table = {k: [getattr(a, k) for a in c.attractors]
+             for k in ("regime", "period", "ke_ratio", "xmax_m", "basin_fraction")}
+    return dict(attractor=c.members.reshape(np.size(z_m0), np.size(v_m0)), table=table,
+                from_rest=-1 if c.from_rest is None else int(c.from_rest), census=c)

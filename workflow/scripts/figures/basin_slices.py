@@ -1,0 +1,53 @@
+"""Basin slices: the attractor reached from each initial (z_m(0), z_m'(0)) with the ball at
+rest in the middle of the cavity, one panel per slice (basins basin_*), each attractor in
+its own colour (legend: regime, KE ratio, share of the slice), the start from rest marked."""
+import numpy as np
+from matplotlib.colors import BoundaryNorm, ListedColormap
+
+import vines.plotting as P
+from vines.pipeline.jobs import run_job
+
+#: attractor colours in table order (largest basin first); grey: run stopped early
+COLOURS = ["tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown",
+           "tab:pink", "tab:olive", "tab:cyan", "gold"]
+UNSETTLED = "0.5"
+
+
+def draw(ax, ds):
+    idx = ds["attractor"].values
+    n_att = ds.sizes["attractor_index"]
+    shown = min(n_att, len(COLOURS))
+    codes = np.where(idx >= shown, shown, idx)      # beyond the palette: one "other" colour
+    cmap = ListedColormap([UNSETTLED] + COLOURS[:shown] + ["black"])
+    norm = BoundaryNorm(np.arange(-1.5, shown + 1.5), cmap.N)
+    z, v = ds["z_m0"].values, ds["v_m0"].values
+    ax.pcolormesh(z, v, codes.T, cmap=cmap, norm=norm, shading="nearest")
+    ax.plot(0.0, 0.0, marker="*", ms=13, mfc="white", mec="black", ls="none",
+            label="start from rest")
+    handles = [ax.lines[-1]]
+    rest = int(ds["from_rest"].values)
+    for k in range(shown):
+        frac = float(ds["basin_fraction"].values[k])
+        mark = " (from rest)" if k == rest else ""
+        handles.append(ax.fill_between([], [], color=COLOURS[k], label=(
+            f"{ds['regime'].values[k]}, KE {float(ds['ke_ratio'].values[k]):.3f}, "
+            f"{100 * frac:.1f} %{mark}")))
+    ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.16), fontsize=7,
+              frameon=False, ncol=2)
+    ax.set_xlabel(r"initial LO displacement $z_m(0)$")
+    ax.set_ylabel(r"initial LO velocity $\dot z_m(0)$")
+    ax.set_aspect("equal")
+
+
+def main(sm):
+    slices = [P.basin_slice(p) for p in sm.input.slices]
+    fig, axes = P.figure(1, len(slices), width=4.6 * len(slices), height=5.4)
+    for j, ds in enumerate(slices):
+        draw(axes[0, j], ds)
+        a = ds.attrs
+        P.panel_label(axes[0, j], j, rf"$\eta$ = {P.fmt(a['eta'])}, $\Omega$ = "
+                                     rf"{P.fmt(a['omega'])}, $F$ = {P.fmt(a['F'])}")
+    P.save(fig, sm.output.pdf, sm.output.png)
+
+
+run_job(snakemake, lambda: main(snakemake))  # noqa: F821  (injected by Snakemake)
