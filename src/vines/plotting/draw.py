@@ -220,10 +220,11 @@ def twin_measures(ax, x, ke, xmax_m, xlabel):
     return ax2
 
 
-def contour_map(fig, ax, x, y, z, *, label, vmin=None, vmax=None, log=False):
+def contour_map(fig, ax, x, y, z, *, label, vmin=None, vmax=None, log=False, cells=False):
     """Filled contour (20 levels, jet) with a colour bar; needs at least 2 x 2 points.
     ``log``: levels equally spaced in log10(z) (z > 0), so small values keep their detail
-    next to a large resonance peak."""
+    next to a large resonance peak. ``cells``: one flat cell per grid point in the same 20
+    colours instead of contours (coarse grids, where contouring would invent shapes)."""
     if len(x) < 2 or len(y) < 2:
         raise FigureInputError(f"a contour map of {label} needs at least 2 x 2 grid points, "
                                f"got {len(x)} x {len(y)}")
@@ -238,7 +239,11 @@ def contour_map(fig, ax, x, y, z, *, label, vmin=None, vmax=None, log=False):
         levels, norm, ticks = np.geomspace(vmin, vmax, 21), LogNorm(vmin, vmax), None
     else:
         levels, norm, ticks = np.linspace(vmin, vmax, 21), None, MaxNLocator(6)
-    cs = ax.contourf(x, y, z, levels=levels, cmap="jet", norm=norm, extend="neither")
+    if cells:
+        cs = ax.pcolormesh(x, y, z, shading="nearest", cmap=plt.get_cmap("jet", 20),
+                           norm=norm or BoundaryNorm(levels, 20))
+    else:
+        cs = ax.contourf(x, y, z, levels=levels, cmap="jet", norm=norm, extend="neither")
     cb = fig.colorbar(cs, ax=ax, shrink=0.9, ticks=ticks)
     if log:
         _log_ticks(cb, vmin, vmax)

@@ -13,6 +13,21 @@ COLOURS = ["tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:
 UNSETTLED = "0.5"
 
 
+def mirror_notes(ds, shown: int) -> list:
+    """Legend suffix ', mirror image of k' for attractors with the same regime, KE ratio
+    and x_max (z -> -z, t -> t + T/2 maps an asymmetric orbit onto its twin)."""
+    notes = [""] * shown
+    ke, xm, reg = ds["ke_ratio"].values, ds["xmax_m"].values, ds["regime"].values
+    for k in range(shown):
+        for j in range(k):
+            if reg[j] == reg[k] and np.isclose(ke[j], ke[k], rtol=1e-6, atol=0) \
+                    and np.isclose(xm[j], xm[k], rtol=1e-6, atol=0):
+                notes[j] = notes[j] or f", mirror image of {k + 1}"
+                notes[k] = f", mirror image of {j + 1}"
+                break
+    return notes
+
+
 def draw(ax, ds):
     idx = ds["attractor"].values
     n_att = ds.sizes["attractor_index"]
@@ -26,14 +41,15 @@ def draw(ax, ds):
             label="start from rest")
     handles = [ax.lines[-1]]
     rest = int(ds["from_rest"].values)
+    notes = mirror_notes(ds, shown)
     for k in range(shown):
         frac = float(ds["basin_fraction"].values[k])
         mark = " (from rest)" if k == rest else ""
         handles.append(ax.fill_between([], [], color=COLOURS[k], label=(
-            f"{ds['regime'].values[k]}, KE {float(ds['ke_ratio'].values[k]):.3f}, "
-            f"{100 * frac:.1f} %{mark}")))
-    ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.16), fontsize=7,
-              frameon=False, ncol=2)
+            f"{k + 1}: {ds['regime'].values[k]}, KE {float(ds['ke_ratio'].values[k]):.3f}, "
+            f"{100 * frac:.1f} %{notes[k]}{mark}")))
+    ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.14), fontsize=7,
+              frameon=False, ncol=1)
     ax.set_xlabel(r"initial LO displacement $z_m(0)$")
     ax.set_ylabel(r"initial LO velocity $\dot z_m(0)$")
     ax.set_aspect("equal")
@@ -41,7 +57,7 @@ def draw(ax, ds):
 
 def main(sm):
     slices = [P.basin_slice(p) for p in sm.input.slices]
-    fig, axes = P.figure(1, len(slices), width=4.6 * len(slices), height=5.4)
+    fig, axes = P.figure(1, len(slices), width=4.8 * len(slices), height=6.4)
     for j, ds in enumerate(slices):
         draw(axes[0, j], ds)
         a = ds.attrs

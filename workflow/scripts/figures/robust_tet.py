@@ -44,7 +44,8 @@ def main(sm):
         for i, (src, z, label) in enumerate(panels):
             ax = axes[i, j]
             eta, W = src["eta"].values, src["omega"].values
-            P.contour_map(fig, ax, eta, W, z, label=label, vmin=0.0, vmax=1.0)
+            # (d-i): a coarse census grid, drawn cell by cell (contours would invent shapes)
+            P.contour_map(fig, ax, eta, W, z, label=label, vmin=0.0, vmax=1.0, cells=i > 0)
             outline(ax, smap, eta, W)
             ax.set_xlabel(P.LABELS["eta"])
             ax.set_ylabel(P.LABELS["omega"])
