@@ -27,10 +27,12 @@ import numpy as np
 from ..core.params import ParameterError
 from ..core.walls import WALL_L, WALL_R
 from . import jets
+from . import shooting_kernels as kernels
 from .jets import cos, exp, sin, sqrt
 
 FAMILIES = ("symmetric", "asymmetric")
 N_UNKNOWNS = {"symmetric": 4, "asymmetric": 5}
+PARAMS = ("eta", "omega", "F")
 MIRROR = np.diag([-1.0, -1.0, -1.0, 1.0])
 
 
@@ -44,6 +46,8 @@ class Model:
         self.r, self.d, self.phi = float(r), float(d), float(phi)
         self.sigma = 0.5 * d
         self.wd = math.sqrt(1.0 - self.sigma ** 2)
+        # the constants as the compiled kernels take them (``shooting_kernels``)
+        self.consts = np.array([self.r, self.d, self.phi, self.sigma, self.wd])
 
 
 def flight(m: Model, x, s, eta, omega, F, from_wall: int):
@@ -102,7 +106,17 @@ def flight_times(family: str, u, omega) -> tuple:
 
 def residual_jacobian(m: Model, family: str, u, par: dict, free: tuple):
     """(E, dE/d(u, free params)) at u with par = {eta, omega, F}; ``free`` names the
-    parameters differentiated (in that order, after u)."""
+    parameters differentiated (in that order, after u). Compiled
+    (``shooting_kernels.residual_jacobian``); ``residual_jacobian_jets`` is the reference."""
+    u = np.asarray(u, dtype=float)
+    E, dE = kernels.residual_jacobian(m.consts, FAMILIES.index(family), u,
+                                      float(par["eta"]), float(par["omega"]), float(par["F"]))
+    n = len(u)
+    return E, dE[:, list(range(n)) + [n + PARAMS.index(q) for q in free]]
+
+
+def residual_jacobian_jets(m: Model, family: str, u, par: dict, free: tuple):
+    """``residual_jacobian`` from the Python jets (the reference of the compiled one)."""
     n = len(u)
     z = jets.variables(list(u) + [par[q] for q in free])
     p = dict(par)
