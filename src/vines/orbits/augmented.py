@@ -67,7 +67,7 @@ class Codim1System:
         z = np.asarray(z, dtype=float)
         p = self.par(z)
         k, wall = self.graze if self.graze is not None else (1, "arrival")
-        G, Gg = sk.codim1(self.m.consts, sh.FAMILIES.index(self.family), self._cond,
+        G, Gg = sk.codim1(self.m.tape, sh.FAMILIES.index(self.family), self._cond,
                           int(k), GRAZE_WALLS.index(wall), z[:self.nu], p["eta"],
                           p["omega"], p["F"], float(z[self.nu]) if self.has_sg else 0.0)
         return G, Gg[:, self._columns()]

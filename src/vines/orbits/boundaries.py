@@ -85,8 +85,7 @@ class _CurveTracer:
         self.sys, self.box, self.step, self.max_points = system, box, step, max_points
 
     def inside(self, z) -> bool:
-        (e0, e1), (w0, w1) = self.box
-        return e0 <= z[-2] <= e1 and w0 <= z[-1] <= w1
+        return _in_box(z[-2:], self.box)
 
     def half(self, z0, sign):
         """Points from z0 (excluded) in one direction; (list of z, why it stopped)."""
@@ -206,7 +205,8 @@ def boundaries(F, eta_range, omega_range, r=R_DEFAULT, d=D_DEFAULT, n_scan=5, st
     else:
         edges = _map_edges(model, F, box, n_map) if n_map >= 2 else []
     for edge in edges:
-        if not traced.explains(edge):
+        # an edge with both cells outside the box cannot seed a curve inside it
+        if (_in_box(edge[0], box) or _in_box(edge[1], box)) and not traced.explains(edge):
             for seed in _edge_seeds(model, F, edge):
                 traced.add(seed)
     return Boundaries(F, box[0], box[1], traced.kept)
@@ -223,9 +223,7 @@ class _Traced:
     def add(self, seed):
         """Trace the curve through a seed unless a curve of its kind passes there."""
         family, kind, graze, z0 = seed
-        (e0, e1), (w0, w1) = self.box
-        if not (e0 <= z0[-2] <= e1 and w0 <= z0[-1] <= w1) \
-                or _on_curve(self.curves, seed, self.step):
+        if not _in_box(z0[-2:], self.box) or _on_curve(self.curves, seed, self.step):
             return
         c = trace(self.model, family, kind, graze, z0, self.F, self.box, self.step,
                   self.max_points)
@@ -288,6 +286,12 @@ def _edge_seeds(model, F, edge):
                                  max_inadmissible=5, max_points=200)
             for bb in [br] + br.switched:
                 yield from _branch_seeds(model, bb, param, fixed, F)
+
+
+def _in_box(point, box) -> bool:
+    """(eta, omega) = point lies in the box ((eta_lo, eta_hi), (omega_lo, omega_hi))."""
+    (e0, e1), (w0, w1) = box
+    return e0 <= point[0] <= e1 and w0 <= point[1] <= w1
 
 
 def _range(name, value) -> tuple:

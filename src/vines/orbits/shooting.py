@@ -29,6 +29,7 @@ from ..core.walls import WALL_L, WALL_R
 from . import jets
 from . import shooting_kernels as kernels
 from .jets import cos, exp, sin, sqrt
+from .tape import record
 
 FAMILIES = ("symmetric", "asymmetric")
 N_UNKNOWNS = {"symmetric": 4, "asymmetric": 5}
@@ -46,8 +47,8 @@ class Model:
         self.r, self.d, self.phi = float(r), float(d), float(phi)
         self.sigma = 0.5 * d
         self.wd = math.sqrt(1.0 - self.sigma ** 2)
-        # the constants as the compiled kernels take them (``shooting_kernels``)
-        self.consts = np.array([self.r, self.d, self.phi, self.sigma, self.wd])
+        # ``flight`` as the compiled kernels evaluate it (``shooting_kernels``)
+        self.tape = record(lambda *v: _flight_outputs(self, v), 9)
 
 
 def flight(m: Model, x, s, eta, omega, F, from_wall: int):
@@ -61,6 +62,12 @@ def flight(m: Model, x, s, eta, omega, F, from_wall: int):
     z, v = lo_state(m, zb + from_wall, vp, omega * t + m.phi, s, omega, F)
     zb1 = zb + vbp * s
     return (v, vbp, zb1, t + s), z - zb1 + from_wall, v - vbp
+
+
+def _flight_outputs(m: Model, v) -> list:
+    """flight with inputs v = (x (4), s, eta, omega, F, from_wall) as one list (6)."""
+    y, gap, w_dot = flight(m, v[:4], v[4], v[5], v[6], v[7], v[8])
+    return [*y, gap, w_dot]
 
 
 def lo_state(m: Model, z0, v0, th0, s, omega, F):
@@ -109,7 +116,7 @@ def residual_jacobian(m: Model, family: str, u, par: dict, free: tuple):
     parameters differentiated (in that order, after u). Compiled
     (``shooting_kernels.residual_jacobian``); ``residual_jacobian_jets`` is the reference."""
     u = np.asarray(u, dtype=float)
-    E, dE = kernels.residual_jacobian(m.consts, FAMILIES.index(family), u,
+    E, dE = kernels.residual_jacobian(m.tape, FAMILIES.index(family), u,
                                       float(par["eta"]), float(par["omega"]), float(par["F"]))
     n = len(u)
     return E, dE[:, list(range(n)) + [n + PARAMS.index(q) for q in free]]

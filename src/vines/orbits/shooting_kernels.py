@@ -1,8 +1,9 @@
 """Compiled exact derivatives of the 1:1 shooting systems (``shooting``, ``augmented``).
 
-The same closed-form flight as ``shooting.flight`` / ``shooting.lo_state``, evaluated on
-Taylor jets stored as flat arrays: a = (value, gradient (NL), Hessian (NL x NL, row-major))
-over the NL = 8 local variables (z_m', z_b', z_b, t, s, eta, omega, F) of one flight; an
+The closed-form flight ``shooting.flight``, recorded once per model as a tape of
+elementary operations (``tape``, ``shooting.Model.tape``), is evaluated here on Taylor
+jets stored as flat arrays: a = (value, gradient (NL), Hessian (NL x NL, row-major)) over
+the NL = 8 local variables (z_m', z_b', z_b, t, s, eta, omega, F) of one flight; an
 order-1 jet is the first 1 + NL entries. A flight's outputs (y = (z_m', z_b', z_b, t) at
 s, gap, w') are then re-expressed over the global unknowns (u, eta, omega, F, s_g) by the
 chain rule, with inner[k] = the global gradient of local variable k (as in
@@ -29,118 +30,106 @@ KW = dict(cache=True, nogil=True, error_model="numpy")
 
 
 # ------------------------------------------------------------------ jet arithmetic
+# in place: out = f(a, b); out may not be a or b
 
 @njit(**KW)
-def _mul(a, b):
-    out = a[0] * b + b[0] * a
+def _lin(out, a, ca, b, cb):
+    """out = ca a + cb b."""
+    for i in range(out.size):
+        out[i] = ca * a[i] + cb * b[i]
+
+
+@njit(**KW)
+def _mul(out, a, b):
     out[0] = a[0] * b[0]
-    if a.size == N2:
+    for i in range(1, out.size):
+        out[i] = a[0] * b[i] + b[0] * a[i]
+    if out.size == N2:
         for i in range(NL):
             ai, bi = a[1 + i], b[1 + i]
             if ai != 0.0 or bi != 0.0:
                 for j in range(NL):
                     out[N1 + i * NL + j] += ai * b[1 + j] + bi * a[1 + j]
-    return out
 
 
 @njit(**KW)
-def _unary(x, f, f1, f2):
+def _unary(out, x, f, f1, f2):
     """Chain rule for a scalar function with value f, derivatives f1, f2 at x[0]."""
-    out = f1 * x
     out[0] = f
-    if x.size == N2:
+    for i in range(1, out.size):
+        out[i] = f1 * x[i]
+    if out.size == N2:
         for i in range(NL):
             if x[1 + i] != 0.0:
                 for j in range(NL):
                     out[N1 + i * NL + j] += f2 * x[1 + i] * x[1 + j]
+
+
+@njit(**KW)
+def _apply(code, out, a, b, scratch):
+    """Operation ``tape.OPS[code]`` (not const) on jets a (and b) into out."""
+    v = a[0]
+    if code == 0:
+        _lin(out, a, 1.0, b, 1.0)
+    elif code == 1:
+        _lin(out, a, 1.0, b, -1.0)
+    elif code == 2:
+        _mul(out, a, b)
+    elif code == 3:
+        q = 1.0 / b[0]
+        _unary(scratch, b, q, -q * q, 2.0 * q * q * q)
+        _mul(out, a, scratch)
+    elif code == 4:
+        _lin(out, a, -1.0, a, 0.0)
+    elif code == 5:
+        _unary(out, a, math.sin(v), math.cos(v), -math.sin(v))
+    elif code == 6:
+        _unary(out, a, math.cos(v), -math.sin(v), -math.cos(v))
+    elif code == 7:
+        e = math.exp(v)
+        _unary(out, a, e, e, e)
+    else:
+        q = math.sqrt(v)
+        _unary(out, a, q, 0.5 / q, -0.25 / (q * v))
+
+
+@njit(**KW)
+def run_tape(tp, inputs, size):
+    """Outputs (rows) of the tape tp = (ops, consts, output registers) (``tape.record``) as
+    jets of length size; inputs k < NL are the local variables, the others constants."""
+    ops, consts, outs = tp
+    n_in = inputs.size
+    regs = np.zeros((n_in + ops.shape[0], size))
+    scratch = np.empty(size)
+    for k in range(n_in):
+        regs[k, 0] = inputs[k]
+        if k < NL:
+            regs[k, 1 + k] = 1.0
+    for i in range(ops.shape[0]):
+        code = ops[i, 0]
+        if code == 9:
+            regs[n_in + i, 0] = consts[ops[i, 1]]
+        else:
+            _apply(code, regs[n_in + i], regs[ops[i, 1]], regs[ops[i, 2]], scratch)
+    out = np.empty((outs.size, size))
+    for j in range(outs.size):
+        out[j] = regs[outs[j]]
     return out
 
 
 @njit(**KW)
-def _div(a, b):
-    q = 1.0 / b[0]
-    return _mul(a, _unary(b, q, -q * q, 2.0 * q * q * q))
-
-
-@njit(**KW)
-def _addc(a, c):
-    out = a.copy()
-    out[0] += c
-    return out
-
-
-@njit(**KW)
-def _sin(x):
-    s, c = math.sin(x[0]), math.cos(x[0])
-    return _unary(x, s, c, -s)
-
-
-@njit(**KW)
-def _cos(x):
-    s, c = math.sin(x[0]), math.cos(x[0])
-    return _unary(x, c, -s, -c)
-
-
-@njit(**KW)
-def _exp(x):
-    e = math.exp(x[0])
-    return _unary(x, e, e, e)
-
-
-# ------------------------------------------------------------------ the flight on jets
-
-@njit(**KW)
-def _lo_state(d, sigma, wd, z0, v0, th0, s, omega, F):
-    """(z_m, z_m') at local time s (``shooting.lo_state``) on jets."""
-    det = _addc(-_mul(omega, omega), 1.0)
-    dw = d * omega
-    dw2 = _mul(dw, dw)
-    den = _mul(det, det) + dw2
-    ps = _div(_mul(F, det + dw2), den)
-    pc = _div(-d * _mul(_mul(_mul(F, omega), omega), omega), den)
-    s0, c0 = _sin(th0), _cos(th0)
-    th = th0 + _mul(omega, s)
-    s1, c1 = _sin(th), _cos(th)
-    zp0 = _mul(ps, s0) + _mul(pc, c0)
-    zp10 = _mul(omega, _mul(ps, c0) - _mul(pc, s0))
-    zp = _mul(ps, s1) + _mul(pc, c1)
-    zp1 = _mul(omega, _mul(ps, c1) - _mul(pc, s1))
-    e = _exp(-sigma * s)
-    ecw = _mul(e, _cos(wd * s))
-    S = _mul(e, _sin(wd * s)) / wd
-    C = ecw + sigma * S
-    dS = ecw - sigma * S
-    xh, vh = z0 - zp0, v0 - zp10
-    return zp + _mul(xh, C) + _mul(vh, S), zp1 - _mul(xh, S) + _mul(vh, dS)
-
-
-@njit(**KW)
-def flight_local(model, x, s, eta, omega, F, from_wall, size):
-    """Rows (z_m', z_b', z_b, t at s, gap, w') of ``shooting.flight`` as jets of length
-    ``size`` (N1 or N2) over the local variables; model = (r, d, phi, sigma, wd)."""
-    r, d, phi, sigma, wd = model[0], model[1], model[2], model[3], model[4]
-    v = np.zeros((NL, size))
-    for k, val in enumerate((x[0], x[1], x[2], x[3], s, eta, omega, F)):
-        v[k, 0] = val
-        v[k, 1 + k] = 1.0
-    vm, vb, zb, t, sj, etaj, omj, Fj = v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7]
-    one = _addc(etaj, 1.0)
-    vp = _div(_mul(_addc(-r * etaj, 1.0), vm) + (1.0 + r) * _mul(etaj, vb), one)
-    vbp = _div((1.0 + r) * vm + _mul(_addc(etaj, -r), vb), one)
-    z, vel = _lo_state(d, sigma, wd, _addc(zb, from_wall), vp, _addc(_mul(omj, t), phi),
-                       sj, omj, Fj)
-    zb1 = zb + _mul(vbp, sj)
-    out = np.empty((6, size))
-    out[0], out[1], out[2], out[3] = vel, vbp, zb1, t + sj
-    out[4] = _addc(z - zb1, from_wall)
-    out[5] = vel - vbp
-    return out
+def flight_local(tp, x, s, eta, omega, F, from_wall, size):
+    """Rows (z_m', z_b', z_b, t at s, gap, w') of ``shooting.flight`` (recorded as the
+    tape tp, ``shooting.Model.tape``) as jets of length size (N1 or N2) over the local
+    variables."""
+    inputs = np.array([x[0], x[1], x[2], x[3], s, eta, omega, F, from_wall])
+    return run_tape(tp, inputs, size)
 
 
 @njit(**KW)
 def _global(Y, inner):
     """(values, gradients over the global variables) of local jets Y."""
-    return Y[:, 0].copy(), Y[:, 1:N1] @ inner
+    return Y[:, 0].copy(), np.ascontiguousarray(Y[:, 1:N1]) @ inner
 
 
 @njit(**KW)
@@ -179,7 +168,7 @@ def _inner(n_glob, cols, grads):
 
 
 @njit(**KW)
-def _flights(model, fam, u, eta, omega, F, size):
+def _flights(tp, fam, u, eta, omega, F, size):
     """The flights of the orbit u: (Y1, inner1, Y2, inner2, n_glob); Y2 is Y1 for the
     symmetric family (whose residual uses one flight)."""
     nu = 4 + fam
@@ -195,7 +184,7 @@ def _flights(model, fam, u, eta, omega, F, size):
     else:
         s1 = u[4]
     inner1 = _inner(n_glob, cols, grads)
-    Y1 = flight_local(model, u, s1, eta, omega, F, WALL_L, size)
+    Y1 = flight_local(tp, u, s1, eta, omega, F, WALL_L, size)
     if fam == 0:
         return Y1, inner1, Y1, inner1, n_glob
     y1, gy1 = _global(Y1, inner1)
@@ -205,7 +194,7 @@ def _flights(model, fam, u, eta, omega, F, size):
     grads2[4, 4] = -1.0
     grads2[4, io] = -T / omega
     inner2 = _inner(n_glob, cols2, grads2)
-    Y2 = flight_local(model, y1, T - u[4], eta, omega, F, WALL_R, size)
+    Y2 = flight_local(tp, y1, T - u[4], eta, omega, F, WALL_R, size)
     return Y1, inner1, Y2, inner2, n_glob
 
 
@@ -235,9 +224,9 @@ def _residual(fam, u, Y1, inner1, Y2, inner2, n_glob):
 
 
 @njit(**KW)
-def residual_jacobian(model, fam, u, eta, omega, F):
+def residual_jacobian(tp, fam, u, eta, omega, F):
     """(E, dE/d(u, eta, omega, F, s_g)) of the family's shooting system."""
-    Y1, inner1, Y2, inner2, n_glob = _flights(model, fam, u, eta, omega, F, N1)
+    Y1, inner1, Y2, inner2, n_glob = _flights(tp, fam, u, eta, omega, F, N1)
     return _residual(fam, u, Y1, inner1, Y2, inner2, n_glob)
 
 
@@ -320,7 +309,7 @@ def _test_function(fam, cond, Y1, inner1, Y2, inner2):
 
 
 @njit(**KW)
-def _grazing(model, fam, k, wall, u, eta, omega, F, sg, Y1, inner1, Y2, inner2):
+def _grazing(tp, fam, k, wall, u, eta, omega, F, sg, Y1, inner1, Y2, inner2):
     """The grazing conditions (``augmented.Codim1System._grazing``) and their gradients."""
     Yk, innerk = (Y1, inner1) if k == 1 else (Y2, inner2)
     w0 = WALL_L if k == 1 else WALL_R
@@ -337,21 +326,21 @@ def _grazing(model, fam, k, wall, u, eta, omega, F, sg, Y1, inner1, Y2, inner2):
     grads[:4] = gx
     cols = np.array([-1, -1, -1, -1, n_glob - 1, n_glob - 4, n_glob - 3, n_glob - 2])
     inner = _inner(n_glob, cols, grads)
-    y, gy = _global(flight_local(model, x, sg, eta, omega, F, w0, N1), inner)
+    y, gy = _global(flight_local(tp, x, sg, eta, omega, F, w0, N1), inner)
     if wall == 0:
         y[4] -= 2.0 * w0
     return y[4:6].copy(), gy[4:6].copy()
 
 
 @njit(**KW)
-def codim1(model, fam, cond, k, wall, u, eta, omega, F, sg):
+def codim1(tp, fam, cond, k, wall, u, eta, omega, F, sg):
     """(G, dG/d(u, eta, omega, F, s_g)) of ``augmented.Codim1System`` (codes: module
     docstring; k, wall and s_g used by grazing only)."""
     size = N1 if cond == 3 else N2
-    Y1, inner1, Y2, inner2, n_glob = _flights(model, fam, u, eta, omega, F, size)
+    Y1, inner1, Y2, inner2, n_glob = _flights(tp, fam, u, eta, omega, F, size)
     E, dE = _residual(fam, u, Y1, inner1, Y2, inner2, n_glob)
     if cond == 3:
-        g, dg = _grazing(model, fam, k, wall, u, eta, omega, F, sg, Y1, inner1, Y2, inner2)
+        g, dg = _grazing(tp, fam, k, wall, u, eta, omega, F, sg, Y1, inner1, Y2, inner2)
     else:
         v, dv = _test_function(fam, cond, Y1, inner1, Y2, inner2)
         g, dg = np.array([v]), dv.reshape(1, n_glob)
