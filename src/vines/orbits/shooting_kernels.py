@@ -27,19 +27,20 @@ N1 = 1 + NL                  # length of an order-1 jet
 N2 = 1 + NL + NL * NL        # length of an order-2 jet
 WALL_L, WALL_R = 1.0, -1.0   # as core.walls (w = z_m - z_b at the left / right wall)
 KW = dict(cache=True, nogil=True, error_model="numpy")
+INLINE = dict(KW, inline="always")     # helpers: inlined into the entry points
 
 
 # ------------------------------------------------------------------ jet arithmetic
 # in place: out = f(a, b); out may not be a or b
 
-@njit(**KW)
+@njit(**INLINE)
 def _lin(out, a, ca, b, cb):
     """out = ca a + cb b."""
     for i in range(out.size):
         out[i] = ca * a[i] + cb * b[i]
 
 
-@njit(**KW)
+@njit(**INLINE)
 def _mul(out, a, b):
     out[0] = a[0] * b[0]
     for i in range(1, out.size):
@@ -52,7 +53,7 @@ def _mul(out, a, b):
                     out[N1 + i * NL + j] += ai * b[1 + j] + bi * a[1 + j]
 
 
-@njit(**KW)
+@njit(**INLINE)
 def _unary(out, x, f, f1, f2):
     """Chain rule for a scalar function with value f, derivatives f1, f2 at x[0]."""
     out[0] = f
@@ -117,7 +118,7 @@ def run_tape(tp, inputs, size):
     return out
 
 
-@njit(**KW)
+@njit(**INLINE)
 def flight_local(tp, x, s, eta, omega, F, from_wall, size):
     """Rows (z_m', z_b', z_b, t at s, gap, w') of ``shooting.flight`` (recorded as the
     tape tp, ``shooting.Model.tape``) as jets of length size (N1 or N2) over the local
@@ -126,13 +127,13 @@ def flight_local(tp, x, s, eta, omega, F, from_wall, size):
     return run_tape(tp, inputs, size)
 
 
-@njit(**KW)
+@njit(**INLINE)
 def _global(Y, inner):
     """(values, gradients over the global variables) of local jets Y."""
     return Y[:, 0].copy(), np.ascontiguousarray(Y[:, 1:N1]) @ inner
 
 
-@njit(**KW)
+@njit(**INLINE)
 def _map_jac(Y, inner):
     """Jacobian (4x4) of the map whose flight is Y (order 2, the impact time solved from
     gap = 0 as in ``maps.map_kernel``) and its gradients (4, 4, N) over the globals."""
@@ -155,7 +156,7 @@ def _map_jac(Y, inner):
 
 # ------------------------------------------------------------------ the shooting systems
 
-@njit(**KW)
+@njit(**INLINE)
 def _inner(n_glob, cols, grads):
     """inner (NL, n_glob): row k = grads[k] if cols[k] < 0 else the unit row cols[k]."""
     inner = np.zeros((NL, n_glob))
@@ -167,7 +168,7 @@ def _inner(n_glob, cols, grads):
     return inner
 
 
-@njit(**KW)
+@njit(**INLINE)
 def _flights(tp, fam, u, eta, omega, F, size):
     """The flights of the orbit u: (Y1, inner1, Y2, inner2, n_glob); Y2 is Y1 for the
     symmetric family (whose residual uses one flight)."""
@@ -198,7 +199,7 @@ def _flights(tp, fam, u, eta, omega, F, size):
     return Y1, inner1, Y2, inner2, n_glob
 
 
-@njit(**KW)
+@njit(**INLINE)
 def _residual(fam, u, Y1, inner1, Y2, inner2, n_glob):
     """E and dE/d(globals) (``shooting.residual``)."""
     nu = 4 + fam
@@ -223,14 +224,12 @@ def _residual(fam, u, Y1, inner1, Y2, inner2, n_glob):
     return E, dE
 
 
-@njit(**KW)
 def residual_jacobian(tp, fam, u, eta, omega, F):
     """(E, dE/d(u, eta, omega, F, s_g)) of the family's shooting system."""
-    Y1, inner1, Y2, inner2, n_glob = _flights(tp, fam, u, eta, omega, F, N1)
-    return _residual(fam, u, Y1, inner1, Y2, inner2, n_glob)
+    return codim1(tp, fam, -1, 1, 0, u, eta, omega, F, 0.0)
 
 
-@njit(**KW)
+@njit(**INLINE)
 def _monodromy(fam, Y1, inner1, Y2, inner2):
     """A = Mirror J_P1 (symmetric) or J_P2 J_P1 (asymmetric) and dA (4, 4, N)."""
     J1, dJ1 = _map_jac(Y1, inner1)
@@ -249,7 +248,7 @@ def _monodromy(fam, Y1, inner1, Y2, inner2):
     return A, dA
 
 
-@njit(**KW)
+@njit(**INLINE)
 def _compound2(A, dA):
     """Second compound matrix (``shooting.compound2``) and its gradients."""
     pairs = [(p, q) for p in range(4) for q in range(p + 1, 4)]
@@ -296,7 +295,7 @@ def det_gradient(M, dM):
     return out, dout
 
 
-@njit(**KW)
+@njit(**INLINE)
 def _test_function(fam, cond, Y1, inner1, Y2, inner2):
     """The determinant of a fold / det(A + I) / neimark-sacker condition and its gradient."""
     A, dA = _monodromy(fam, Y1, inner1, Y2, inner2)
@@ -308,7 +307,7 @@ def _test_function(fam, cond, Y1, inner1, Y2, inner2):
     return det_gradient(A, dA)
 
 
-@njit(**KW)
+@njit(**INLINE)
 def _grazing(tp, fam, k, wall, u, eta, omega, F, sg, Y1, inner1, Y2, inner2):
     """The grazing conditions (``augmented.Codim1System._grazing``) and their gradients."""
     Yk, innerk = (Y1, inner1) if k == 1 else (Y2, inner2)
@@ -335,10 +334,13 @@ def _grazing(tp, fam, k, wall, u, eta, omega, F, sg, Y1, inner1, Y2, inner2):
 @njit(**KW)
 def codim1(tp, fam, cond, k, wall, u, eta, omega, F, sg):
     """(G, dG/d(u, eta, omega, F, s_g)) of ``augmented.Codim1System`` (codes: module
-    docstring; k, wall and s_g used by grazing only)."""
-    size = N1 if cond == 3 else N2
+    docstring; k, wall and s_g used by grazing only); cond = -1: the shooting residual
+    alone (``residual_jacobian``). The one compiled entry point (compiling is the cost)."""
+    size = N2 if 0 <= cond <= 2 else N1
     Y1, inner1, Y2, inner2, n_glob = _flights(tp, fam, u, eta, omega, F, size)
     E, dE = _residual(fam, u, Y1, inner1, Y2, inner2, n_glob)
+    if cond < 0:
+        return E, dE
     if cond == 3:
         g, dg = _grazing(tp, fam, k, wall, u, eta, omega, F, sg, Y1, inner1, Y2, inner2)
     else:
