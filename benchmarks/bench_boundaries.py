@@ -24,6 +24,7 @@ from vines.core.params import D_DEFAULT
 from vines.orbits.boundaries import boundaries
 from vines.orbits.stability_map import stability_map
 from vines.pipeline.axes import axis_values
+from vines.pipeline.config import load_schema, validate_config
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
 # where the time goes: (label, substrings of "file:function" of the profile's entries)
@@ -67,6 +68,9 @@ def main():
     args = ap.parse_args()
     with open(args.configfile) as f:
         cfg = yaml.safe_load(f)
+    # the schema's defaults, as the pipeline reads the config
+    validate_config(cfg, load_schema(os.path.join(ROOT, "workflow", "schemas",
+                                                  "config.schema.yaml")))
     model = {"r": cfg["model"]["r"],
              "d": D_DEFAULT if cfg["model"]["d"] is None else cfg["model"]["d"]}
     t0 = time.perf_counter()
