@@ -22,10 +22,11 @@ import math
 import numpy as np
 from numba import njit
 
+from ..core.walls import WALL_L, WALL_R
+
 NL = 8                       # local variables of one flight
 N1 = 1 + NL                  # length of an order-1 jet
 N2 = 1 + NL + NL * NL        # length of an order-2 jet
-WALL_L, WALL_R = 1.0, -1.0   # as core.walls (w = z_m - z_b at the left / right wall)
 KW = dict(cache=True, nogil=True, error_model="numpy")
 INLINE = dict(KW, inline="always")     # helpers: inlined into the entry points
 
@@ -123,7 +124,7 @@ def flight_local(tp, x, s, eta, omega, F, from_wall, size):
     """Rows (z_m', z_b', z_b, t at s, gap, w') of ``shooting.flight`` (recorded as the
     tape tp, ``shooting.Model.tape``) as jets of length size (N1 or N2) over the local
     variables."""
-    inputs = np.array([x[0], x[1], x[2], x[3], s, eta, omega, F, from_wall])
+    inputs = np.array([x[0], x[1], x[2], x[3], s, eta, omega, F, float(from_wall)])
     return run_tape(tp, inputs, size)
 
 
@@ -311,7 +312,7 @@ def _test_function(fam, cond, Y1, inner1, Y2, inner2):
 def _grazing(tp, fam, k, wall, u, eta, omega, F, sg, Y1, inner1, Y2, inner2):
     """The grazing conditions (``augmented.Codim1System._grazing``) and their gradients."""
     Yk, innerk = (Y1, inner1) if k == 1 else (Y2, inner2)
-    w0 = WALL_L if k == 1 else WALL_R
+    w0 = float(WALL_L if k == 1 else WALL_R)
     if wall == 2:
         y, gy = _global(Yk, innerk)
         return y[5:6], gy[5:6]
