@@ -14,8 +14,10 @@ The equations are the family's residual E(u) = 0 plus the defining condition of 
 
 With one free parameter the system is square (a point, ``solve``); with two it defines a
 curve in the parameter plane (``boundaries``). Every derivative is exact: first derivatives
-of E and of the grazing conditions from order-1 jets, derivatives of the determinants from
-the order-2 jets behind ``shooting.monodromy_jets``.
+of E and of the grazing conditions, and the derivatives of the determinants (which need the
+flight's second derivatives), from Taylor jets, compiled (``shooting_kernels.codim1``);
+``Codim1System.evaluate_jets`` computes the same from the pure-Python jets behind
+``shooting.monodromy_jets`` (the reference).
 """
 from __future__ import annotations
 
@@ -30,7 +32,8 @@ KINDS = {"symmetric": ("fold", "symmetry-breaking", "neimark-sacker", "grazing")
          "asymmetric": ("fold", "flip", "neimark-sacker", "grazing")}
 GRAZE_WALLS = ("start", "target", "arrival")
 PARAMS = sh.PARAMS
-CONDITIONS = ("fold", ("symmetry-breaking", "flip"), "neimark-sacker", "grazing")
+# the condition codes of ``shooting_kernels.codim1`` (index) and the kinds they serve
+CONDITIONS = (("fold",), ("symmetry-breaking", "flip"), ("neimark-sacker",), ("grazing",))
 
 
 class Codim1System:
