@@ -4,7 +4,11 @@ Unlike ``periodic.newton_1to1`` (the impact time solved inside each map) the fli
 are explicit here, as in multi-segment shooting for hybrid periodic orbits: every
 condition is then a closed-form function of the unknowns and of (eta, omega, F), so the
 derivatives with respect to the parameters, and the second derivatives needed by the
-augmented systems of ``boundaries``, come exactly from the Taylor jets of ``jets``.
+augmented systems of ``boundaries``, come exactly from Taylor jets: ``flight`` is recorded
+once per ``Model`` as a tape (``tape``) that ``shooting_kernels`` runs on jets in compiled
+code (``residual_jacobian``, ``augmented.Codim1System``); the pure-Python ``jets``
+evaluate these formulas directly (``residual_jacobian_jets``, ``monodromy_jets``: the
+reference of the compiled derivatives).
 
 Families (unknowns u, residual E(u; eta, omega, F) = 0):
 
