@@ -8,7 +8,8 @@ For every entry of the config's ``boundaries`` section: its stability map (the
 map's class changes as the pipeline runs it, ``--repeat`` times (best wall time and CPU
 time kept), then one run under cProfile whose time is split by where it goes (compiled
 shooting derivatives, Newton corrector / tracer, orbit classification on the maps, numpy
-linear algebra, parameter checks, the rest). Target (issue 13): <= ~8 s per F at the full
+linear algebra, parameter checks, the rest). First, one augmented-system evaluation
+compiled vs with the pure-Python jets it replaced, side by side. Target (issue 13): <= ~8 s per F at the full
 config on one idle core. The load average is printed next to every timing.
 """
 import argparse
@@ -59,6 +60,28 @@ def _profile(spec, model, class_map):
     return out
 
 
+def _per_evaluation(model):
+    """Compiled vs pure-Python jets, one augmented-system evaluation (G, G_z) each, side by
+    side in this process (same load): prints microseconds per call and the ratio."""
+    from vines.orbits import augmented as ag, shooting as sh
+    from vines.orbits.periodic import find_1to1
+    m = sh.Model(model["r"], model["d"])
+    orbits = find_1to1(0.12, 1.1, 0.3077, r=model["r"], d=model["d"], simulation=False)
+    for family in sh.FAMILIES:
+        o = next(o for o in orbits if o.symmetric == (family == "symmetric"))
+        system = ag.Codim1System(m, family, "neimark-sacker", ("eta", "omega"), {"F": 0.3077})
+        z = np.array(list(o.x_L) + ([] if o.symmetric else [o.flight_times[0]]) + [0.12, 1.1])
+        times = {}
+        for label, fun, n in (("compiled", system, 2000), ("jets", system.evaluate_jets, 50)):
+            w0 = time.perf_counter()
+            for _ in range(n):
+                fun(z)
+            times[label] = (time.perf_counter() - w0) / n * 1e6
+        print(f"{family} neimark-sacker system: compiled {times['compiled']:.0f} us, "
+              f"Python jets {times['jets']:.0f} us per evaluation "
+              f"({times['jets'] / times['compiled']:.0f}x)")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--configfile", default=os.path.join(ROOT, "config", "config.yaml"))
@@ -77,6 +100,7 @@ def main():
     _run({"F": 0.3077, "eta_range": [0.1, 0.2], "omega_range": [1.0, 1.1], "n_scan": 1,
           "n_map": 0}, model, None)
     print(f"warm-up (numba cache load or compile): {time.perf_counter() - t0:.1f} s")
+    _per_evaluation(model)
     for name, spec in cfg["boundaries"].items():
         if args.only and name not in args.only:
             continue
