@@ -17,8 +17,9 @@
    vanishes at real pairs lambda_1 lambda_2 = 1);
 4. seeds a scan line never meets (e.g. an unstable family whose arrival velocity vanishes
    along a whole curve): on a coarse stability map (``stability_map``), every pair of
-   neighbouring cells of different class with no kept curve within 1.5 cells is joined by
-   a short one-parameter continuation from each admissible end; its events seed step 2.
+   neighbouring cells of different class with a cell in the box and no kept curve within
+   1.5 cells is joined by a short one-parameter continuation from each admissible end; its
+   events seed step 2.
 
 These curves are the edges of the classes of ``stability_map`` (Fig 16).
 """
