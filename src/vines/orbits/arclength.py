@@ -71,20 +71,22 @@ class Tracer:
         or None."""
         z = z_pred.copy()
         tw = t_ref * self.scale * self.scale
+        n = len(z)
+        A, F = np.empty((n, n)), np.empty(n)        # the bordered system
+        A[-1] = tw
         for it in range(1, MAX_NEWTON + 1):
             R, Rz = self.fun(z)
-            if not np.all(np.isfinite(R)) or not np.all(np.isfinite(Rz)):
+            if not (np.isfinite(R).all() and np.isfinite(Rz).all()):
                 return None
-            F = np.append(R, np.dot(tw, z - z_ref) - tau)
-            A = np.vstack([Rz, tw[None, :]])
+            A[:-1], F[:-1], F[-1] = Rz, R, np.dot(tw, z - z_ref) - tau
             try:
                 dz = np.linalg.solve(A, -F)
             except np.linalg.LinAlgError:
                 return None
             z = z + dz
-            if np.max(np.abs(dz)) <= NEWTON_TOL * (1.0 + np.max(np.abs(z))):
+            if np.abs(dz).max() <= NEWTON_TOL * (1.0 + np.abs(z).max()):
                 R, Rz = self.fun(z)
-                if np.max(np.abs(R)) <= 1e3 * NEWTON_TOL:
+                if np.abs(R).max() <= 1e3 * NEWTON_TOL:
                     return z, Rz, it
                 return None
         return None

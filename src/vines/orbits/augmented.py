@@ -14,8 +14,10 @@ The equations are the family's residual E(u) = 0 plus the defining condition of 
 
 With one free parameter the system is square (a point, ``solve``); with two it defines a
 curve in the parameter plane (``boundaries``). Every derivative is exact: first derivatives
-of E and of the grazing conditions from order-1 jets, derivatives of the determinants from
-the order-2 jets behind ``shooting.monodromy_jets``.
+of E and of the grazing conditions, and the derivatives of the determinants (which need the
+flight's second derivatives), from Taylor jets, compiled (``shooting_kernels.codim1``);
+``Codim1System.evaluate_jets`` computes the same from the pure-Python jets behind
+``shooting.monodromy_jets`` (the reference).
 """
 from __future__ import annotations
 
@@ -24,11 +26,14 @@ import numpy as np
 from ..core.walls import WALL_L, WALL_R
 from . import jets
 from . import shooting as sh
+from . import shooting_kernels as sk
 
 KINDS = {"symmetric": ("fold", "symmetry-breaking", "neimark-sacker", "grazing"),
          "asymmetric": ("fold", "flip", "neimark-sacker", "grazing")}
 GRAZE_WALLS = ("start", "target", "arrival")
-PARAMS = ("eta", "omega", "F")
+PARAMS = sh.PARAMS
+# the condition codes of ``shooting_kernels.codim1`` (index) and the kinds they serve
+CONDITIONS = (("fold",), ("symmetry-breaking", "flip"), ("neimark-sacker",), ("grazing",))
 
 
 class Codim1System:
@@ -61,6 +66,21 @@ class Codim1System:
         return cols + [self.nu + PARAMS.index(q) for q in self.free]
 
     def __call__(self, z):
+        """(G, G_z) from the compiled kernel (``shooting_kernels.codim1``)."""
+        z = np.asarray(z, dtype=float)
+        p = self.par(z)
+        k, wall = self.graze if self.graze is not None else (1, "arrival")
+        G, Gg = sk.codim1(self.m.tape, sh.FAMILIES.index(self.family), self._cond,
+                          int(k), GRAZE_WALLS.index(wall), z[:self.nu], p["eta"],
+                          p["omega"], p["F"], float(z[self.nu]) if self.has_sg else 0.0)
+        return G, Gg[:, self._columns()]
+
+    @property
+    def _cond(self) -> int:
+        return next(i for i, c in enumerate(CONDITIONS) if self.kind in c)
+
+    def evaluate_jets(self, z):
+        """(G, G_z) from the Python jets: the reference of the compiled ``__call__``."""
         z = np.asarray(z, dtype=float)
         p = self.par(z)
         u = z[:self.nu]
@@ -71,8 +91,7 @@ class Codim1System:
             E += self._grazing(gv)
         else:
             E.append(self._test(u, p, len(gv)))
-        cols = self._columns()
-        return jets.values(E), jets.jacobian(E, len(gv))[:, cols]
+        return jets.values(E), jets.jacobian(E, len(gv))[:, self._columns()]
 
     def _test(self, u, p, n_global):
         A = sh.monodromy_jets(self.m, self.family, list(u), p["eta"], p["omega"], p["F"])

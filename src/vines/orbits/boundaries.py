@@ -17,8 +17,9 @@
    vanishes at real pairs lambda_1 lambda_2 = 1);
 4. seeds a scan line never meets (e.g. an unstable family whose arrival velocity vanishes
    along a whole curve): on a coarse stability map (``stability_map``), every pair of
-   neighbouring cells of different class with no kept curve within 1.5 cells is joined by
-   a short one-parameter continuation from each admissible end; its events seed step 2.
+   neighbouring cells of different class with a cell in the box and no kept curve within
+   1.5 cells is joined by a short one-parameter continuation from each admissible end; its
+   events seed step 2.
 
 These curves are the edges of the classes of ``stability_map`` (Fig 16).
 """
@@ -85,8 +86,7 @@ class _CurveTracer:
         self.sys, self.box, self.step, self.max_points = system, box, step, max_points
 
     def inside(self, z) -> bool:
-        (e0, e1), (w0, w1) = self.box
-        return e0 <= z[-2] <= e1 and w0 <= z[-1] <= w1
+        return _in_box(z[-2:], self.box)
 
     def half(self, z0, sign):
         """Points from z0 (excluded) in one direction; (list of z, why it stopped)."""
@@ -206,7 +206,8 @@ def boundaries(F, eta_range, omega_range, r=R_DEFAULT, d=D_DEFAULT, n_scan=5, st
     else:
         edges = _map_edges(model, F, box, n_map) if n_map >= 2 else []
     for edge in edges:
-        if not traced.explains(edge):
+        # an edge with both cells outside the box cannot seed a curve inside it
+        if (_in_box(edge[0], box) or _in_box(edge[1], box)) and not traced.explains(edge):
             for seed in _edge_seeds(model, F, edge):
                 traced.add(seed)
     return Boundaries(F, box[0], box[1], traced.kept)
@@ -223,9 +224,7 @@ class _Traced:
     def add(self, seed):
         """Trace the curve through a seed unless a curve of its kind passes there."""
         family, kind, graze, z0 = seed
-        (e0, e1), (w0, w1) = self.box
-        if not (e0 <= z0[-2] <= e1 and w0 <= z0[-1] <= w1) \
-                or _on_curve(self.curves, seed, self.step):
+        if not _in_box(z0[-2:], self.box) or _on_curve(self.curves, seed, self.step):
             return
         c = trace(self.model, family, kind, graze, z0, self.F, self.box, self.step,
                   self.max_points)
@@ -288,6 +287,12 @@ def _edge_seeds(model, F, edge):
                                  max_inadmissible=5, max_points=200)
             for bb in [br] + br.switched:
                 yield from _branch_seeds(model, bb, param, fixed, F)
+
+
+def _in_box(point, box) -> bool:
+    """(eta, omega) = point lies in the box ((eta_lo, eta_hi), (omega_lo, omega_hi))."""
+    (e0, e1), (w0, w1) = box
+    return e0 <= point[0] <= e1 and w0 <= point[1] <= w1
 
 
 def _range(name, value) -> tuple:

@@ -4,7 +4,9 @@ A ``Jet`` carries a value, its gradient and (order 2) its Hessian with respect t
 independent variables. The closed-form residuals of ``vines.orbits.shooting`` are written
 once, over numbers that support + - * / and ``sin``/``cos``/``exp``/``sqrt`` from this
 module, and evaluated on floats (values) or on jets (exact first and second derivatives,
-to rounding: no step size, no truncation error). Mixed float/jet arithmetic works.
+to rounding: no step size, no truncation error). Mixed float/jet arithmetic works. A
+third kind of number, ``tape.Node``, records the operations (``sin`` ... call its
+``unary``) for the compiled evaluation of ``shooting_kernels``.
 
 ``lift(J)`` turns the gradients of order-2 jets into order-1 jets of the first
 derivatives (value = d f_i / d v_k, gradient = the Hessian row), which is how derivatives
@@ -80,28 +82,28 @@ def _unary(x: Jet, f, f1, f2) -> Jet:
 
 def sin(x):
     if not isinstance(x, Jet):
-        return math.sin(x)
+        return x.unary("sin") if hasattr(x, "unary") else math.sin(x)
     s, c = math.sin(x.v), math.cos(x.v)
     return _unary(x, s, c, -s)
 
 
 def cos(x):
     if not isinstance(x, Jet):
-        return math.cos(x)
+        return x.unary("cos") if hasattr(x, "unary") else math.cos(x)
     s, c = math.sin(x.v), math.cos(x.v)
     return _unary(x, c, -s, -c)
 
 
 def exp(x):
     if not isinstance(x, Jet):
-        return math.exp(x)
+        return x.unary("exp") if hasattr(x, "unary") else math.exp(x)
     e = math.exp(x.v)
     return _unary(x, e, e, e)
 
 
 def sqrt(x):
     if not isinstance(x, Jet):
-        return math.sqrt(x)
+        return x.unary("sqrt") if hasattr(x, "unary") else math.sqrt(x)
     q = math.sqrt(x.v)
     return _unary(x, q, 0.5 / q, -0.25 / (q * x.v))
 

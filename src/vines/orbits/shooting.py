@@ -4,7 +4,11 @@ Unlike ``periodic.newton_1to1`` (the impact time solved inside each map) the fli
 are explicit here, as in multi-segment shooting for hybrid periodic orbits: every
 condition is then a closed-form function of the unknowns and of (eta, omega, F), so the
 derivatives with respect to the parameters, and the second derivatives needed by the
-augmented systems of ``boundaries``, come exactly from the Taylor jets of ``jets``.
+augmented systems of ``boundaries``, come exactly from Taylor jets: ``flight`` is recorded
+once per ``Model`` as a tape (``tape``) that ``shooting_kernels`` runs on jets in compiled
+code (``residual_jacobian``, ``augmented.Codim1System``); the pure-Python ``jets``
+evaluate these formulas directly (``residual_jacobian_jets``, ``monodromy_jets``: the
+reference of the compiled derivatives).
 
 Families (unknowns u, residual E(u; eta, omega, F) = 0):
 
@@ -27,10 +31,13 @@ import numpy as np
 from ..core.params import ParameterError
 from ..core.walls import WALL_L, WALL_R
 from . import jets
+from . import shooting_kernels as kernels
 from .jets import cos, exp, sin, sqrt
+from .tape import record
 
 FAMILIES = ("symmetric", "asymmetric")
 N_UNKNOWNS = {"symmetric": 4, "asymmetric": 5}
+PARAMS = ("eta", "omega", "F")
 MIRROR = np.diag([-1.0, -1.0, -1.0, 1.0])
 
 
@@ -44,6 +51,8 @@ class Model:
         self.r, self.d, self.phi = float(r), float(d), float(phi)
         self.sigma = 0.5 * d
         self.wd = math.sqrt(1.0 - self.sigma ** 2)
+        # ``flight`` as the compiled kernels evaluate it (``shooting_kernels``)
+        self.tape = record(lambda *v: _flight_outputs(self, v), 9)
 
 
 def flight(m: Model, x, s, eta, omega, F, from_wall: int):
@@ -57,6 +66,12 @@ def flight(m: Model, x, s, eta, omega, F, from_wall: int):
     z, v = lo_state(m, zb + from_wall, vp, omega * t + m.phi, s, omega, F)
     zb1 = zb + vbp * s
     return (v, vbp, zb1, t + s), z - zb1 + from_wall, v - vbp
+
+
+def _flight_outputs(m: Model, v) -> list:
+    """flight with inputs v = (x (4), s, eta, omega, F, from_wall) as one list (6)."""
+    y, gap, w_dot = flight(m, v[:4], v[4], v[5], v[6], v[7], v[8])
+    return [*y, gap, w_dot]
 
 
 def lo_state(m: Model, z0, v0, th0, s, omega, F):
@@ -102,7 +117,17 @@ def flight_times(family: str, u, omega) -> tuple:
 
 def residual_jacobian(m: Model, family: str, u, par: dict, free: tuple):
     """(E, dE/d(u, free params)) at u with par = {eta, omega, F}; ``free`` names the
-    parameters differentiated (in that order, after u)."""
+    parameters differentiated (in that order, after u). Compiled
+    (``shooting_kernels.residual_jacobian``); ``residual_jacobian_jets`` is the reference."""
+    u = np.asarray(u, dtype=float)
+    E, dE = kernels.residual_jacobian(m.tape, FAMILIES.index(family), u,
+                                      float(par["eta"]), float(par["omega"]), float(par["F"]))
+    n = len(u)
+    return E, dE[:, list(range(n)) + [n + PARAMS.index(q) for q in free]]
+
+
+def residual_jacobian_jets(m: Model, family: str, u, par: dict, free: tuple):
+    """``residual_jacobian`` from the Python jets (the reference of the compiled one)."""
     n = len(u)
     z = jets.variables(list(u) + [par[q] for q in free])
     p = dict(par)
