@@ -127,7 +127,7 @@ def test_asymmetric_branch_ends_on_the_symmetric_one():
     orbit and ends at the symmetry-breaking point the symmetric branch reports."""
     fixed = {"omega": 1.1, "F": 0.3077}
     asym = continue_branch("eta", 0.12, 0.3, None, fixed, branch="asymmetric")
-    assert asym.kind == "asymmetric" and not asym.symmetric[0]
+    assert asym.family == "asymmetric" and not asym.symmetric[0]
     assert asym.lambda_max[0] == pytest.approx(0.821, abs=5e-4)
     assert sorted(asym.orbits[0].flight_times) == pytest.approx([1.971, 3.741], abs=5e-4)
     assert asym.stopped.startswith("reached the symmetric branch")
@@ -139,7 +139,7 @@ def test_asymmetric_branch_ends_on_the_symmetric_one():
     assert end["at"] == pytest.approx(sb[0]["at"], abs=1e-9)
     # the branch switched to at that point is the same asymmetric family
     sw = sym.switched[0]
-    assert sw.kind == "asymmetric" and sw.values[0] == pytest.approx(sb[0]["at"], abs=1e-4)
+    assert sw.family == "asymmetric" and sw.values[0] == pytest.approx(sb[0]["at"], abs=1e-4)
     k = int(np.argmin(np.abs(sw.values - 0.13)))
     ref = [o for o in find_1to1(sw.values[k], 1.1, 0.3077, simulation=False)
            if not o.symmetric and o.admissible]
@@ -182,7 +182,7 @@ def test_map_solve_stores_the_asymmetric_branch():
     spec = {"param": "eta", "start": 0.1, "stop": 0.2, "step": 0.01,
             "fixed": {"omega": 1.1, "F": 0.3077}}
     ds = stages.map_solve(spec, model={"r": R_DEFAULT, "d": D_DEFAULT}, code="t", title="t")
-    assert ds["kind"].values.tolist() == ["symmetric", "asymmetric"]
+    assert ds["family"].values.tolist() == ["symmetric", "asymmetric"]
     assert ds["symmetric"].values.tolist() == [1] * int(ds["row_size"][0]) + [0] * int(
         ds["row_size"][1])
     assert abs(float(ds["born_at"][1]) - 0.1496) < 5e-4 and np.isnan(float(ds["born_at"][0]))

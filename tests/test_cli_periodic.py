@@ -113,7 +113,7 @@ def test_continue_through_the_fold_and_asymmetric_branch():
     proc = run_vines("continue", "--param", "eta", "--start", "0.12", "--stop", "0.3",
                      "--omega", "1.1", "--F", "0.3077", "--branch", "asymmetric", "--json")
     out = json.loads(proc.stdout)
-    assert out["kind"] == "asymmetric"
+    assert out["family"] == "asymmetric"
     assert out["branch"][0]["lambda_max"] == pytest.approx(0.821, abs=5e-4)
     assert out["events"][-1]["type"] == "symmetry-breaking"
     assert out["events"][-1]["connects"] == "symmetric"

@@ -395,7 +395,7 @@ def _cmd_continue(args: argparse.Namespace) -> int:
 def _branch_text(d: dict, values: dict, indent: str = "") -> str:
     """Table of a ``Branch.to_dict()`` (and of the branches switched to)."""
     param = d["param"]
-    lines = [f"{indent}{d['kind']} branch in {param} from {values['start']:g} towards "
+    lines = [f"{indent}{d['family']} branch in {param} from {values['start']:g} towards "
              f"{values['stop']:g}: {len(d['branch'])} points ({d['stopped']})"]
     for pt in d["branch"]:
         lines.append(f"{indent}  {param} = {pt[param]:.6g}  |lambda_max| = "

@@ -211,8 +211,8 @@ def branch_dataset(br, attrs: dict) -> xr.Dataset:
                                           for b in rows]),
         cf(BRANCH_ATTRS, "abs_eigenvalues"))
     B = ("branch",)
-    data["kind"] = xr.Variable(B, np.asarray([b.kind for b in rows], dtype="U16"),
-                               cf(BRANCH_ATTRS, "kind"))
+    data["family"] = xr.Variable(B, np.asarray([b.family for b in rows], dtype="U16"),
+                                 cf(BRANCH_ATTRS, "family"))
     data["stopped"] = xr.Variable(B, np.asarray([str(b.stopped) for b in rows], dtype="U64"),
                                   cf(BRANCH_ATTRS, "stopped"))
     data["born_at"] = xr.Variable(B, np.asarray(

@@ -80,7 +80,7 @@ BRANCH_ATTRS = {
     "phase_R": ("phase of the R impact", "rad"),
     "event_type": ("bifurcation / admissibility event type", ""),
     "event_branch": ("index of the branch on which the event lies", "1"),
-    "kind": ("orbit family of the branch (symmetric or asymmetric)", ""),
+    "family": ("orbit family of the branch (symmetric or asymmetric)", ""),
     "stopped": ("why the continuation of the branch ended", ""),
     "born_at": ("continued-parameter value of the symmetry-breaking point the branch "
                 "starts from (NaN: the continued branch itself)", "1"),

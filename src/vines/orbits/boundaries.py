@@ -346,14 +346,14 @@ def _branch_seeds(model, br, param, fixed, F):
     for ev in br.events:
         o = br.orbits[ev["index"]]
         typ = ev["type"]
-        if typ == "symmetry-breaking" and br.kind == "asymmetric":
+        if typ == "symmetry-breaking" and br.family == "asymmetric":
             continue
         z = np.asarray(ev["z"], float)
         par = dict(fixed, **{param: float(z[-1])})
         u = list(z[:-1])
         graze, extra = None, []
         if typ == "admissibility-loss":
-            graze, s_g, margin = ag.grazing_guess(model, br.kind, u, par)
+            graze, s_g, margin = ag.grazing_guess(model, br.family, u, par)
             if margin > 1e-3:
                 continue
             extra = [] if graze[1] == "arrival" else [s_g]
@@ -361,11 +361,11 @@ def _branch_seeds(model, br, param, fixed, F):
         elif not o.admissible:
             continue
         z0 = np.array(u + extra + [par["eta"], par["omega"]])
-        system = ag.Codim1System(model, br.kind, typ, (param,),
+        system = ag.Codim1System(model, br.family, typ, (param,),
                                  {q: v for q, v in par.items() if q != param}, graze)
         zs = ag.solve(system, z0[:-1] if param == "eta" else np.append(z0[:-2], z0[-1]))
         if zs is None:
             continue
         z0[:-2] = zs[:-1]
         z0[-2 if param == "eta" else -1] = zs[-1]
-        yield br.kind, typ, graze, z0
+        yield br.family, typ, graze, z0

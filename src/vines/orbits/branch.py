@@ -14,7 +14,7 @@ EVENT_TYPES = ("fold", "flip", "neimark-sacker", "admissibility-loss", "symmetry
 class Branch:
     """A continued 1:1 branch: one entry per point, in continuation order.
 
-    kind        "symmetric" or "asymmetric" (the orbit family followed)
+    family      "symmetric" or "asymmetric" (the orbit family followed)
     arclength   pseudo-arclength of each point from the start (natural mode: |param - start|)
     events      dicts {type, at (parameter value), eta, omega, F, index (the branch point
                 where it was located), connects (the family met there, symmetry-breaking)}
@@ -39,7 +39,7 @@ class Branch:
     events: list = field(default_factory=list)
     orbits: list = field(default_factory=list, repr=False)
     stopped: str = "done"
-    kind: str = "symmetric"
+    family: str = "symmetric"
     arclength: np.ndarray | None = None
     switched: list = field(default_factory=list)
 
@@ -53,7 +53,7 @@ class Branch:
                 "dw_L": float(self.dw_L[i]),
                 "flight_times": [float(s) for s in self.orbits[i].flight_times]}
                for i in range(len(self.values))]
-        return {"param": self.param, "kind": self.kind, "branch": pts,
+        return {"param": self.param, "family": self.family, "branch": pts,
                 "events": [_event_dict(e) for e in self.events], "stopped": self.stopped,
                 "switched": [b.to_dict() for b in self.switched]}
 
@@ -70,7 +70,7 @@ def _event_dict(e: dict) -> dict:
     return out
 
 
-def make_branch(param, pts, events, stopped, kind="symmetric", arclength=None) -> Branch:
+def make_branch(param, pts, events, stopped, family="symmetric", arclength=None) -> Branch:
     """Branch from [(parameter value, PeriodicOrbit)] in continuation order."""
     n = len(pts)
     vals = np.array([v for v, _ in pts], float)
@@ -91,5 +91,5 @@ def make_branch(param, pts, events, stopped, kind="symmetric", arclength=None) -
                   stable=get("stable", bool), symmetric=get("symmetric", bool),
                   admissible=get("admissible", bool), dw_L=get("dw_L"), dw_R=get("dw_R"),
                   phase_L=get("phase_L"), phase_R=get("phase_R"), events=events,
-                  orbits=orbits, stopped=stopped, kind=kind,
+                  orbits=orbits, stopped=stopped, family=family,
                   arclength=np.asarray(arclength, float))

@@ -292,7 +292,7 @@ def follow(model: sh.Model, family: str, param: str, fixed: dict, u0, start: flo
     f.run(max_points, max_inadmissible)
     for e in f.events:
         e.pop("t", None)
-    return make_branch(param, f.pts, f.events, f.stopped, kind=family, arclength=f.arc)
+    return make_branch(param, f.pts, f.events, f.stopped, family=family, arclength=f.arc)
 
 
 def start_unknowns(o: PeriodicOrbit, family: str) -> np.ndarray:

@@ -154,7 +154,7 @@ def continue_branch(param: str, start, stop, step=None, fixed: dict | None = Non
             return _make_branch(param, [], [], "the given orbit does not converge at start")
     if method == "natural":
         br = _natural(cont, start, stop, step, orbit, min_step, event_tol)
-        br.kind = "symmetric" if orbit.symmetric else "asymmetric"
+        br.family = "symmetric" if orbit.symmetric else "asymmetric"
         return br
     return _arclength(param, start, stop, step, others, orbit, r, d, phi, min_step,
                       max_points, branch, switch, max_inadmissible)
