@@ -180,6 +180,13 @@ def _simulate_inputs(args: argparse.Namespace) -> dict:
                 max_impacts=settings.max_impacts, periodic_shortcut=args.periodic_shortcut)
 
 
+def _emit(as_json: bool, d: dict, text) -> int:
+    """Print ``d`` as one JSON object, or ``text(d)`` for a reader; exit status 0."""
+    sys.stdout.write((json.dumps(_jsonable(d), allow_nan=False) if as_json else text(d)) + "\n")
+    sys.stdout.flush()
+    return 0
+
+
 def _cmd_simulate(args: argparse.Namespace) -> int:
     kwargs = _simulate_inputs(args)
     from .core import simulation  # imported lazily: argument errors never pay for the solver
@@ -265,23 +272,22 @@ def _cmd_periodic(args: argparse.Namespace) -> int:
     keys = ("symmetric", "admissible", "stable", "lambda_max", "eigenvalues", "dw_L", "dw_R",
             "phase_L", "phase_R", "flight_times")
     sols = [{k: o.to_dict()[k] for k in keys} for o in orbits]
-    if args.json:
-        out = {"solutions": sols, "params": params.as_dict()}
-        sys.stdout.write(json.dumps(_jsonable(out), allow_nan=False) + "\n")
-    else:
-        lines = [f"eta = {params.eta:g}, omega = {params.omega:g}, F = {params.F:g}: "
-                 f"{len(sols)} 1:1 solution(s)"]
-        for s in sols:
-            kind = "symmetric" if s["symmetric"] else "asymmetric"
-            adm = "admissible" if s["admissible"] else "NOT admissible"
-            st = "stable" if s["stable"] else "unstable"
-            lines.append(f"  {kind:10s} {adm:14s} {st:8s} |lambda_max| = {s['lambda_max']:.6g}  "
-                         f"dw_L = {s['dw_L']:.6g}  dw_R = {s['dw_R']:.6g}  "
-                         f"phase_L = {s['phase_L']:.6g}  flights = "
-                         f"{s['flight_times'][0]:.6g}, {s['flight_times'][1]:.6g}")
-        sys.stdout.write("\n".join(lines) + "\n")
-    sys.stdout.flush()
-    return 0
+    return _emit(args.json, {"solutions": sols, "params": params.as_dict()}, _periodic_text)
+
+
+def _periodic_text(d: dict) -> str:
+    p, sols = d["params"], d["solutions"]
+    lines = [f"eta = {p['eta']:g}, omega = {p['omega']:g}, F = {p['F']:g}: "
+             f"{len(sols)} 1:1 solution(s)"]
+    for s in sols:
+        family = "symmetric" if s["symmetric"] else "asymmetric"
+        adm = "admissible" if s["admissible"] else "NOT admissible"
+        st = "stable" if s["stable"] else "unstable"
+        lines.append(f"  {family:10s} {adm:14s} {st:8s} |lambda_max| = {s['lambda_max']:.6g}  "
+                     f"dw_L = {s['dw_L']:.6g}  dw_R = {s['dw_R']:.6g}  "
+                     f"phase_L = {s['phase_L']:.6g}  flights = "
+                     f"{s['flight_times'][0]:.6g}, {s['flight_times'][1]:.6g}")
+    return "\n".join(lines)
 
 
 # --------------------------------------------------------------------------- continue
@@ -383,13 +389,7 @@ def _cmd_continue(args: argparse.Namespace) -> int:
                              r=params.r, d=params.d, max_points=max_points,
                              method=args.method, branch=args.branch, switch=args.switch,
                              max_inadmissible=max_inadmissible)
-    d = br.to_dict()
-    if args.json:
-        sys.stdout.write(json.dumps(_jsonable(d), allow_nan=False) + "\n")
-    else:
-        sys.stdout.write(_branch_text(d, values) + "\n")
-    sys.stdout.flush()
-    return 0
+    return _emit(args.json, br.to_dict(), lambda d: _branch_text(d, values))
 
 
 def _branch_text(d: dict, values: dict, indent: str = "") -> str:
@@ -449,21 +449,19 @@ def _cmd_boundaries(args: argparse.Namespace) -> int:
 
     with contextlib.redirect_stdout(sys.stderr):
         res = boundaries(params.F, args.eta_range, args.omega_range, r=params.r, d=params.d)
-    d = res.to_dict()
-    if args.json:
-        sys.stdout.write(json.dumps(_jsonable(d), allow_nan=False) + "\n")
-    else:
-        lines = [f"F = {params.F:g}, eta in {d['eta_range']}, omega in {d['omega_range']}: "
-                 f"{len(d['curves'])} curve(s)"]
-        for c in d["curves"]:
-            (e0, w0), (e1, w1) = c["points"][0], c["points"][-1]
-            where = f" (flight {c['flight']}, {c['wall']})" if "wall" in c else ""
-            lines.append(f"  {c['type']}{where} of {c['family']} orbits: {len(c['points'])} "
-                         f"points from (eta, omega) = ({e0:.4g}, {w0:.4g}) to ({e1:.4g}, "
-                         f"{w1:.4g})")
-        sys.stdout.write("\n".join(lines) + "\n")
-    sys.stdout.flush()
-    return 0
+    return _emit(args.json, res.to_dict(), lambda d: _boundaries_text(d, params.F))
+
+
+def _boundaries_text(d: dict, F: float) -> str:
+    lines = [f"F = {F:g}, eta in {d['eta_range']}, omega in {d['omega_range']}: "
+             f"{len(d['curves'])} curve(s)"]
+    for c in d["curves"]:
+        (e0, w0), (e1, w1) = c["points"][0], c["points"][-1]
+        where = f" (flight {c['flight']}, {c['wall']})" if "wall" in c else ""
+        lines.append(f"  {c['type']}{where} of {c['family']} orbits: {len(c['points'])} "
+                     f"points from (eta, omega) = ({e0:.4g}, {w0:.4g}) to ({e1:.4g}, "
+                     f"{w1:.4g})")
+    return "\n".join(lines)
 
 
 # --------------------------------------------------------------------------- attractors
@@ -500,24 +498,23 @@ def _cmd_attractors(args: argparse.Namespace) -> int:
     params = _model_params(args)
     threads = None if args.threads is None else check_int("threads", args.threads, lo=1)
     from .attractors import census
-    res = census(params.eta, params.omega, params.F, r=params.r, d=params.d, n=args.n,
-                 seed=args.seed, t_end=args.t_end, t_transient=args.t_transient,
-                 n_threads=threads)
-    d = res.to_dict()
-    if args.json:
-        sys.stdout.write(json.dumps(_jsonable(d), allow_nan=False) + "\n")
-    else:
-        lines = [f"eta = {params.eta:g}, omega = {params.omega:g}, F = {params.F:g}: "
-                 f"{len(d['attractors'])} attractor(s) from {d['n']} initial states, "
-                 f"unsettled {d['unsettled_fraction']:.3g}"]
-        for i, a in enumerate(d["attractors"]):
-            rest = "  <- from rest" if i == d["from_rest"] else ""
-            lines.append(f"  {i}: {a['regime']:10s} basin {a['basin_fraction']:.3f} "
-                         f"[{a['ci'][0]:.3f}, {a['ci'][1]:.3f}]  KE ratio {a['ke_ratio']:.4f}"
-                         f"  x_max {1e3 * a['xmax_m']:.4g} mm{rest}")
-        sys.stdout.write("\n".join(lines) + "\n")
-    sys.stdout.flush()
-    return 0
+    with contextlib.redirect_stdout(sys.stderr):
+        res = census(params.eta, params.omega, params.F, r=params.r, d=params.d, n=args.n,
+                     seed=args.seed, t_end=args.t_end, t_transient=args.t_transient,
+                     n_threads=threads)
+    return _emit(args.json, res.to_dict(), lambda d: _attractors_text(d, params))
+
+
+def _attractors_text(d: dict, params: ModelParams) -> str:
+    lines = [f"eta = {params.eta:g}, omega = {params.omega:g}, F = {params.F:g}: "
+             f"{len(d['attractors'])} attractor(s) from {d['n']} initial states, "
+             f"unsettled {d['unsettled_fraction']:.3g}"]
+    for i, a in enumerate(d["attractors"]):
+        rest = "  <- from rest" if i == d["from_rest"] else ""
+        lines.append(f"  {i}: {a['regime']:10s} basin {a['basin_fraction']:.3f} "
+                     f"[{a['ci'][0]:.3f}, {a['ci'][1]:.3f}]  KE ratio {a['ke_ratio']:.4f}"
+                     f"  x_max {1e3 * a['xmax_m']:.4g} mm{rest}")
+    return "\n".join(lines)
 
 
 # --------------------------------------------------------------------------- main
