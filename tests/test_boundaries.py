@@ -36,19 +36,25 @@ CASES += [(fam, "grazing", (k, wall)) for fam in ("symmetric", "asymmetric")
           for k in ((1,) if fam == "symmetric" else (1, 2)) for wall in ag.GRAZE_WALLS]
 
 
-@pytest.mark.parametrize("family, kind, graze", CASES)
-@pytest.mark.parametrize("free", [("eta", "omega"), ("F",)])
-def test_augmented_jacobians_match_finite_differences(family, kind, graze, free):
-    orbits = [o for o in find_1to1(0.12, 1.1, F, simulation=False)
-              if o.symmetric == (family == "symmetric")]
-    o = orbits[0]
+def augmented_point(family, kind, graze, free):
+    """(system, z, n_orbit_unknowns): the augmented system of this case at a 1:1 orbit of
+    the family at (eta, omega, F) = (0.12, 1.1, F), free parameters ``free``."""
+    o = [o for o in find_1to1(0.12, 1.1, F, simulation=False)
+         if o.symmetric == (family == "symmetric")][0]
     u = list(o.x_L) + ([] if o.symmetric else [o.flight_times[0]])
     fixed = {q: v for q, v in (("eta", 0.12), ("omega", 1.1), ("F", F)) if q not in free}
     system = ag.Codim1System(MODEL, family, kind, free, fixed, graze)
     sg = [0.4 * o.flight_times[graze[0] - 1]] if system.has_sg else []
     z = np.array(u + sg + [{"eta": 0.12, "omega": 1.1, "F": F}[q] for q in free])
+    return system, z, len(u)
+
+
+@pytest.mark.parametrize("family, kind, graze", CASES)
+@pytest.mark.parametrize("free", [("eta", "omega"), ("F",)])
+def test_augmented_jacobians_match_finite_differences(family, kind, graze, free):
+    system, z, n_u = augmented_point(family, kind, graze, free)
     G, Gz = system(z)
-    assert G.shape == (len(u) + (2 if system.has_sg else 1),) and Gz.shape == (len(G), len(z))
+    assert G.shape == (n_u + (2 if system.has_sg else 1),) and Gz.shape == (len(G), len(z))
     fd = _fd_jacobian(system, z)
     np.testing.assert_allclose(Gz, fd, rtol=1e-6, atol=1e-6 * max(1.0, np.abs(fd).max()))
 

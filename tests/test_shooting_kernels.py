@@ -5,18 +5,12 @@ import math
 import numpy as np
 import pytest
 
-from vines.core.params import D_DEFAULT, R_DEFAULT
-from vines.orbits import augmented as ag, boundaries as bnd, jets, shooting as sh
+from vines.orbits import boundaries as bnd, jets, shooting as sh
 from vines.orbits import shooting_kernels as sk
 from vines.orbits.periodic import find_1to1
 from vines.orbits.tape import record
 
-MODEL = sh.Model(R_DEFAULT, D_DEFAULT)
-F = 0.3077
-CASES = [(fam, kind, None) for fam in ("symmetric", "asymmetric") for kind in ag.KINDS[fam]
-         if kind != "grazing"]
-CASES += [(fam, "grazing", (k, wall)) for fam in ("symmetric", "asymmetric")
-          for k in ((1,) if fam == "symmetric" else (1, 2)) for wall in ag.GRAZE_WALLS]
+from test_boundaries import CASES, F, MODEL, augmented_point
 
 
 def _formula(x, y, c):
@@ -67,13 +61,7 @@ def test_tape_gradient_matches_finite_differences():
 @pytest.mark.parametrize("family, kind, graze", CASES)
 @pytest.mark.parametrize("free", [("eta", "omega"), ("F",)])
 def test_compiled_augmented_systems_match_python_jets(family, kind, graze, free):
-    o = [o for o in find_1to1(0.12, 1.1, F, simulation=False)
-         if o.symmetric == (family == "symmetric")][0]
-    u = list(o.x_L) + ([] if o.symmetric else [o.flight_times[0]])
-    fixed = {q: v for q, v in (("eta", 0.12), ("omega", 1.1), ("F", F)) if q not in free}
-    system = ag.Codim1System(MODEL, family, kind, free, fixed, graze)
-    sg = [0.4 * o.flight_times[graze[0] - 1]] if system.has_sg else []
-    z = np.array(u + sg + [{"eta": 0.12, "omega": 1.1, "F": F}[q] for q in free])
+    system, z, _ = augmented_point(family, kind, graze, free)
     G, Gz = system(z)
     G_ref, Gz_ref = system.evaluate_jets(z)
     scale = max(1.0, np.abs(Gz_ref).max())
