@@ -52,7 +52,7 @@ class EndState:
     t_section: float = math.nan
 
 
-def _section(raw, m: dict, T: float, t_end: float, t_transient: float):
+def _section(raw, T: float, t_end: float, t_transient: float):
     """(section states (pp, 4), modes, t of the first) of a confirmed orbit, or None when
     it has no impacts in its last period (then it is a "motion")."""
     pp = int(raw.shortcut_period)
@@ -78,7 +78,7 @@ def settle(p: ModelParams, st: SolverSettings, oscs, state0) -> EndState:
     if orbit is not None:
         return EndState(kind="1:1", orbit=orbit, **base)
     if raw.shortcut_period > 0:
-        sec = _section(raw, m, p.period, st.t_end, st.t_transient)
+        sec = _section(raw, p.period, st.t_end, st.t_transient)
         if sec is not None:
             return EndState(kind="orbit", section=sec[0], modes=sec[1], t_section=sec[2],
                             **base)

@@ -309,7 +309,7 @@ def _test_function(fam, cond, Y1, inner1, Y2, inner2):
 
 
 @njit(**INLINE)
-def _grazing(tp, fam, k, wall, u, eta, omega, F, sg, Y1, inner1, Y2, inner2):
+def _grazing(tp, k, wall, u, eta, omega, F, sg, Y1, inner1, Y2, inner2):
     """The grazing conditions (``augmented.Codim1System._grazing``) and their gradients."""
     Yk, innerk = (Y1, inner1) if k == 1 else (Y2, inner2)
     w0 = float(WALL_L if k == 1 else WALL_R)
@@ -343,7 +343,7 @@ def codim1(tp, fam, cond, k, wall, u, eta, omega, F, sg):
     if cond < 0:
         return E, dE
     if cond == 3:
-        g, dg = _grazing(tp, fam, k, wall, u, eta, omega, F, sg, Y1, inner1, Y2, inner2)
+        g, dg = _grazing(tp, k, wall, u, eta, omega, F, sg, Y1, inner1, Y2, inner2)
     else:
         v, dv = _test_function(fam, cond, Y1, inner1, Y2, inner2)
         g, dg = np.array([v]), dv.reshape(1, n_glob)
