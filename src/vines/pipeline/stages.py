@@ -2,9 +2,10 @@
 
 One function per stage, named as the rule, the rule file and the workflow script:
 ``simulate_grid``, ``extract_measures``, ``bifurcation_sweep``, ``map_solve``,
-``stability_map``, ``boundaries``, ``timehistory``, ``robust_map``, ``basin_slice``. Each calls the numerics (``vines.core``,
-``vines.orbits``, ``vines.attractors``), lets ``vines.pipeline.execution`` spread independent tasks over dask,
-and hands plain arrays to ``vines.data.builders``. Results are assembled by index, so the
+``stability_map``, ``boundaries``, ``timehistory``, ``robust_map``, ``basin_slice``. Each
+calls the numerics (``vines.core``, ``vines.orbits``, ``vines.attractors``), lets
+``vines.pipeline.execution`` spread independent tasks over dask, and hands plain arrays to
+``vines.data.builders``. Results are assembled by index, so the
 numbers do not depend on workers, block size, chunk size or scheduler.
 """
 from __future__ import annotations
