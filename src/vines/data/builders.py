@@ -17,6 +17,7 @@ import numpy as np
 import xarray as xr
 
 from ..core.conventions import BATCH_FIELDS
+from ..core.params import PARAM_NAMES as DIMS
 from .schema import (
     BASIN_SLICE_ATTRS,
     BATCH_ATTRS,
@@ -25,7 +26,6 @@ from .schema import (
     COORD_ATTRS,
     COUNT_DTYPE,
     DERIVED_ATTRS,
-    DIMS,
     FEATURE_TYPE,
     ROBUST_ATTRS,
     STABILITY_ATTRS,
