@@ -196,3 +196,13 @@ def test_stability_map_threads_and_classes():
         direct = [o for o in find_1to1(eta[i], omega[j], 0.3077, simulation=False) if o.stable]
         assert any(abs(o.lambda_max - lam[i, j]) < 1e-8 for o in direct)
     assert (cls == 1).any()
+
+
+def test_grazing_arrival_in_a_degenerate_corner_is_no_map_not_a_crash():
+    """r = 0 with tiny eta, omega and large F: a Newton iterate lands on an arrival with
+    relative velocity exactly 0 (the pole of the map's Jacobian). That flight is no impact
+    map; the search goes on and answers with orbits or none, never ZeroDivisionError."""
+    orbits = find_1to1(0.000651, 0.000651, 1e4, r=0.0, d=0.000651)
+    for o in orbits:
+        assert np.isfinite(o.lambda_max)
+        assert np.all(np.isfinite(o.flights)) and min(o.flights) > 0.0

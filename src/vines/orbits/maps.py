@@ -107,6 +107,16 @@ def _scan_s(osc, zm0, vp, zb0, vbp, sth, cth, to_wall, s_max):
 
 
 @njit(cache=True, nogil=True)
+def _no_map(y, J):
+    """Mark y and J undefined (nan) and return the flight time nan: no map here."""
+    for i in range(4):
+        y[i] = math.nan
+        for k in range(4):
+            J[i, k] = math.nan
+    return math.nan
+
+
+@njit(cache=True, nogil=True)
 def map_kernel(osc, eta, r, omega, phi, x, from_wall, to_wall, s_guess, y, J):
     """Apply one map to x (pre-impact at from_wall); fill y (next pre-impact state) and J.
 
@@ -133,12 +143,12 @@ def map_kernel(osc, eta, r, omega, phi, x, from_wall, to_wall, s_guess, y, J):
         else:
             s = _scan_s(osc, zm0, vp, zb, vbp, sth, cth, to_wall, s_max)
     if not (s > 0.0) or not math.isfinite(s):
-        for i in range(4):
-            y[i] = math.nan
-            for k in range(4):
-                J[i, k] = math.nan
-        return math.nan
+        return _no_map(y, J)
     z, v, acc, _, _ = flow(osc, zm0, vp, sth, cth, s)
+    wd = v - vbp                 # relative velocity at arrival
+    if wd == 0.0:
+        # grazing arrival: no transversal impact, the map's Jacobian has a pole here
+        return _no_map(y, J)
     # derivatives at fixed s
     C = 0.0
     dC = 0.0
@@ -157,7 +167,6 @@ def map_kernel(osc, eta, r, omega, phi, x, from_wall, to_wall, s_guess, y, J):
     y[3] = t + s
     # explicit partials of G = z - zb - vbp s - to_wall, of z', and of the outputs
     # (scalars, not small arrays: no allocation per call)
-    wd = v - vbp
     ds0 = -(S * a11 - a21 * s) / wd
     ds1 = -(S * a12 - a22 * s) / wd
     ds2 = -(C - 1.0) / wd
