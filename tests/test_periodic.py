@@ -205,4 +205,4 @@ def test_grazing_arrival_in_a_degenerate_corner_is_no_map_not_a_crash():
     orbits = find_1to1(0.000651, 0.000651, 1e4, r=0.0, d=0.000651)
     for o in orbits:
         assert np.isfinite(o.lambda_max)
-        assert np.all(np.isfinite(o.flights)) and min(o.flights) > 0.0
+        assert np.all(np.isfinite(o.flight_times)) and min(o.flight_times) > 0.0
