@@ -30,9 +30,12 @@ from vines.pipeline.codeversion import (
     STUDIES,
     code_version,
 )
-from vines.pipeline.config import ConfigError, load_schema, validate_config
+from vines.pipeline.config import ConfigError, load_schema, load_yaml, validate_config
 
 try:
+    # Snakemake's YAML reading keeps the last of a key given twice: refuse that first
+    for _path in workflow.config_settings.configfiles or ["config/config.yaml"]:
+        load_yaml(_path)
     validate_config(config, load_schema())
 except ConfigError as err:
     sys.exit(f"vines pipeline: {err}")

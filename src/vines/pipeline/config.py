@@ -6,6 +6,7 @@
 from __future__ import annotations
 
 import copy
+import re
 
 from .axes import DIMS, ConfigError, axis_values, grid_axes
 from .checks import check_physical
@@ -25,6 +26,33 @@ def _with_defaults(validator_class):
     return jsonschema.validators.extend(validator_class, {"properties": set_defaults})
 
 
+#: a run or entry name: one safe path segment (the schema's definitions.name, matched on
+#: the whole string here: a regex search with '$' would accept a trailing newline)
+NAME = re.compile(r"[A-Za-z0-9_-][A-Za-z0-9_.-]{0,63}")
+
+
+def check_names(config, schema: dict, path: str = "") -> None:
+    """Every key the schema constrains by ``propertyNames`` (entry names) and ``run`` must
+    be one safe path segment: outputs stay under results/<run>/."""
+    if path == "" and isinstance(config.get("run"), str) and not NAME.fullmatch(config["run"]):
+        raise ConfigError("run", f"{config['run']!r} is not allowed: a run name is 1-64 "
+                                 "letters, digits, '_', '-' or '.', not starting with '.'")
+    if not isinstance(config, dict) or not isinstance(schema, dict):
+        return
+    props = schema.get("properties", {})
+    extra = schema.get("additionalProperties")
+    for key, value in config.items():
+        where = f"{path}.{key}" if path else str(key)
+        if "propertyNames" in schema and not NAME.fullmatch(str(key)):
+            shown = repr(str(key)) if len(str(key)) <= 40 else repr(str(key)[:37]) + "..."
+            raise ConfigError(path or "<top level>",
+                              f"entry name {shown} ({len(str(key))} characters) is not allowed: "
+                              "1-64 letters, digits, '_', '-' or '.', not starting with '.'")
+        sub = props.get(key, extra if isinstance(extra, dict) else None)
+        if sub is not None:
+            check_names(value, sub, where)
+
+
 #: the config schema (with every default), shipped inside the package
 SCHEMA_FILE = "config.schema.yaml"
 
@@ -39,12 +67,31 @@ def load_schema(path=None) -> dict:
         return yaml.safe_load(fh)
 
 
+def _strict_loader():
+    """A yaml SafeLoader that refuses a key given twice in one mapping."""
+    import yaml
+
+    class StrictLoader(yaml.SafeLoader):
+        def construct_mapping(self, node, deep=False):
+            seen = set()
+            for key_node, _ in node.value:
+                key = self.construct_object(key_node, deep=deep)
+                if key in seen:
+                    raise yaml.constructor.ConstructorError(
+                        None, None, f"key {key!r} given twice", key_node.start_mark)
+                seen.add(key)
+            return super().construct_mapping(node, deep=deep)
+
+    return StrictLoader
+
+
 def load_yaml(path) -> dict:
-    """Read a YAML config file; a syntax error is a ConfigError naming the file and line."""
+    """Read a YAML config file; a syntax error or a repeated key is a ConfigError naming
+    the file and line."""
     import yaml
     try:
         with open(path) as fh:
-            data = yaml.safe_load(fh)
+            data = yaml.load(fh, Loader=_strict_loader())  # noqa: S506 (a SafeLoader)
     except OSError as err:
         raise ConfigError(str(path), f"cannot be read ({err.strerror})") from None
     except yaml.YAMLError as err:
@@ -63,6 +110,8 @@ def validate_config(config: dict, schema: dict) -> dict:
     Raises ConfigError naming the first offending key (dotted path).
     """
     import jsonschema
+    if isinstance(config, dict):
+        check_names(config, schema)      # before the schema: one clear line for a bad name
     cls = _with_defaults(jsonschema.validators.validator_for(schema))
     errors = sorted(cls(schema).iter_errors(config), key=lambda e: list(e.absolute_path))
     if errors:
