@@ -23,6 +23,7 @@ def _first(section):
 
 SW, BR, SM, TH = _first("sweeps"), _first("branches"), _first("stability_maps"), _first("timehistories")
 WP = sorted(SMOKE["work_precision"]["cases"])[0]
+GR, BD = _first("grids"), _first("boundaries")
 
 BAD = [  # (path to set, keys joined by '/', value, expected key in the message, expected words)
     ("simulation/t_end", math.nan, "t_end", "finite"),
@@ -44,6 +45,22 @@ BAD = [  # (path to set, keys joined by '/', value, expected key in the message,
                             "omega": {"start": 0.5, "stop": 1.5, "num": 1000}},
                    "fixed": {"F": 0.1}}, "grids.big", "limits.max_grid_points"),
     ("model/r", 1.5, "model.r", ""),
+    # nonsense that used to plan every job (issue: bad input never escapes)
+    (f"grids/{GR}/axes/eta", [0.1, 0.2, 0.1], f"grids.{GR}.axes.eta", "more than once"),
+    (f"grids/{GR}/sections", {"F": [0.05]}, f"grids.{GR}.sections.F", "fixed"),
+    (f"sweeps/{SW}/n_record", 10**9, f"sweeps.{SW}.n_record", "do not fit"),
+    (f"sweeps/{SW}/t_settle", 1e300, f"sweeps.{SW}.t_settle", "limits.max_t_end"),
+    (f"boundaries/{BD}/omega_range", [0.1, 1.4], f"boundaries.{BD}.omega_range", "outside"),
+    (f"timehistories/{TH}/n_periods", 10**6, f"timehistories.{TH}.n_periods", "exceed the run"),
+    (f"timehistories/{TH}/window_samples_per_period", 10**9,
+     f"timehistories.{TH}.window_samples_per_period", "limits.max_samples"),
+    ("work_precision/rk_methods", [], "work_precision.rk_methods", ""),
+    ("work_precision/rtols", [], "work_precision.rtols", ""),
+    ("convergence/window/window_lengths", [1500.0], "convergence.window.window_lengths",
+     "shorter than every run"),
+    ("convergence/grid/resolutions", [9, 5, 17], "convergence.grid.resolutions", "nest"),
+    ("convergence/grid/resolutions", [5, 8, 17], "convergence.grid.resolutions", "nest"),
+    ("convergence/grid/eta_range", [1.0, 0.01], "convergence.grid.eta_range", "lo < hi"),
 ]
 
 
@@ -77,7 +94,7 @@ def test_limits_can_be_raised():
     cfg["simulation"]["t_end"] = 2e6
     with pytest.raises(ConfigError, match="max_t_end"):
         validate_config(copy.deepcopy(cfg), SCHEMA)
-    cfg["limits"] = {"max_t_end": 3e6}
+    cfg["limits"] = {"max_t_end": 3e6, "max_samples": 10**8}   # the time histories grow too
     validate_config(cfg, SCHEMA)
 
 

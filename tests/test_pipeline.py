@@ -97,7 +97,10 @@ def test_config_error_names_the_key(patch, key):
 
 def test_axis_values():
     assert axis_values(0.5).tolist() == [0.5]
-    assert axis_values([0.3, 0.1, 0.3]).tolist() == [0.1, 0.3]
+    assert axis_values([0.3, 0.1]).tolist() == [0.1, 0.3]
+    with pytest.raises(ConfigError, match="more than once"):
+        axis_values([0.3, 0.1, 0.3], key="grids.g.axes.eta")
+    assert axis_values({"start": 0.0, "stop": 1.0, "num": 3, "include": [0.5]}).size == 3
     a = axis_values({"start": 0.0, "stop": 1.0, "num": 5, "include": [0.3077]})
     assert a.tolist() == [0.0, 0.25, 0.3077, 0.5, 0.75, 1.0]
 

@@ -25,19 +25,30 @@ def axis_values(spec, key: str = "axis") -> np.ndarray:
     if isinstance(spec, (int, float)) and not isinstance(spec, bool):
         vals = np.array([float(spec)])
     elif isinstance(spec, list):
-        vals = np.asarray(spec, dtype=float)
+        vals = _distinct(spec, key)
     elif isinstance(spec, dict):
         if "values" in spec:
-            vals = np.asarray(spec["values"], dtype=float)
+            vals = _distinct(spec["values"], f"{key}.values")
         else:
             vals = np.linspace(float(spec["start"]), float(spec["stop"]), int(spec["num"]))
         if spec.get("include"):
-            vals = np.concatenate([vals, np.asarray(spec["include"], dtype=float)])
+            # an included value already on a linspace is harmless (it is kept once)
+            vals = np.concatenate([vals, _distinct(spec["include"], f"{key}.include")])
     else:
         raise ConfigError(key, f"cannot read an axis from {spec!r}")
     vals = np.unique(vals)
     if vals.size == 0 or not np.all(np.isfinite(vals)):
         raise ConfigError(key, "axis must hold at least one finite value")
+    return vals
+
+
+def _distinct(values, key: str) -> np.ndarray:
+    """The listed values as floats; a value listed twice is a ConfigError (a typo, and a
+    duplicate point would be computed twice)."""
+    vals = np.asarray(values, dtype=float)
+    uniq, counts = np.unique(vals, return_counts=True)
+    if np.any(counts > 1):
+        raise ConfigError(key, f"values listed more than once: {uniq[counts > 1].tolist()}")
     return vals
 
 

@@ -62,11 +62,33 @@ def _check_size(key: str, n: int, limits: dict, what: str = "points") -> None:
                                "(raise it in the config's 'limits' section if this is intended)")
 
 
-def _check_t_end(key: str, t_end, limits: dict) -> None:
+def _check_t_end(key: str, t_end, limits: dict, what: str = "") -> None:
     cap = limits["max_t_end"]
     if t_end > cap:
-        raise ConfigError(key, f"{t_end!r} exceeds limits.max_t_end = {cap!r} "
+        total = f"{what} = {t_end!r}" if what else repr(t_end)
+        raise ConfigError(key, f"{total} exceeds limits.max_t_end = {cap!r} "
                                "(raise it in the config's 'limits' section if this is intended)")
+
+
+def _slowest_period(sw: dict, dim_key: str) -> float:
+    """Longest forcing period 2 pi / omega over a sweep's values (omega swept, outer or fixed)."""
+    if sw["param"] == "omega":
+        omegas = axis_values(sw["values"])
+    elif sw["outer"] == "omega":
+        omegas = axis_values(sw["outer_values"])
+    else:
+        omegas = np.array([float(sw["fixed"]["omega"])])
+    return 2.0 * math.pi / float(np.min(omegas))
+
+
+def _check_recorded_periods(key: str, sw: dict) -> None:
+    """The last n_record periods are recorded at every value: they must fit in the run of
+    one value (t_step after the first, t_settle at the first)."""
+    t_record = sw["n_record"] * _slowest_period(sw, key)
+    t_run = min(sw["t_settle"], sw["t_step"])
+    if t_record >= t_run:
+        raise ConfigError(f"{key}.n_record", f"{sw['n_record']} periods (up to {t_record:.4g} "
+                          f"time units) do not fit in min(t_settle, t_step) = {t_run:g}")
 
 
 def _check_settings(key: str, settings: dict, limits: dict) -> None:
@@ -100,7 +122,10 @@ def check_sweeps(config: dict, model: dict, limits: dict) -> None:
         for dim, v in sw["fixed"].items():
             _check_param(f"{key}.fixed.{dim}", dim, v, model)
         _check_size(key, n * n_lines, limits, "sweep points")
-        _check_t_end(f"{key}.t_step", sw["t_settle"] + n * sw["t_step"], limits)
+        _check_t_end(f"{key}.t_settle" if sw["t_settle"] > limits["max_t_end"] else f"{key}.t_step",
+                     sw["t_settle"] + n * sw["t_step"], limits,
+                     what=f"t_settle + {n} values x t_step")
+        _check_recorded_periods(key, sw)
 
 
 def check_branches(config: dict, model: dict, limits: dict) -> None:
@@ -126,6 +151,28 @@ def check_maps_and_points(config: dict, model: dict, limits: dict) -> None:
     for name, th in config["timehistories"].items():
         for i, p in enumerate(th["points"]):
             _check_point(f"timehistories.{name}.points[{i}]", p, model)
+        _check_timehistory(f"timehistories.{name}", th, config["simulation"], limits)
+
+
+def _check_timehistory(key: str, th: dict, simulation: dict, limits: dict) -> None:
+    """The densely sampled last periods lie inside the run; the samples of all points stay
+    within limits.max_samples."""
+    t_end, t_tr = simulation["t_end"], simulation["t_transient"]
+    slowest = min(p["omega"] for p in th["points"])
+    span = th["n_periods"] * 2.0 * math.pi / slowest
+    if span > t_end:
+        raise ConfigError(f"{key}.n_periods", f"{th['n_periods']} periods ({span:.4g} time "
+                          f"units at omega = {slowest:g}) exceed the run (t_end = {t_end:g})")
+    dense = th["n_periods"] * th["samples_per_period"] + 1
+    most = max((t_end - t_tr) * p["omega"] / (2.0 * math.pi) for p in th["points"])
+    window = math.ceil(most) * th["window_samples_per_period"] + 1
+    total = len(th["points"]) * (dense + window)
+    cap = limits["max_samples"]
+    if total > cap:
+        which = ("window_samples_per_period" if window > dense else "samples_per_period")
+        raise ConfigError(f"{key}.{which}", f"{total:.3g} samples in all exceed "
+                          f"limits.max_samples = {cap} (raise it in the config's 'limits' "
+                          "section if this is intended)")
 
 
 def check_attractor_maps(config: dict, model: dict, limits: dict) -> None:
@@ -166,9 +213,17 @@ def check_boundaries(config: dict, model: dict, limits: dict) -> None:
             if name_map not in config["stability_maps"]:
                 raise ConfigError(f"{key}.stability_map", f"{name_map!r} is not a "
                                   f"stability_maps entry ({sorted(config['stability_maps'])})")
-            if float(config["stability_maps"][name_map]["F"]) != float(bd["F"]):
+            sm = config["stability_maps"][name_map]
+            if float(sm["F"]) != float(bd["F"]):
                 raise ConfigError(f"{key}.stability_map", f"{name_map!r} has F = "
-                                  f"{config['stability_maps'][name_map]['F']}, not {bd['F']}")
+                                  f"{sm['F']}, not {bd['F']}")
+            for dim in ("eta", "omega"):
+                axis = axis_values(sm[dim])
+                lo, hi = bd[f"{dim}_range"]
+                if lo < axis[0] or hi > axis[-1]:
+                    raise ConfigError(f"{key}.{dim}_range", f"{[lo, hi]} reaches outside the "
+                                      f"{dim} axis of stability map {name_map!r} "
+                                      f"[{axis[0]:g}, {axis[-1]:g}] that seeds the curves")
 
 
 def check_studies(config: dict, model: dict, limits: dict) -> None:
@@ -182,15 +237,36 @@ def check_studies(config: dict, model: dict, limits: dict) -> None:
     for study in ("window", "vstick"):
         for i, p in enumerate(conv.get(study, {}).get("points", [])):
             _check_point(f"convergence.{study}.points[{i}]", p, model)
-    for i, t in enumerate(conv.get("window", {}).get("t_ends", [])):
+    window = conv.get("window", {})
+    for i, t in enumerate(window.get("t_ends", [])):
         _check_t_end(f"convergence.window.t_ends[{i}]", t, limits)
+    if window:
+        shortest = min(window["t_ends"])
+        for i, length in enumerate(window["window_lengths"]):
+            if length >= shortest:
+                raise ConfigError(f"convergence.window.window_lengths[{i}]", f"{length:g} "
+                                  f"must be shorter than every run (t_ends down to {shortest:g})")
     grid = conv.get("grid")
     if grid:
         for dim, rng in (("eta", grid["eta_range"]), ("omega", grid["omega_range"])):
             for v in rng:
                 _check_param(f"convergence.grid.{dim}_range", dim, v, model)
+            if not rng[0] < rng[1]:
+                raise ConfigError(f"convergence.grid.{dim}_range",
+                                  f"{list(rng)} must be [lo, hi], lo < hi")
         _check_param("convergence.grid.F", "F", grid["F"], model)
+        _check_nested(grid["resolutions"])
         _check_size("convergence.grid.resolutions", max(grid["resolutions"]) ** 2, limits)
+
+
+def _check_nested(resolutions) -> None:
+    """Grid resolutions increase and nest: every coarser grid's nodes lie on the finer
+    grid ((n_fine - 1) a multiple of (n_coarse - 1)), so contours compare node by node."""
+    for a, b in zip(resolutions[:-1], resolutions[1:], strict=True):
+        if not (b > a and (b - 1) % (a - 1) == 0):
+            raise ConfigError("convergence.grid.resolutions", f"{list(resolutions)}: each "
+                              "must exceed the one before and nest in it ((n - 1) a multiple "
+                              "of the previous n - 1, e.g. 11, 21, 41, 81)")
 
 
 def check_physical(config: dict) -> None:

@@ -126,6 +126,10 @@ def validate_config(config: dict, schema: dict) -> dict:
     for name, grid in config["grids"].items():
         axes = grid_axes(grid, key=f"grids.{name}")
         for dim, vals in grid.get("sections", {}).items():
+            if dim not in grid.get("axes", {}):
+                raise ConfigError(f"grids.{name}.sections.{dim}", f"{dim} is fixed in this "
+                                  "grid: a section runs along one of its axes "
+                                  f"({sorted(grid.get('axes', {}))})")
             missing = [v for v in vals if float(v) not in set(axes[dim].tolist())]
             if missing:
                 raise ConfigError(f"grids.{name}.sections.{dim}",
