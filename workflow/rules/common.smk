@@ -105,6 +105,9 @@ def boundaries_seed_map(wildcards):
 
 def all_datasets():
     out = [f"{RES}/measures/{g}.nc" for g in GRIDS]
+    # the chunks too: a chunk removed (the remedy for a damaged one) is then recomputed
+    # by the same command, and the measures after it
+    out += [f"{RES}/grid/{g}/chunk_{k}.nc" for g in GRIDS for k in CHUNKS[g]]
     out += [f"{RES}/sweeps/{s}.nc" for s in SWEEPS]
     out += [f"{RES}/branches/{b}.nc" for b in BRANCHES]
     out += [f"{RES}/stability/{m}.nc" for m in SMAPS]
