@@ -240,6 +240,7 @@ TINY = {
 def _copy_workflow(dst: Path, with_src_copy=False):
     shutil.copy(ROOT / "Snakefile", dst / "Snakefile")
     shutil.copy(ROOT / "environment.yml", dst / "environment.yml")   # the rules' conda env
+    shutil.copytree(ROOT / "profiles" / "default", dst / "profiles" / "default")  # read by every run
     shutil.copytree(ROOT / "workflow", dst / "workflow",
                     ignore=shutil.ignore_patterns("__pycache__"))
     shutil.copytree(ROOT / "config", dst / "config")
@@ -407,3 +408,45 @@ def test_damaged_chunk_is_named_and_recomputed_after_removal(tmp_path):
     after = read_dataset(measures)
     for k in BATCH_FIELDS:
         np.testing.assert_array_equal(after[k].values, before[k].values)
+
+
+def _datasets(out: Path) -> dict:
+    """{relative path: {variable: values}} of every dataset of a results tree."""
+    got = {}
+    for p in sorted(out.rglob("*.nc")):
+        with xr.open_dataset(p) as ds:
+            got[str(p.relative_to(out))] = {k: ds[k].values.copy() for k in ds.variables}
+    return got
+
+
+@needs_snakemake
+@pytest.mark.slow
+def test_a_killed_run_completes_after_the_readme_steps(tmp_path):
+    """SIGKILL mid-run, then the README's steps (`snakemake --unlock`, the same command
+    again): a complete run with the numbers of an uninterrupted one."""
+    import signal
+    import time
+    cfg = {k: v for k, v in TINY.items() if k != "timehistories"}
+    cfg["simulation"] = {"t_end": 2000.0, "t_transient": 1000.0}
+    ref, run = tmp_path / "ref", tmp_path / "run"
+    for d in (ref, run):
+        d.mkdir()
+        _copy_workflow(d)
+    _smk(ref, cfg=cfg)
+    (run / "cfg.yaml").write_text(yaml.safe_dump(cfg))
+    cmd = [SNAKEMAKE, "-c2", "--directory", str(run), "--snakefile", str(run / "Snakefile"),
+           "--configfile", str(run / "cfg.yaml")]
+    proc = subprocess.Popen(cmd, cwd=run, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                            start_new_session=True)
+    deadline = time.monotonic() + 300
+    while not list((run / "results").rglob("*.nc")) and time.monotonic() < deadline:
+        time.sleep(0.05)
+    os.killpg(proc.pid, signal.SIGKILL)
+    proc.wait()
+    _smk(run, "--unlock", cfg=cfg)
+    _smk(run, cfg=cfg)
+    a, b = _datasets(ref / "results" / "tiny"), _datasets(run / "results" / "tiny")
+    assert a.keys() == b.keys()
+    for name in a:
+        for k in a[name]:
+            np.testing.assert_array_equal(a[name][k], b[name][k], err_msg=f"{name}: {k}")

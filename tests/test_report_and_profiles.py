@@ -31,7 +31,7 @@ def _threads(out: str, rule: str) -> set:
 
 def _copy_with_profiles(dst):
     _copy_workflow(dst)
-    shutil.copytree(ROOT / "profiles", dst / "profiles")
+    shutil.copytree(ROOT / "profiles", dst / "profiles", dirs_exist_ok=True)
 
 
 def _run(cwd, *args):
