@@ -84,9 +84,11 @@ def check_clearance(name, L, amplitudes) -> float:
 
 
 def check_clearance_range(rng, amplitudes, factors) -> tuple[float, float]:
-    """(lo, hi) [m], lo < hi, F = A/lo <= F_MAX; default factors * (A_min, A_max)."""
+    """(lo, hi) [m], lo < hi, F = A/lo <= F_MAX; default (factors[0] A_max,
+    factors[1] A_min), or (factors[0] A_max, factors[1] A_max) if that is empty."""
     if rng is None:
-        rng = (factors[0] * min(amplitudes), factors[1] * max(amplitudes))
+        lo, hi = factors[0] * max(amplitudes), factors[1] * min(amplitudes)
+        rng = (lo, hi if hi > lo else factors[1] * max(amplitudes))
     lo, hi = _pair("clearance_range", rng)
     lo = check_clearance("clearance_range", lo, amplitudes)
     hi = check_real("clearance_range", hi, lo=lo, lo_open=True, hi=1e6)
