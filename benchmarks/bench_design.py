@@ -40,6 +40,9 @@ def main():
     print(f"  TMD optimisation {c['tmd_s']:.2f} s; search {c['search_s']:.1f} s "
           f"({c['n_designs']} designs, {c['n_runs_from_rest']} runs from rest); "
           f"census {c['census_s']:.1f} s ({c['n_runs_census']} runs)")
+    print(f"  CPU: search {c['search_cpu_s']:.1f} s, census {c['census_cpu_s']:.1f} s "
+          f"(process time of all threads; wall on {args.threads} idle cores is about "
+          f"CPU / {args.threads})")
     v, t, lo = d["vines"], d["tmd"], d["lo_alone"]
     print(f"  VI NES: eta {v['eta']:.4g}, clearance {1e3 * v['clearance_m']:.3g} mm; "
           f"TMD: f {t['frequency_ratio']:.4f}, zeta {t['damping_ratio']:.4f}")
