@@ -174,8 +174,9 @@ def test_json_keys_of_the_issue():
     assert d["tmd"]["eta"] == 0.05 and d["vines"]["clearance_m"] == 0.02
     assert d["inputs"]["mode"] == "evaluate" and d["search"] is None
     assert {"wall_s", "n_runs_from_rest", "n_runs_census"} <= set(d["cost"])
-    assert d["cost"]["n_runs_from_rest"] == 3 + 2 * N_REFINE or \
-        d["cost"]["n_runs_from_rest"] < 3 + 2 * N_REFINE
+    # 3 grid runs, then per refinement round one or two runs (a side outside the band
+    # is skipped)
+    assert 3 + N_REFINE <= d["cost"]["n_runs_from_rest"] <= 3 + 2 * N_REFINE
 
 
 @pytest.mark.parametrize("kw, name", [

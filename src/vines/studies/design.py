@@ -173,6 +173,22 @@ class Evaluator:
         self.n_runs += out["xmax"].size
         return out["xmax"] / np.broadcast_to(F, out["xmax"].shape)
 
+    def _climb(self, eta, F, peak, at, h) -> tuple:
+        """One round of the refinement: x_max/A at at - h and at + h (inside the band) for
+        every (design, amplitude) in one batch; move where larger (ties: the lower)."""
+        band = self.problem.band
+        cand = np.stack([at - h, at + h])
+        ok = (cand >= band[0]) & (cand <= band[1])
+        vals = np.full(cand.shape, -np.inf)
+        if ok.any():
+            vals[ok] = self._ratio(np.broadcast_to(eta, cand.shape)[ok], cand[ok],
+                                   np.broadcast_to(F, cand.shape)[ok])
+        k = vals.argmax(axis=0)[None]
+        best = np.take_along_axis(vals, k, 0)[0]
+        better = best > peak
+        return (np.where(better, best, peak),
+                np.where(better, np.take_along_axis(cand, k, 0)[0], at))
+
     def _run(self, new: list) -> None:
         pb = self.problem
         eta = np.array([e for e, _ in new])[:, None]
@@ -181,17 +197,9 @@ class Evaluator:
         curves = self._ratio(eta[..., None], omega, F[..., None])
         idx = curves.argmax(axis=-1)
         peak, at = np.take_along_axis(curves, idx[..., None], -1)[..., 0], omega[idx]
-        eta = np.broadcast_to(eta, F.shape)
         h = 0.5 * (omega[1] - omega[0])
         for _ in range(N_REFINE):
-            for sign in (-1.0, 1.0):
-                w = at + sign * h
-                ok = (w >= omega[0]) & (w <= omega[-1])
-                if ok.any():
-                    vals = self._ratio(eta[ok], w[ok], F[ok])
-                    better = vals > peak[ok]
-                    peak[ok] = np.where(better, vals, peak[ok])
-                    at[ok] = np.where(better, w[ok], at[ok])
+            peak, at = self._climb(eta, F, peak, at, h)
             h *= 0.5
         for k, key in enumerate(new):
             self.cache[key] = Response(curves=curves[k], peak=peak[k], peak_omega=at[k])
