@@ -107,23 +107,26 @@ def run(args: argparse.Namespace) -> dict:
     return res.to_dict()
 
 
+def _fmt(x) -> str:
+    return "n/a" if x is None else f"{x:.3g}"
+
+
 def text(d: dict) -> str:
     """A reader's summary of ``run``'s object."""
     v, t, lo = d["vines"], d["tmd"], d["lo_alone"]
-    fmt = lambda x: "n/a" if x is None else f"{x:.3g}"    # noqa: E731
     lines = [f"band omega {d['inputs']['omega_band'][0]:g}-{d['inputs']['omega_band'][1]:g}"
              f" ({d['inputs']['n_omega']} points), {d['inputs']['mode']}",
-             f"  LO alone: worst x_max/A {fmt(lo['worst_ratio'])}",
+             f"  LO alone: worst x_max/A {_fmt(lo['worst_ratio'])}",
              f"  TMD  eta {t['eta']:g}: f = {t['frequency_ratio']:.4f}, zeta = "
-             f"{t['damping_ratio']:.4f}: worst {fmt(t['worst_ratio'])}",
+             f"{t['damping_ratio']:.4f}: worst {_fmt(t['worst_ratio'])}",
              f"  VI NES eta {v['eta']:.4g}, clearance {1e3 * v['clearance_m']:.4g} mm: worst "
-             f"{fmt(v['worst_ratio'])} from rest, {fmt(v['worst_ratio_any_attractor'])} over "
+             f"{_fmt(v['worst_ratio'])} from rest, {_fmt(v['worst_ratio_any_attractor'])} over "
              f"attractors ({v['view'] or 'not evaluated'})"]
     any_ = v["worst_ratio_any_attractor_per_amplitude"] or [None] * len(v["F"])
     for A, F, w, a in zip(d["curves"]["amplitude_m"], v["F"], v["worst_ratio_per_amplitude"],
                           any_):
-        lines.append(f"    A = {1e3 * A:.4g} mm (F = {F:.4g}): {fmt(w)} from rest, "
-                     f"{fmt(a)} over attractors")
+        lines.append(f"    A = {1e3 * A:.4g} mm (F = {F:.4g}): {_fmt(w)} from rest, "
+                     f"{_fmt(a)} over attractors")
     lines.append(f"  cost {d['cost']['wall_s']:.1f} s, {d['cost']['n_runs_from_rest']} runs "
                  f"from rest, {d['cost']['n_runs_census']} census runs")
     return "\n".join(lines)
