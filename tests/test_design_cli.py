@@ -28,8 +28,8 @@ def test_run_evaluates_a_design():
     args = _parse(["--omega-band", "0.95", "1.05", "--n-omega", "3", "--amplitude", "0.001",
                    "--eta", "0.05", "--clearance", "0.02", "--census-n", "2", "--t-end", "2000",
                    "--t-transient", "1500", "--threads", "1", "--d", "0.02", "--json"])
-    d = run_json = cmd.run(args)
-    json.dumps(run_json, allow_nan=False)
+    d = cmd.run(args)
+    json.dumps(d, allow_nan=False)
     assert d["inputs"]["d"] == 0.02 and d["vines"]["eta"] == 0.05
     assert d["curves"]["omega"] == [0.95, 1.0, 1.05]
     assert "LO alone" in cmd.text(d)

@@ -78,7 +78,7 @@ def check_mode(eta, clearance_m, eta_max, clearance_range_m) -> str:
 
 
 def check_clearance(name, L, amplitudes) -> float:
-    """A clearance [m] > 0 small enough... large enough that F = A/L <= F_MAX for all A."""
+    """A clearance [m] large enough that F = A/L <= F_MAX for every amplitude A."""
     lo = max(amplitudes) / F_MAX
     return check_real(name, L, lo=lo, hi=1e6)
 
