@@ -230,10 +230,21 @@ def attractor_curves(problem: DesignProblem, eta: float, clearance_m: float,
 # --------------------------------------------------------------------------- search
 
 def search_grid(eta_max: float, clearance_range_m, n_eta: int, n_clearance: int):
-    """(eta grid eta_max k/n_eta, k = 1..n_eta; clearance grid geometric over the range)."""
+    """(eta grid eta_max k/n_eta, k = 1..n_eta; clearance grid 10**v, v evenly spaced over
+    log10 of the range: the compass search maps log10 L to L the same way, so a grid
+    design is the same float wherever it is met)."""
     etas = eta_max * np.arange(1, n_eta + 1) / n_eta
-    Ls = np.geomspace(clearance_range_m[0], clearance_range_m[1], n_clearance)
-    return etas, Ls
+    logs = _log_clearances(clearance_range_m, n_clearance)
+    return etas, np.array([_clearance(v) for v in logs])
+
+
+def _log_clearances(clearance_range_m, n: int) -> np.ndarray:
+    return np.linspace(math.log10(clearance_range_m[0]), math.log10(clearance_range_m[1]), n)
+
+
+def _clearance(log10_L) -> float:
+    """L from log10 L, one scalar path for the grid and the compass search."""
+    return 10.0 ** float(log10_L)
 
 
 def _compass(ev: Evaluator, start, value, steps, lower, upper) -> tuple:
@@ -250,7 +261,7 @@ def _compass(ev: Evaluator, start, value, steps, lower, upper) -> tuple:
                     y[axis] = min(max(x[axis] + sign * h[axis], lower[axis]), upper[axis])
                     if y[axis] != x[axis]:
                         cands.append(y)
-            vals = ev.worst([(y[0], 10.0 ** y[1]) for y in cands])
+            vals = ev.worst([(y[0], _clearance(y[1])) for y in cands])
             k = int(np.argmin(vals)) if vals else -1
             if k < 0 or vals[k] >= value:
                 break
@@ -267,7 +278,7 @@ def optimise(ev: Evaluator, eta_max: float, clearance_range_m, n_eta: int,
     etas, Ls = search_grid(eta_max, clearance_range_m, n_eta, n_clearance)
     grid = [(e, L) for e in etas for L in Ls]
     worst = np.array(ev.worst(grid)).reshape(n_eta, n_clearance)
-    logs = np.log10(Ls)
+    logs = _log_clearances(clearance_range_m, n_clearance)
     steps = [0.5 * (etas[1] - etas[0]) if n_eta > 1 else 0.0,
              0.5 * (logs[1] - logs[0])]
     lower, upper = [etas[0], logs[0]], [etas[-1], logs[-1]]
@@ -277,9 +288,8 @@ def optimise(ev: Evaluator, eta_max: float, clearance_range_m, n_eta: int,
     for flat in order:
         i, j = divmod(int(flat), n_clearance)
         x, v = _compass(ev, (etas[i], logs[j]), float(worst[i, j]), steps, lower, upper)
-        L = Ls[j] if x[1] == logs[j] else 10.0 ** x[1]
         if v < best[0]:
-            best = (v, float(x[0]), float(L))
+            best = (v, float(x[0]), _clearance(x[1]))
     return dict(eta=float(best[1]), clearance_m=float(best[2]), worst_ratio=best[0],
                 grid=dict(eta=etas, clearance_m=Ls, worst_ratio=worst))
 
