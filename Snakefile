@@ -1,6 +1,10 @@
 # vines: reproduce the study. `snakemake -c2` runs the full study (config/config.yaml);
 # `snakemake -c2 --configfile config/smoke.yaml` the same DAG on tiny grids.
 # Stages live in workflow/rules/, thin scripts in workflow/scripts/, computations in vines.
+from snakemake.utils import min_version
+
+# Snakemake 8 APIs: workflow.config_settings, storage-free local rules, executor plugins
+min_version("8.0")
 
 # --configfile FILE replaces config/config.yaml (Snakemake would otherwise merge the two
 # recursively, keeping the full study's grids next to the smoke grids).

@@ -63,7 +63,8 @@ def _profile(spec, model, class_map):
 def _per_evaluation(model):
     """Compiled vs pure-Python jets, one augmented-system evaluation (G, G_z) each, side by
     side in this process (same load): prints microseconds per call and the ratio."""
-    from vines.orbits import augmented as ag, shooting as sh
+    from vines.orbits import augmented as ag
+    from vines.orbits import shooting as sh
     from vines.orbits.periodic import find_1to1
     m = sh.Model(model["r"], model["d"])
     orbits = find_1to1(0.12, 1.1, 0.3077, r=model["r"], d=model["d"], simulation=False)
@@ -92,8 +93,7 @@ def main():
     with open(args.configfile) as f:
         cfg = yaml.safe_load(f)
     # the schema's defaults, as the pipeline reads the config
-    validate_config(cfg, load_schema(os.path.join(ROOT, "workflow", "schemas",
-                                                  "config.schema.yaml")))
+    validate_config(cfg, load_schema())
     model = {"r": cfg["model"]["r"],
              "d": D_DEFAULT if cfg["model"]["d"] is None else cfg["model"]["d"]}
     t0 = time.perf_counter()

@@ -56,7 +56,7 @@ except ImportError:             # optional extra: pip install -e ".[bench]"
 
 
 def load():
-    return "load %.2f %.2f %.2f" % os.getloadavg()
+    return "load {:.2f} {:.2f} {:.2f}".format(*os.getloadavg())
 
 
 def best_of(fn, repeat, clock=time.perf_counter):
@@ -281,7 +281,7 @@ def case_a(args):
         row("heyoka no x_max", "heyoka_noxmax")
         print("      (impacts and KE ratio only, max |z_m| taken at impacts: a lower bound "
               "of heyoka's cost, x_max incomplete)")
-        row(f"heyoka batch", "heyoka_batch", per=B)
+        row("heyoka batch", "heyoka_batch", per=B)
         print(f"      ({B} copies of case (a) in one SIMD batch integrator; time / {B})")
         ti_v, ti_h = rv.impacts["t"], rh["t_imp"]
         same_n = ti_v.size == ti_h.size
@@ -350,7 +350,7 @@ def case_b(args):
             n_v = int(np.sum(tv <= te)) if te is not None else None
             print(f"  heyoka ({label}; budget {10 * budget} events, {wall:g} s wall clock; "
                   f"compile {h.compile_s:.2f} s not timed): {el * 1e3:.1f} ms, "
-                  f"{'stopped: ' + rh['stop'] if rh['stop'] else 'reached t = %.1f' % rh['t_last']}"
+                  f"{'stopped: ' + rh['stop'] if rh['stop'] else 'reached t = {:.1f}'.format(rh['t_last'])}"
                   f", {rh['n_impacts']} impacts (vines: {int(np.sum(tv <= rh['t_last']))} up to "
                   f"the same t), KE ratio {rh['ke_ratio']:.4g}, max |w| = {rh['wmax']:.4g}")
             if te is not None:

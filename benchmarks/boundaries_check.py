@@ -82,7 +82,7 @@ def densified(pts, per_segment=40) -> np.ndarray:
         return pts
     s, pts = s[keep], pts[keep]
     fine = np.concatenate([np.linspace(a, b, per_segment, endpoint=False)
-                           for a, b in zip(s[:-1], s[1:])] + [s[-1:]])
+                           for a, b in zip(s[:-1], s[1:], strict=False)] + [s[-1:]])
     return CubicSpline(s, pts, axis=0)(fine)
 
 
@@ -120,7 +120,7 @@ def main():
           f"in the box) {dict(bad) if bad else ''}")
     if args.reference:
         ref = xr.open_dataset(args.reference)
-        box = tuple(tuple(max(lo) if i == 0 else min(lo) for i, lo in enumerate(zip(*r)))
+        box = tuple(tuple(max(lo) if i == 0 else min(lo) for i, lo in enumerate(zip(*r, strict=False)))
                     for r in ((bnd.attrs["eta_range"], ref.attrs["eta_range"]),
                               (bnd.attrs["omega_range"], ref.attrs["omega_range"])))
         new, old = curves_of(bnd), curves_of(ref)

@@ -116,8 +116,8 @@ def overhead(n, repeat=5) -> dict:
     """Cost of the detection on the random points that never settle: thread CPU time of
     each such point with and without the shortcut (best of ``repeat``): the total, and the
     median and 90th percentile of the per-point ratio (single points stay noisy)."""
-    from vines.core.simulation import _batch_point
     from vines.core.params import D_DEFAULT, R_DEFAULT, SolverSettings
+    from vines.core.simulation import _batch_point
     rng = np.random.default_rng(0)
     e, w, f = rng.uniform(0.01, 1.0, n), rng.uniform(0.5, 1.5, n), rng.uniform(0.01, 0.5, n)
     st = SolverSettings()
@@ -238,8 +238,8 @@ def main():
     with open(os.path.join(ROOT, "config", "smoke.yaml")) as fh:
         cfg = yaml.safe_load(fh)
     ok = True
-    print("smoke grids (t_end %g, window from %g):" % (cfg["simulation"]["t_end"],
-                                                      cfg["simulation"]["t_transient"]))
+    print(f"smoke grids (t_end {cfg['simulation']['t_end']:g}, "
+          f"window from {cfg['simulation']['t_transient']:g}):")
     for name, c in smoke_grids(cfg, args.threads).items():
         ok &= passed(c)
         print(f"  {name:14s} {c}")

@@ -9,9 +9,10 @@ import math
 import numpy as np
 import pytest
 
-from vines.core.params import D_DEFAULT, R_DEFAULT, ModelParams
 from vines.core.exact import oscillators
-from vines.orbits import jets, shooting as sh
+from vines.core.params import D_DEFAULT, R_DEFAULT, ModelParams
+from vines.orbits import jets
+from vines.orbits import shooting as sh
 from vines.orbits.branches import orbit_at
 from vines.orbits.continuation import continue_branch
 from vines.orbits.periodic import find_1to1, symmetric_seeds
@@ -191,4 +192,4 @@ def test_map_solve_stores_the_asymmetric_branch():
     eta, lam = ragged_rows(ds, "eta")[1], ragged_rows(ds, "lambda_max")[1]
     ref = [o for o in find_1to1(0.12, 1.1, 0.3077) if not o.symmetric and o.stable][0]
     assert abs(ref.lambda_max - 0.821) < 1e-3
-    assert abs(np.interp(0.12, *zip(*sorted(zip(eta, lam)))) - ref.lambda_max) < 5e-3
+    assert abs(np.interp(0.12, *zip(*sorted(zip(eta, lam, strict=False)), strict=False)) - ref.lambda_max) < 5e-3

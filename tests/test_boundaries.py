@@ -5,15 +5,15 @@ import json
 
 import numpy as np
 import pytest
+from test_cli import run_vines
 
 from vines.core.params import D_DEFAULT, R_DEFAULT, ParameterError
-from vines.orbits import augmented as ag, shooting as sh
+from vines.orbits import augmented as ag
+from vines.orbits import shooting as sh
 from vines.orbits.boundaries import boundaries, crossings
 from vines.orbits.continuation import continue_branch
 from vines.orbits.periodic import find_1to1
 from vines.orbits.stability_map import stability_map
-
-from test_cli import run_vines
 
 MODEL = sh.Model(R_DEFAULT, D_DEFAULT)
 F = 0.3077
@@ -99,8 +99,8 @@ def test_class_changes_of_a_coarse_map_lie_on_curves(curves):
 
 def test_curve_points_solve_their_conditions(curves):
     """Every kept point is a genuine codimension-one point of an orbit of the maps."""
-    from vines.orbits.branches import orbit_at
     from vines.core.params import ModelParams
+    from vines.orbits.branches import orbit_at
     types = {c.type for c in curves.curves}
     assert {"symmetry-breaking", "neimark-sacker", "grazing"} <= types
     for c in curves.curves:

@@ -143,9 +143,9 @@ def structure_problems(path) -> list[str]:
             if (rs < 0).any() or int(rs.sum(dtype=np.int64)) != nc.dimensions[dim].size:
                 bad.append(f"{name} does not sum to the size of {dim}")
             for other, w in nc.variables.items():
-                if dim in w.dimensions and other not in _coordinate_names(nc):
-                    if "coordinates" not in w.ncattrs():
-                        bad.append(f"ragged variable {other} has no coordinates attribute")
+                if (dim in w.dimensions and other not in _coordinate_names(nc)
+                        and "coordinates" not in w.ncattrs()):
+                    bad.append(f"ragged variable {other} has no coordinates attribute")
         for name, v in nc.variables.items():
             attrs = v.ncattrs()
             if "coordinates" in attrs:
@@ -180,7 +180,7 @@ def test_ragged_datasets_are_time_series_and_others_no_dsg(datasets):
             ft = getattr(nc, "featureType", None)
             has_count = any("sample_dimension" in v.ncattrs() for v in nc.variables.values())
         assert (ft, has_count) == ((FEATURE_TYPE, True) if kind in RAGGED else (None, False)), kind
-    assert FEATURE_TYPE == "timeSeries" and COUNT_DTYPE == np.dtype("int32")
+    assert FEATURE_TYPE == "timeSeries" and np.dtype("int32") == COUNT_DTYPE
 
 
 # ------------------------------------------------------------------ the checks can fail

@@ -101,7 +101,7 @@ def test_simulate_json_success():
     assert len(lines) == 1, proc.stdout            # exactly one JSON object, nothing else
     out = json.loads(lines[0], parse_constant=lambda c: pytest.fail(f"non-JSON constant {c}"))
     assert isinstance(out, dict)
-    assert SIMULATE_KEYS <= set(out), SIMULATE_KEYS - set(out)
+    assert set(out) >= SIMULATE_KEYS, SIMULATE_KEYS - set(out)
     assert out["solver"] == "exact"
     params = out["params"]
     expected = {"eta": 0.05, "omega": 1.0, "F": 0.05, "r": 0.65, "phi": 0.0,

@@ -15,6 +15,7 @@ import types
 
 import numpy as np
 import pytest
+from test_cli import run_vines
 
 import vines
 from vines.core import params as P
@@ -22,8 +23,6 @@ from vines.core.simulation import _measures
 from vines.orbits.continuation import continue_branch
 from vines.orbits.periodic import find_1to1
 from vines.orbits.stability_map import stability_map
-
-from test_cli import run_vines
 
 TIMEOUT = 30
 BASE = ["--eta", "0.05", "--omega", "1", "--F", "0.05"]

@@ -5,8 +5,16 @@ from pathlib import Path
 
 import pytest
 
-from vines.pipeline.codeversion import (ATTRACTORS, COMPUTE, FIGURES, NOT_TRACKED, PKG_DIR,
-                                        STUDIES, code_version, tracked_files)
+from vines.pipeline.codeversion import (
+    ATTRACTORS,
+    COMPUTE,
+    FIGURES,
+    NOT_TRACKED,
+    PKG_DIR,
+    STUDIES,
+    code_version,
+    tracked_files,
+)
 
 KINDS = {"compute": COMPUTE, "studies": STUDIES, "attractors": ATTRACTORS, "figures": FIGURES}
 MODULES = sorted(p.relative_to(PKG_DIR) for p in PKG_DIR.rglob("*.py")

@@ -13,7 +13,7 @@ from vines.pipeline.axes import ConfigError
 from vines.pipeline.config import load_schema, load_yaml, validate_config
 
 ROOT = Path(__file__).resolve().parents[1]
-SCHEMA = load_schema(ROOT / "workflow" / "schemas" / "config.schema.yaml")
+SCHEMA = load_schema()
 SMOKE = yaml.safe_load((ROOT / "config" / "smoke.yaml").read_text())
 
 

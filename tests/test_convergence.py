@@ -203,7 +203,7 @@ def test_grid_dataset_nested_and_finest_distance_zero(grid_ds):
     _assert_cf(ds)
     res = ds["resolution"].values
     assert res.tolist() == [3, 5, 9] and ds.sizes["eta"] == ds.sizes["omega"] == 9
-    for n, s in zip(res, ds["stride"].values):
+    for n, s in zip(res, ds["stride"].values, strict=False):
         for dim, (lo, hi) in (("eta", GRID["eta_range"]), ("omega", GRID["omega_range"])):
             sub = ds[dim].values[::s]
             assert sub.size == n and sub[0] == lo and sub[-1] == hi

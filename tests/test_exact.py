@@ -68,7 +68,7 @@ def test_energy_balance(eta, omega, F):
         return v * (f - d * v)
 
     work = 0.0
-    for a, b in zip(seg_t[:-1], seg_t[1:]):
+    for a, b in zip(seg_t[:-1], seg_t[1:], strict=False):
         if b > a:
             # integrate strictly inside the segment (state_at picks the segment by time)
             eps = 1e-13 * max(1.0, b)

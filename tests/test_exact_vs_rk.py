@@ -1,9 +1,9 @@
 """Exact solver against the independent DOP853 event loop (solver="rk")."""
 import numpy as np
 import pytest
+from test_exact import POINTS
 
 import vines
-from test_exact import POINTS
 
 # Points whose transient is not chaotic: the impact sequence is reproducible over 300 units.
 REGULAR = [(0.05, 1.0, 0.05), (0.45, 1.1, 0.4), (0.2, 1.2, 0.4)]

@@ -21,13 +21,12 @@ import math
 import numpy as np
 import pytest
 from scipy.optimize import brentq
+from test_cli import run_vines
 
 import vines
 from vines.core import kernel
 from vines.core.linear import stuck_amplitude
 from vines.core.params import D_DEFAULT, R_DEFAULT
-
-from test_cli import run_vines
 
 RK = dict(solver="rk", rtol=1e-12)
 

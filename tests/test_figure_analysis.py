@@ -11,8 +11,13 @@ import vines.plotting as P
 from vines.core.measures import time_histories
 from vines.core.simulation import simulate
 from vines.orbits.stability_map import stability_map
-from vines.plotting.sweep_regimes import (REGIME_CHATTER, REGIME_IRREGULAR, REGIME_NONE,
-                                          REGIME_PERIODIC, point_regime)
+from vines.plotting.sweep_regimes import (
+    REGIME_CHATTER,
+    REGIME_IRREGULAR,
+    REGIME_NONE,
+    REGIME_PERIODIC,
+    point_regime,
+)
 
 N_REC = 10
 

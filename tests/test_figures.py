@@ -16,9 +16,9 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 import xarray as xr
+from test_pipeline import ROOT, _copy_workflow, _planned, _smk, needs_snakemake
 
 import vines.plotting as P
-from test_pipeline import ROOT, _copy_workflow, _planned, _smk, needs_snakemake
 from vines.data.schema import COORD_ATTRS, STABILITY_CLASS_FLAGS
 
 SMOKE = Path(os.environ.get("VINES_SMOKE", ROOT / "results" / "smoke"))
@@ -211,7 +211,7 @@ def _copy_datasets(tmp_path, subdirs):
 @pytest.mark.skipif(not (SMOKE / "measures").is_dir(), reason="no smoke datasets")
 def test_editing_a_figure_script_reruns_only_its_figures(tmp_path):
     _copy_workflow(tmp_path, with_src_copy=True)
-    dst = _copy_datasets(tmp_path, ("grid", "measures", "stability", "boundaries",
+    _copy_datasets(tmp_path, ("grid", "measures", "stability", "boundaries",
                                     "timehistories"))
     smoke = ["--configfile", str(tmp_path / "config" / "smoke.yaml")]
     names = ("fig2", "fig16") + TH_FIGURES

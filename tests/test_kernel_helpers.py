@@ -12,8 +12,8 @@ def test_named_codes_are_distinct_and_match_the_conventions():
     assert k.MODE_FREE == 0 and (k.WALL_L, k.WALL_R) == (1, -1)   # stuck mode = wall
     events = (k.EV_STOP, k.EV_IMPACT, k.EV_RELEASE, k.EV_STICK, k.EV_STALLED)
     assert len(set(events)) == len(events) and k.MODE_FREE not in events
-    assert (k.CUR_T, k.CUR_ZM, k.CUR_VM, k.CUR_ZB, k.CUR_VB, k.CUR_MODE,
-            k.CUR_RELEASED) == tuple(range(7))
+    assert tuple(range(7)) == (k.CUR_T, k.CUR_ZM, k.CUR_VM, k.CUR_ZB, k.CUR_VB, k.CUR_MODE,
+            k.CUR_RELEASED)
     rcs = (k.RC_DONE, k.RC_BUFFER_FULL, k.RC_MAX_IMPACTS, k.RC_STALLED)
     assert len(set(rcs)) == 4
     assert abs(k.CONTACT_PRESSED * k.WALL_L) not in (0, 1)      # never an impact code
@@ -64,7 +64,7 @@ def test_run_kernel_resumes_after_buffer_full_with_identical_numbers():
     rc_a, full_a, *a = _run(100_000)
     rc_b, full_b, *b = _run(8)
     assert rc_a == rc_b == k.RC_DONE and full_a == 0 and full_b > 0
-    for x, y in zip(a, b):
+    for x, y in zip(a, b, strict=False):
         assert np.array_equal(x, y)
     cur, acc, cnt, imp, seg = a
     assert cur[k.CUR_T] == 300.0 and acc[k.A_NSTICK] > 0
@@ -76,6 +76,7 @@ def test_run_kernel_resumes_after_buffer_full_with_identical_numbers():
 def _dense_max(osc, x0, v0, sth, cth, sa, sb):
     """max |z| on [sa, sb]: dense sampling, then golden-section refinement of the best."""
     from scipy.optimize import minimize_scalar
+
     from vines.core.flow import flow
     ss = np.linspace(sa, sb, 4001)
     zs = np.array([abs(flow(osc, x0, v0, sth, cth, s)[0]) for s in ss])

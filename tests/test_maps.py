@@ -5,10 +5,9 @@ import numpy as np
 import pytest
 
 import vines
-from vines.core.walls import WALL_L, WALL_R, impact_velocities
-from vines.orbits.maps import (apply_map, is_admissible,
-                        map_jacobian, map_with_jacobian, mirror)
 from vines.core.params import ModelParams
+from vines.core.walls import WALL_L, WALL_R, impact_velocities
+from vines.orbits.maps import apply_map, is_admissible, map_jacobian, map_with_jacobian, mirror
 from vines.orbits.periodic import find_1to1
 
 

@@ -4,10 +4,22 @@ import math
 
 import pytest
 
-from vines.core.params import (C_DAMP_NS_PER_M, D_DEFAULT, K_SPRING_N_PER_M, L_HALF_M, M_LO_KG,
-                          MAX_IMPACTS_DEFAULT, R_DEFAULT, T_END_DEFAULT, T_TRANSIENT_DEFAULT,
-                          V_STICK_DEFAULT, W0_RAD_S, ModelParams, ParameterError,
-                          SolverSettings)
+from vines.core.params import (
+    C_DAMP_NS_PER_M,
+    D_DEFAULT,
+    K_SPRING_N_PER_M,
+    L_HALF_M,
+    M_LO_KG,
+    MAX_IMPACTS_DEFAULT,
+    R_DEFAULT,
+    T_END_DEFAULT,
+    T_TRANSIENT_DEFAULT,
+    V_STICK_DEFAULT,
+    W0_RAD_S,
+    ModelParams,
+    ParameterError,
+    SolverSettings,
+)
 
 GOOD = dict(eta=0.05, omega=1.0, F=0.05)
 
@@ -117,7 +129,7 @@ def test_from_dimensional_reproduces_table1():
     assert p.eta == pytest.approx(eta, rel=1e-12)
     assert round(p.d, 6) == 0.011998
     assert p.omega == pytest.approx(1.0, abs=1e-5)
-    assert p.F == pytest.approx(0.05, rel=1e-12)
+    assert pytest.approx(0.05, rel=1e-12) == p.F
     assert p.r == 0.65
 
 

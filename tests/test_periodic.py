@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 import vines
+from vines.core.params import ModelParams
 from vines.core.walls import WALL_L, WALL_R
 from vines.orbits.maps import apply_map, mirror
-from vines.core.params import ModelParams
 from vines.orbits.periodic import PeriodicOrbit, find_1to1
 
 
@@ -94,7 +94,7 @@ def test_paper_window_at_resonance_small_forcing():
             if o.symmetric and o.stable:
                 stable_sym.append((eta, o.lambda_max))
     assert stable_sym
-    for eta, lam in stable_sym:
+    for eta, _ in stable_sym:
         assert 0.03 <= eta <= 0.07
     assert any(0.04 <= e <= 0.06 for e, _ in stable_sym)
     # eigenvalue close to 1 in the window (at the paper's point eta = 0.05 and below)
@@ -192,7 +192,7 @@ def test_stability_map_threads_and_classes():
     assert np.all(lam[(cls == 1) | (cls == 2)] < 1.0) and np.all(lam[cls == 3] >= 1.0)
     assert np.all(m1["symmetric"][cls == 1]) and not np.any(m1["symmetric"][cls == 2])
     # every stable point agrees with a direct solve
-    for i, j in zip(*np.nonzero((cls == 1) | (cls == 2))):
+    for i, j in zip(*np.nonzero((cls == 1) | (cls == 2)), strict=False):
         direct = [o for o in find_1to1(eta[i], omega[j], 0.3077, simulation=False) if o.stable]
         assert any(abs(o.lambda_max - lam[i, j]) < 1e-8 for o in direct)
     assert (cls == 1).any()

@@ -7,7 +7,6 @@ import os
 import re
 import shutil
 import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -18,16 +17,28 @@ import yaml
 from vines.core.measures import derived_measures, section_marks
 from vines.core.params import D_DEFAULT
 from vines.core.simulation import BATCH_FIELDS
-from vines.data.builders import (grid_dataset, measures_dataset, merge_chunks, ragged_dataset,
-                                 ragged_rows)
+from vines.data.builders import (
+    grid_dataset,
+    measures_dataset,
+    merge_chunks,
+    ragged_dataset,
+    ragged_rows,
+)
 from vines.data.netcdf import read_dataset, write_dataset
 from vines.data.provenance import provenance_attrs
-from vines.pipeline.axes import ConfigError, axis_values, chunk_key, chunk_map, grid_axes, grid_chunks
+from vines.pipeline.axes import (
+    ConfigError,
+    axis_values,
+    chunk_key,
+    chunk_map,
+    grid_axes,
+    grid_chunks,
+)
 from vines.pipeline.config import load_schema, validate_config
 from vines.pipeline.stages import compute_chunk, compute_sweep
 
 ROOT = Path(__file__).resolve().parents[1]
-SCHEMA = ROOT / "workflow" / "schemas" / "config.schema.yaml"
+SCHEMA = ROOT / "src" / "vines" / "pipeline" / "config.schema.yaml"
 SNAKEMAKE = shutil.which("snakemake")
 needs_snakemake = pytest.mark.skipif(SNAKEMAKE is None, reason="snakemake not installed")
 
@@ -225,6 +236,7 @@ TINY = {
 
 def _copy_workflow(dst: Path, with_src_copy=False):
     shutil.copy(ROOT / "Snakefile", dst / "Snakefile")
+    shutil.copy(ROOT / "environment.yml", dst / "environment.yml")   # the rules' conda env
     shutil.copytree(ROOT / "workflow", dst / "workflow",
                     ignore=shutil.ignore_patterns("__pycache__"))
     shutil.copytree(ROOT / "config", dst / "config")

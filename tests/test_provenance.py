@@ -8,6 +8,7 @@ from types import SimpleNamespace
 
 import numpy as np
 import pytest
+from test_pipeline import TINY, _copy_workflow, _smk, needs_snakemake
 
 from vines.core.params import D_DEFAULT
 from vines.data.netcdf import read_dataset, write_dataset
@@ -16,8 +17,6 @@ from vines.pipeline import stages
 from vines.pipeline.axes import grid_chunks
 from vines.pipeline.codeversion import COMPUTE, code_version
 from vines.pipeline.jobs import check_code_version, run_job
-
-from test_pipeline import SNAKEMAKE, TINY, _copy_workflow, _smk, needs_snakemake
 
 ROOT = Path(__file__).resolve().parents[1]
 MODEL = {"r": 0.65, "d": D_DEFAULT}

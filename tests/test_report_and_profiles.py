@@ -9,7 +9,6 @@ import shutil
 import subprocess
 
 import pytest
-
 from test_pipeline import ROOT, SNAKEMAKE, TINY, _copy_workflow, _smk, needs_snakemake
 
 # one figure (fig2) and one tiny work-precision case: the report holds their captions

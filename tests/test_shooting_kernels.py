@@ -4,13 +4,14 @@ import math
 
 import numpy as np
 import pytest
+from test_boundaries import CASES, MODEL, F, augmented_point
 
-from vines.orbits import boundaries as bnd, jets, shooting as sh
+from vines.orbits import boundaries as bnd
+from vines.orbits import jets
+from vines.orbits import shooting as sh
 from vines.orbits import shooting_kernels as sk
 from vines.orbits.periodic import find_1to1
 from vines.orbits.tape import record
-
-from test_boundaries import CASES, F, MODEL, augmented_point
 
 
 def _formula(x, y, c):
@@ -30,7 +31,7 @@ def _jet_rows(vals, size):
 def test_tape_matches_python_jets_to_second_order(vals):
     out = _jet_rows(vals, sk.N2)
     ref = _formula(*jets.variables(vals, order=2))
-    for row, f in zip(out, ref):
+    for row, f in zip(out, ref, strict=False):
         assert row[0] == pytest.approx(f.v, rel=1e-14, abs=1e-14)
         np.testing.assert_allclose(row[1:4], f.g, rtol=1e-13, atol=1e-13)
         H = row[sk.N1:].reshape(sk.NL, sk.NL)

@@ -59,7 +59,7 @@ def test_pauses_do_not_change_the_trajectory(eta, omega, F):
     times = np.concatenate([times, ref[4][::4, 0] - 1e-11, np.arange(0.3, 400.0, 0.77)])
     rc1, got, n_mid, n_close = _kernel_run(p, st, times[times > 0])
     assert rc0 == rc1 == k.RC_DONE and n_mid > 50 and n_close > 5
-    for a, b in zip(ref, got):
+    for a, b in zip(ref, got, strict=False):
         assert np.array_equal(a, b)
 
 

@@ -2,8 +2,6 @@
 import inspect
 from pathlib import Path
 
-import yaml
-
 import vines
 from vines import cli
 from vines.core import params as P
@@ -11,11 +9,11 @@ from vines.core.measures import time_histories
 from vines.core.simulation import RK_METHODS, SOLVERS, simulate, simulate_batch
 from vines.core.sweep import bifurcation_sweep
 from vines.core.walls import WALL_L, WALL_R, impact_velocities
-from vines.reference.rk import METHODS
+from vines.pipeline.config import load_schema
 from vines.reference.hiprec import DPS_DEFAULT, H_SAMPLE_DEFAULT
+from vines.reference.rk import METHODS
 
-SCHEMA = yaml.safe_load((Path(__file__).resolve().parents[1] / "workflow" / "schemas"
-                         / "config.schema.yaml").read_text())
+SCHEMA = load_schema()
 PROPS = SCHEMA["properties"]
 
 
@@ -99,7 +97,7 @@ def test_config_readme_lists_every_key():
     expand to several keys)."""
     import re
     text = (Path(__file__).resolve().parents[1] / "config" / "README.md").read_text()
-    listed = set()
+    listed, listed_base = set(), ""
     for cell in re.findall(r"^\| (`[^|]+) \|", text, re.M):
         for key in re.findall(r"`([^`]+)`", cell):
             full = key if not key.startswith(".") else listed_base + key

@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 import vines
+from vines.core.exact import oscillators
 from vines.core.flow import I_NRES, flow, make_osc
 from vines.core.params import ModelParams
-from vines.core.exact import oscillators
 from vines.orbits import periodic as P
 from vines.orbits._lapack import eigvals, lambda_max_4
 from vines.orbits.stability_map import stability_map, stability_map_python
@@ -67,7 +67,7 @@ def test_seed_kernel_rows_equal_seed_orbits(eta, w, F):
     rows = np.zeros((P.N_SEED_MAX, P.N_ROW))
     n = P.seed_kernel(osc, p.eta, p.r, p.omega, p.phi, p.F, rows, P.orbit_workspace())
     assert n == len(orbits)
-    for row, o in zip(rows[:n], orbits):
+    for row, o in zip(rows[:n], orbits, strict=False):
         assert np.array_equal(row[P.ROW_X:P.ROW_X + 4], o.x_L)
         assert list(row[P.ROW_FL:P.ROW_FL + 2]) == o.flight_times
         assert bool(row[P.ROW_ADM]) == o.admissible and bool(row[P.ROW_SYM]) == o.symmetric

@@ -5,12 +5,18 @@ import numpy as np
 import pytest
 
 import vines
-from vines.reference.hiprec import reference_run
 from vines.core.params import ModelParams, ParameterError, SolverSettings
 from vines.core.result import IMPACT_DTYPE
 from vines.data.studies import work_precision_dataset
-from vines.studies.workprecision import (RUN_FIELDS, WorkPrecisionResult, errors, timed,
-                                         visible, work_precision)
+from vines.reference.hiprec import reference_run
+from vines.studies.workprecision import (
+    RUN_FIELDS,
+    WorkPrecisionResult,
+    errors,
+    timed,
+    visible,
+    work_precision,
+)
 
 PERIODIC = (0.05, 1.0, 0.05)          # stable 1:1 orbit, regular transient
 CHATTER = (0.2, 0.9, 0.8)             # chatter cascades and sticking from t ~ 43

@@ -12,15 +12,18 @@ first use, so that code which only reads datasets or draws figures does not load
 and the compiled kernels.
 """
 from importlib import import_module
+from importlib.metadata import PackageNotFoundError, version
 
 from ._numba_cache import refresh as _refresh_numba_cache
 
 _refresh_numba_cache()   # before any jitted function is loaded from the cache
 
-from .core.params import (D_DEFAULT, L_HALF_M, ModelParams, ParameterError,  # noqa: E402
-                          SolverSettings)
+from .core.params import D_DEFAULT, L_HALF_M, ModelParams, ParameterError, SolverSettings  # noqa: E402
 
-__version__ = "0.1.0"
+try:   # one version: pyproject.toml's, as installed
+    __version__ = version("vines")
+except PackageNotFoundError:   # sources used without installing (not a release)
+    __version__ = "0+unknown"
 
 #: public names loaded on first access, and their modules
 _LAZY = {"simulate": ".core.simulation", "simulate_batch": ".core.simulation",

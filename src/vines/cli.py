@@ -23,17 +23,38 @@ import contextlib
 import json
 import math
 import sys
-from typing import NoReturn, Sequence
+from collections.abc import Sequence
+from typing import NoReturn
 
 from . import __version__
+from .core.params import (
+    BRANCH_KINDS,
+    CONTINUATION_METHODS,
+    D_DEFAULT,
+    MAX_IMPACTS_DEFAULT,
+    MAX_IMPACTS_MAX,
+    MAX_INADMISSIBLE_DEFAULT,
+    MAX_POINTS_DEFAULT,
+    MAX_POINTS_MAX,
+    PARAM_BOUNDS,
+    PARAM_NAMES,
+    R_DEFAULT,
+    RTOL_DEFAULT,
+    RTOL_MAX,
+    RTOL_MIN,
+    T_END_DEFAULT,
+    T_END_MAX,
+    T_TRANSIENT_DEFAULT,
+    V_STICK_DEFAULT,
+    V_STICK_MAX,
+    ModelParams,
+    ParameterError,
+    SolverSettings,
+    check_int,
+    check_real,
+    check_step_points,
+)
 from .core.simulation import SOLVERS
-from .core.params import (BRANCH_KINDS, CONTINUATION_METHODS, MAX_INADMISSIBLE_DEFAULT,
-                          PARAM_BOUNDS, PARAM_NAMES, RTOL_DEFAULT, RTOL_MAX, RTOL_MIN, D_DEFAULT,
-                          MAX_IMPACTS_DEFAULT, MAX_IMPACTS_MAX, MAX_POINTS_DEFAULT,
-                          MAX_POINTS_MAX, R_DEFAULT, T_END_DEFAULT,
-                          T_END_MAX, T_TRANSIENT_DEFAULT, V_STICK_DEFAULT, V_STICK_MAX,
-                          ModelParams, ParameterError, SolverSettings, check_int, check_real,
-                          check_step_points)
 
 PROG = "vines"
 

@@ -6,17 +6,17 @@
 rule bifurcation_sweep:
     output:
         f"{RES}/sweeps/{{sweep}}.nc",
+    log:
+        f"{RES}/logs/bifurcation_sweep/{{sweep}}.log",
+    benchmark:
+        f"{RES}/benchmarks/bifurcation_sweep/{{sweep}}.tsv"
+    conda:
+        "../../environment.yml"
+    threads: config["threads"]
     params:
         spec=lambda w: SWEEPS[w.sweep],
         model=MODEL,
         periodic_shortcut=SIMULATION["periodic_shortcut"],
         code=CODE,
-    threads: config["threads"]
-    conda:
-        "../envs/vines.yaml"
-    log:
-        f"{RES}/logs/bifurcation_sweep/{{sweep}}.log",
-    benchmark:
-        f"{RES}/benchmarks/bifurcation_sweep/{{sweep}}.tsv",
     script:
         "../scripts/bifurcation_sweep.py"

@@ -7,15 +7,15 @@ rule boundaries:
         stability=boundaries_seed_map,
     output:
         f"{RES}/boundaries/{{bnd}}.nc",
-    params:
-        spec=lambda w: BOUNDARIES[w.bnd],
-        model=MODEL,
-        code=CODE,
-    conda:
-        "../envs/vines.yaml"
     log:
         f"{RES}/logs/boundaries/{{bnd}}.log",
     benchmark:
         f"{RES}/benchmarks/boundaries/{{bnd}}.tsv"
+    conda:
+        "../../environment.yml"
+    params:
+        spec=lambda w: BOUNDARIES[w.bnd],
+        model=MODEL,
+        code=CODE,
     script:
         "../scripts/boundaries.py"

@@ -9,25 +9,41 @@ import sys
 # code versions below are hashes of exactly the sources that run.
 _SRC = os.path.join(workflow.basedir, "src")
 sys.path.insert(0, _SRC)
-os.environ.update(PYTHONPATH=os.pathsep.join(
-    [_SRC] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p and p != _SRC]))
+os.environ.update(
+    PYTHONPATH=os.pathsep.join(
+        [_SRC]
+        + [
+            p
+            for p in os.environ.get("PYTHONPATH", "").split(os.pathsep)
+            if p and p != _SRC
+        ]
+    )
+)
 
 from vines.core.params import D_DEFAULT
 from vines.data.netcdf import unreadable_datasets
 from vines.pipeline.axes import chunk_map, grid_axes
-from vines.pipeline.codeversion import ATTRACTORS, COMPUTE, FIGURES, STUDIES, code_version
+from vines.pipeline.codeversion import (
+    ATTRACTORS,
+    COMPUTE,
+    FIGURES,
+    STUDIES,
+    code_version,
+)
 from vines.pipeline.config import ConfigError, load_schema, validate_config
 
 try:
-    validate_config(config, load_schema(workflow.source_path("../schemas/config.schema.yaml")))
+    validate_config(config, load_schema())
 except ConfigError as err:
     sys.exit(f"vines pipeline: {err}")
 
 
 RES = f"results/{config['run']}"
 # d = null means the Table 1 value c/(M w0) to full precision (not a rounded 0.011998)
-MODEL = {"r": config["model"]["r"],
-         "d": D_DEFAULT if config["model"]["d"] is None else config["model"]["d"]}
+MODEL = {
+    "r": config["model"]["r"],
+    "d": D_DEFAULT if config["model"]["d"] is None else config["model"]["d"],
+}
 SIMULATION = dict(config["simulation"])
 # Code versions (sha256 of the vines subpackages each kind of rule depends on) are params
 # of the rules, so editing a subpackage reruns exactly the rules that depend on it
@@ -56,8 +72,10 @@ CONV = config["convergence"]
 _DAMAGED = unreadable_datasets(sorted(glob.glob(f"{RES}/**/*.nc", recursive=True)))
 if _DAMAGED:
     path, reason = _DAMAGED[0]
-    sys.exit(f"vines pipeline: {path} cannot be read {reason} ({len(_DAMAGED)} damaged "
-             f"file(s)); remove it to recompute it: rm {' '.join(p for p, _ in _DAMAGED)}")
+    sys.exit(
+        f"vines pipeline: {path} cannot be read {reason} ({len(_DAMAGED)} damaged "
+        f"file(s)); remove it to recompute it: rm {' '.join(p for p, _ in _DAMAGED)}"
+    )
 
 
 wildcard_constraints:

@@ -6,19 +6,19 @@
 rule convergence:
     output:
         f"{RES}/convergence/{{study}}.nc",
+    log:
+        f"{RES}/logs/convergence/{{study}}.log",
+    benchmark:
+        f"{RES}/benchmarks/convergence/{{study}}.tsv"
     wildcard_constraints:
         study="window|vstick|grid",
+    conda:
+        "../../environment.yml"
+    threads: config["threads"]
     params:
         spec=lambda w: CONV[w.study],
         model=MODEL,
         simulation=SIMULATION,
         code=CODE_STUDY,
-    threads: config["threads"]
-    conda:
-        "../envs/vines.yaml"
-    log:
-        f"{RES}/logs/convergence/{{study}}.log",
-    benchmark:
-        f"{RES}/benchmarks/convergence/{{study}}.tsv",
     script:
         "../scripts/convergence.py"

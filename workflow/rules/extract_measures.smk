@@ -7,16 +7,16 @@ rule extract_measures:
         chunk_files,
     output:
         f"{RES}/measures/{{grid}}.nc",
+    log:
+        f"{RES}/logs/extract_measures/{{grid}}.log",
+    benchmark:
+        f"{RES}/benchmarks/extract_measures/{{grid}}.tsv"
+    conda:
+        "../../environment.yml"
     params:
         axes=lambda w: {d: v.tolist() for d, v in AXES[w.grid].items()},
         sections=lambda w: GRIDS[w.grid]["sections"],
         model=MODEL,
         code=CODE,
-    conda:
-        "../envs/vines.yaml"
-    log:
-        f"{RES}/logs/extract_measures/{{grid}}.log",
-    benchmark:
-        f"{RES}/benchmarks/extract_measures/{{grid}}.tsv",
     script:
         "../scripts/extract_measures.py"

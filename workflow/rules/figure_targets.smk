@@ -6,8 +6,11 @@
 
 
 def _named(section, prefix, folder):
-    return [f"{RES}/{folder}/{n}.nc" for n in sorted(section)
-            if n == prefix or n.startswith(f"{prefix}_")]
+    return [
+        f"{RES}/{folder}/{n}.nc"
+        for n in sorted(section)
+        if n == prefix or n.startswith(f"{prefix}_")
+    ]
 
 
 def _measures(p):
@@ -54,27 +57,41 @@ FIG_INPUTS = {
     "fig9": {"th": _th("fig9")},
     "fig10": {"th": _th("fig10")},
     "fig11": {"measures": _measures("fig11"), "th": _th("fig11")},
-    "fig12": {"measures": _measures("fig12"), "stability": _smaps("fig16"),
-              "boundaries": _boundaries("fig16")},
+    "fig12": {
+        "measures": _measures("fig12"),
+        "stability": _smaps("fig16"),
+        "boundaries": _boundaries("fig16"),
+    },
     "fig13": {"measures": _measures("fig12")},
     "fig14": {"sweeps": _sweeps("fig14")},
-    "fig14_regimes": {"sweeps": _sweeps("fig14")},   # companion of Fig 14 (not in the paper)
+    "fig14_regimes": {
+        "sweeps": _sweeps("fig14")
+    },  # companion of Fig 14 (not in the paper)
     "fig15": {"sweep": _sweeps("fig15"), "branches": _branches("fig15")},
     "fig16": {"stability": _smaps("fig16"), "boundaries": _boundaries("fig16")},
     # beyond the paper: coexisting attractors (robust-TET maps beside Fig 12, basin slices)
-    "robust_tet": {"robust": _robust("robust"), "measures": _measures("fig12"),
-                   "stability": _smaps("fig16"), "boundaries": _boundaries("fig16")},
+    "robust_tet": {
+        "robust": _robust("robust"),
+        "measures": _measures("fig12"),
+        "stability": _smaps("fig16"),
+        "boundaries": _boundaries("fig16"),
+    },
     "basin_slices": {"slices": _slices("basin")},
     # beyond the paper: the solver studies
     "workprecision": {"cases": [f"{RES}/workprecision/{c}.nc" for c in WPREC["cases"]]},
-    "convergence": {s: f"{RES}/convergence/{s}.nc" if s in CONV else ""
-                    for s in ("window", "vstick", "grid")},
+    "convergence": {
+        s: f"{RES}/convergence/{s}.nc" if s in CONV else ""
+        for s in ("window", "vstick", "grid")
+    },
 }
 REQUESTED_FIGURES = [f for f, ins in FIG_INPUTS.items() if all(ins.values())]
 _missing = [f for f in FIG_INPUTS if f not in REQUESTED_FIGURES]
 if _missing and REQUESTED_FIGURES:
-    print(f"vines pipeline: warning: figures {', '.join(_missing)} are not requested "
-          "(their datasets are not configured)", file=sys.stderr)
+    print(
+        f"vines pipeline: warning: figures {', '.join(_missing)} are not requested "
+        "(their datasets are not configured)",
+        file=sys.stderr,
+    )
 
 
 #: figures drawn by the shared time-history script
@@ -94,13 +111,19 @@ def figure_script(fig):
 def fig_out(name):
     return {
         "pdf": f"{RES}/figures/{name}.pdf",
-        "png": report(f"{RES}/figures/{name}.png", caption=f"../report/{name}.rst",
-                      category="Figures", labels={"figure": name}),
+        "png": report(
+            f"{RES}/figures/{name}.png",
+            caption=f"../report/{name}.rst",
+            category="Figures",
+            labels={"figure": name},
+        ),
     }
 
 
 def all_figures():
-    return [f"{RES}/figures/{f}.{ext}" for f in REQUESTED_FIGURES for ext in ("pdf", "png")]
+    return [
+        f"{RES}/figures/{f}.{ext}" for f in REQUESTED_FIGURES for ext in ("pdf", "png")
+    ]
 
 
 def all_targets():
@@ -119,11 +142,11 @@ def figure_rule_for(fig):
             **FIG_INPUTS[fig],
         output:
             **fig_out(fig),
-        params:
-            code=CODE_FIGURES,
         log:
             f"{RES}/logs/figures/{fig}.log",
         conda:
-            "../envs/vines.yaml"
+            "../../environment.yml"
+        params:
+            code=CODE_FIGURES,
         script:
             f"../scripts/figures/{figure_script(fig)}.py"

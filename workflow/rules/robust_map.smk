@@ -5,17 +5,17 @@
 rule robust_map:
     output:
         f"{RES}/robust/{{rmap}}.nc",
+    log:
+        f"{RES}/logs/robust_map/{{rmap}}.log",
+    benchmark:
+        f"{RES}/benchmarks/robust_map/{{rmap}}.tsv"
+    conda:
+        "../../environment.yml"
+    threads: config["threads"]
     params:
         spec=lambda w: ROBUST[w.rmap],
         model=MODEL,
         simulation=SIMULATION,
         code=CODE_ATTRACTORS,
-    threads: config["threads"]
-    conda:
-        "../envs/vines.yaml"
-    log:
-        f"{RES}/logs/robust_map/{{rmap}}.log",
-    benchmark:
-        f"{RES}/benchmarks/robust_map/{{rmap}}.tsv",
     script:
         "../scripts/robust_map.py"

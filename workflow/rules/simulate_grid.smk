@@ -7,17 +7,17 @@
 rule simulate_grid:
     output:
         f"{RES}/grid/{{grid}}/chunk_{{key}}.nc",
+    log:
+        f"{RES}/logs/simulate_grid/{{grid}}/{{key}}.log",
+    benchmark:
+        f"{RES}/benchmarks/simulate_grid/{{grid}}/{{key}}.tsv"
+    conda:
+        "../../environment.yml"
+    threads: config["threads"]
     params:
         points=lambda w: CHUNKS[w.grid][w.key],
         model=MODEL,
         simulation=SIMULATION,
         code=CODE,
-    threads: config["threads"]
-    conda:
-        "../envs/vines.yaml"
-    log:
-        f"{RES}/logs/simulate_grid/{{grid}}/{{key}}.log",
-    benchmark:
-        f"{RES}/benchmarks/simulate_grid/{{grid}}/{{key}}.tsv",
     script:
         "../scripts/simulate_grid.py"

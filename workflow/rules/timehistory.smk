@@ -5,16 +5,16 @@
 rule timehistory:
     output:
         f"{RES}/timehistories/{{th}}.nc",
+    log:
+        f"{RES}/logs/timehistory/{{th}}.log",
+    benchmark:
+        f"{RES}/benchmarks/timehistory/{{th}}.tsv"
+    conda:
+        "../../environment.yml"
     params:
         spec=lambda w: THIST[w.th],
         model=MODEL,
         simulation=SIMULATION,
         code=CODE,
-    conda:
-        "../envs/vines.yaml"
-    log:
-        f"{RES}/logs/timehistory/{{th}}.log",
-    benchmark:
-        f"{RES}/benchmarks/timehistory/{{th}}.tsv",
     script:
         "../scripts/timehistory.py"

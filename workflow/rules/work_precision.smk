@@ -11,18 +11,18 @@
 rule work_precision:
     output:
         f"{RES}/workprecision/{{case}}.nc",
+    log:
+        f"{RES}/logs/work_precision/{{case}}.log",
+    benchmark:
+        f"{RES}/benchmarks/work_precision/{{case}}.tsv"
+    conda:
+        "../../environment.yml"
+    threads: lambda wildcards: workflow.resource_settings.cores or 1
     params:
         case=lambda w: WPREC["cases"][w.case],
         settings=WPREC_SETTINGS,
         model=MODEL,
         v_stick=SIMULATION["v_stick"],
         code=CODE_STUDY,
-    threads: lambda wildcards: workflow.resource_settings.cores or 1
-    conda:
-        "../envs/vines.yaml"
-    log:
-        f"{RES}/logs/work_precision/{{case}}.log",
-    benchmark:
-        f"{RES}/benchmarks/work_precision/{{case}}.tsv",
     script:
         "../scripts/work_precision.py"

@@ -25,10 +25,19 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..core.exact import oscillators
-from ..core.params import (D_DEFAULT, L_HALF_M, MAX_IMPACTS_DEFAULT, R_DEFAULT,
-                           ROOT_TOL_DEFAULT, T_END_DEFAULT, T_TRANSIENT_DEFAULT,
-                           V_STICK_DEFAULT, ModelParams, ParameterError,
-                           SolverSettings)
+from ..core.params import (
+    D_DEFAULT,
+    L_HALF_M,
+    MAX_IMPACTS_DEFAULT,
+    R_DEFAULT,
+    ROOT_TOL_DEFAULT,
+    T_END_DEFAULT,
+    T_TRANSIENT_DEFAULT,
+    V_STICK_DEFAULT,
+    ModelParams,
+    ParameterError,
+    SolverSettings,
+)
 from ..core.shortcut import rel_diff
 from .endstate import EndState, settle, settle_states
 from .orbit import one_period, section_of_1to1
@@ -155,7 +164,7 @@ def _split_motions(groups: list, ends: list) -> list:
             continue
         order = sorted(g.members, key=lambda i: (ends[i].ke_ratio, i))
         cur = [order[0]]
-        for a, b in zip(order[:-1], order[1:]):
+        for a, b in zip(order[:-1], order[1:], strict=False):
             if ends[b].ke_ratio - ends[a].ke_ratio > KE_GAP:
                 out.append(_subgroup(cur, ends))
                 cur = []
@@ -272,7 +281,7 @@ def census(eta, omega, F, *, r=R_DEFAULT, d=D_DEFAULT, n=256, seed=0, box=DEFAUL
     for j, g in enumerate(groups):
         members[g.members] = j
     return Census(params=p.as_dict(), settings=st.as_dict() | {"state0": None}, n=len(ends),
-                  seed=int(seed), box=dict(zip(BOX_NAMES, map(list, box))),
+                  seed=int(seed), box=dict(zip(BOX_NAMES, map(list, box), strict=False)),
                   attractors=attractors,
                   from_rest=groups.index(rest) if rest is not None else None,
                   unsettled_fraction=n_unsettled / len(ends), members=members)

@@ -38,7 +38,7 @@ def check_box(box) -> tuple:
     if len(pairs) != 4 or any(len(b) != 2 for b in pairs):
         raise ParameterError("box", box, "must be 4 (lo, hi) pairs for z_m, v_m, w, v_b")
     out = []
-    for name, (lo, hi) in zip(BOX_NAMES, pairs):
+    for name, (lo, hi) in zip(BOX_NAMES, pairs, strict=False):
         bound = 1.0 if name == "w" else STATE_MAX
         lo = check_real(f"box.{name}", lo, lo=-bound, hi=bound)
         hi = check_real(f"box.{name}", hi, lo=lo, hi=bound)

@@ -69,8 +69,18 @@ import math
 import numpy as np
 from numba import njit
 
-from .flow import (I_D, I_NRES, I_RATE, I_RES, deriv_bound, flow, forcing, part_bounds,
-                   state_bounds, v2_integral)
+from .flow import (
+    I_D,
+    I_NRES,
+    I_RATE,
+    I_RES,
+    deriv_bound,
+    flow,
+    forcing,
+    part_bounds,
+    state_bounds,
+    v2_integral,
+)
 from .walls import WALL_L, WALL_R, impact_velocities
 
 # Return codes of run_kernel. RC_PAUSED (``run_kernel_until`` only): the trajectory reached
@@ -627,12 +637,11 @@ def _impact(cur, acc, cnt, imp, osc_f, eta, r, v_stick, record_from, sth0, cth0,
     vc = _common_velocity(eta, v, vb)
     g = forcing(osc_f, sth0, cth0, s) - osc_f[I_D] * vc - z    # free LO acceleration
     v_floor = _stick_speed_floor(osc_f, g, z, zb_imp, b1, abs(vm_p - v))
-    if abs(vm_p - vb_p) <= max(v_stick, v_floor):
-        if wall * g > 0.0:
-            mode_new = wall
-            vm_p = vc
-            vb_p = vc
-            acc[A_NSTICK] += 1.0
+    if abs(vm_p - vb_p) <= max(v_stick, v_floor) and wall * g > 0.0:
+        mode_new = wall
+        vm_p = vc
+        vb_p = vc
+        acc[A_NSTICK] += 1.0
     _set_state(cur, t_new, z, vm_p, zb_imp, vb_p, mode_new)
 
 
@@ -735,7 +744,7 @@ def run_kernel_until(osc_f, osc_s, eta, r, omega, phi, t_end, t_tr, v_stick, roo
         if event == EV_STALLED:
             cur[CUR_T] = t0
             return RC_STALLED
-        if event == EV_IMPACT or event == EV_RELEASE:
+        if event == EV_IMPACT or event == EV_RELEASE:  # noqa: SIM109 (numba: no tuple search)
             s, z, v, a, j, b1 = _land_on_event(osc, zm0, vm0, sth0, cth0, t0, t_end, s, z, v,
                                                a, j, b1, gap, closing, in_window, acc)
         if event == EV_RELEASE:

@@ -222,7 +222,7 @@ class ModelParams:
             set_(self, name, check_param(name, getattr(self, name)))
 
     @classmethod
-    def from_xi(cls, eta, omega, F, xi, r=R_DEFAULT, phi=0.0) -> "ModelParams":
+    def from_xi(cls, eta, omega, F, xi, r=R_DEFAULT, phi=0.0) -> ModelParams:
         """Paper's parameterisation with xi = c/(m w0) held fixed: d = eta * xi."""
         eta = check_param("eta", eta)
         xi = check_real("xi", xi, lo=0.0, hi=D_MAX / eta)     # d = eta xi <= D_MAX
@@ -231,7 +231,7 @@ class ModelParams:
     @classmethod
     def from_dimensional(cls, *, m_ball_kg, omega_rad_s, A_m, M_kg=M_LO_KG, L_m=L_HALF_M,
                          k_N_per_m=K_SPRING_N_PER_M, c_Ns_per_m=C_DAMP_NS_PER_M,
-                         r=R_DEFAULT, phi=0.0) -> "ModelParams":
+                         r=R_DEFAULT, phi=0.0) -> ModelParams:
         """Build the dimensionless set from SI quantities (paper Eq. 7)."""
         M = check_real("M_kg", M_kg, lo=0.0, lo_open=True)
         k = check_real("k_N_per_m", k_N_per_m, lo=0.0, lo_open=True)
@@ -302,7 +302,7 @@ class SolverSettings:
         if len(s0) != 4:
             raise ParameterError("state0", self.state0, "must be 4 numbers (z_m, z_m', z_b, z_b')")
         names = ("z_m0", "v_m0", "z_b0", "v_b0")
-        s0 = tuple(check_real(n, v, lo=-STATE_MAX, hi=STATE_MAX) for n, v in zip(names, s0))
+        s0 = tuple(check_real(n, v, lo=-STATE_MAX, hi=STATE_MAX) for n, v in zip(names, s0, strict=False))
         if abs(s0[0] - s0[2]) > 1.0:
             raise ParameterError("state0", self.state0, "needs |z_m0 - z_b0| <= 1 (ball inside the cavity)")
         set_(self, "state0", s0)

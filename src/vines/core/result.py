@@ -7,8 +7,8 @@ pre-impact values (superscript '-' in the paper).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Callable
 
 import numpy as np
 

@@ -39,8 +39,23 @@ import numpy as np
 from numba import njit
 
 from .flow import I_D, I_NRES, I_OM, I_PAMP, I_RES, flow, v2_integral
-from .kernel import (A_XMAX_ALL, MODE_FREE, RC_PAUSED, S_MODE, S_NIMP, S_NIMP_L, S_NSTICK, S_T0,
-                     S_TREACHED, S_TSTUCK_ALL, S_VB, S_VM, S_ZB, S_ZM, run_kernel_until)
+from .kernel import (
+    A_XMAX_ALL,
+    MODE_FREE,
+    RC_PAUSED,
+    S_MODE,
+    S_NIMP,
+    S_NIMP_L,
+    S_NSTICK,
+    S_T0,
+    S_TREACHED,
+    S_TSTUCK_ALL,
+    S_VB,
+    S_VM,
+    S_ZB,
+    S_ZM,
+    run_kernel_until,
+)
 from .regime import MAX_PERIOD
 
 #: largest period (in forcing periods) the section is tested for

@@ -1,18 +1,34 @@
 """Front end: ``simulate`` one parameter point, ``simulate_batch`` many on threads."""
 from __future__ import annotations
 
-import math
 import os
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
-from .exact import run_exact
 from .conventions import BATCH_FIELDS
-from .params import (RTOL_DEFAULT, D_DEFAULT, MAX_IMPACTS_DEFAULT, R_DEFAULT, ROOT_TOL_DEFAULT,
-                     T_END_DEFAULT, T_TRANSIENT_DEFAULT, V_STICK_DEFAULT, PARAM_BOUNDS,
-                     RTOL_MAX, RTOL_MIN, ModelParams, ParameterError, SolverSettings,
-                     check_bool, check_conditioning, check_int, check_param, check_real)
+from .exact import run_exact
+from .params import (
+    D_DEFAULT,
+    MAX_IMPACTS_DEFAULT,
+    PARAM_BOUNDS,
+    R_DEFAULT,
+    ROOT_TOL_DEFAULT,
+    RTOL_DEFAULT,
+    RTOL_MAX,
+    RTOL_MIN,
+    T_END_DEFAULT,
+    T_TRANSIENT_DEFAULT,
+    V_STICK_DEFAULT,
+    ModelParams,
+    ParameterError,
+    SolverSettings,
+    check_bool,
+    check_conditioning,
+    check_int,
+    check_param,
+    check_real,
+)
 from .regime import classify, strobe_times
 from .result import RawRun, SimulationResult
 
@@ -162,7 +178,7 @@ def simulate_batch(eta, omega, F, *, r=R_DEFAULT, d=D_DEFAULT, phi=0.0, t_end=T_
 
     def work(i):
         vals = _batch_point(e[i], w[i], f[i], r, d, phi, st, shortcut)
-        for k, v in zip(BATCH_FIELDS, vals):
+        for k, v in zip(BATCH_FIELDS, vals, strict=False):
             out[k][i] = v
         return i
 

@@ -18,8 +18,18 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 
 from .exact import run_exact
-from .params import (PARAM_NAMES, D_DEFAULT, R_DEFAULT, V_STICK_DEFAULT, ModelParams, ParameterError,
-                     SolverSettings, check_bool, check_int, check_real)
+from .params import (
+    D_DEFAULT,
+    PARAM_NAMES,
+    R_DEFAULT,
+    V_STICK_DEFAULT,
+    ModelParams,
+    ParameterError,
+    SolverSettings,
+    check_bool,
+    check_int,
+    check_real,
+)
 
 SWEEP_PARAMS = PARAM_NAMES
 
@@ -112,7 +122,10 @@ def bifurcation_sweep(param, values, *, eta=None, omega=None, F=None, r=R_DEFAUL
         phis[k] = p.phi
         status[k] = raw.status
         shortcut_time[k] = raw.shortcut_time
-    cat = (lambda xs, dt: np.concatenate(xs).astype(dt) if xs else np.zeros(0, dt))
+
+    def cat(xs, dt):
+        return np.concatenate(xs).astype(dt) if xs else np.zeros(0, dt)
+
     return {"value": values, "row_size": row_size, "phi": phis, "status": status,
             "shortcut_time": shortcut_time, "dw": cat(dws, float),
             "phase": cat(phases, float), "wall": cat(walls, np.int8)}

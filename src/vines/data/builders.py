@@ -17,9 +17,24 @@ import numpy as np
 import xarray as xr
 
 from ..core.conventions import BATCH_FIELDS
-from .schema import (BASIN_SLICE_ATTRS, BATCH_ATTRS, BOUNDARY_CURVE_ATTRS, BRANCH_ATTRS, COORD_ATTRS, COUNT_DTYPE,
-                     DERIVED_ATTRS, DIMS, FEATURE_TYPE, ROBUST_ATTRS, STABILITY_ATTRS, STABILITY_CLASS_FLAGS,
-                     SWEEP_INSTANCE_ATTRS, SWEEP_SAMPLE_ATTRS, TIMEHISTORY_ATTRS, attrs as cf)
+from ..core.params import PARAM_NAMES as DIMS
+from .schema import (
+    BASIN_SLICE_ATTRS,
+    BATCH_ATTRS,
+    BOUNDARY_CURVE_ATTRS,
+    BRANCH_ATTRS,
+    COORD_ATTRS,
+    COUNT_DTYPE,
+    DERIVED_ATTRS,
+    FEATURE_TYPE,
+    ROBUST_ATTRS,
+    STABILITY_ATTRS,
+    STABILITY_CLASS_FLAGS,
+    SWEEP_INSTANCE_ATTRS,
+    SWEEP_SAMPLE_ATTRS,
+    TIMEHISTORY_ATTRS,
+)
+from .schema import attrs as cf
 
 #: fill value of a grid point no chunk provided, by dtype kind
 FILL = {"f": np.nan, "i": -1, "U": "", "b": False}

@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
+
 def _chunks_for(shape, target=65536):
     """Chunk sizes for a variable: whole trailing dims, leading dims cut to ~target elements."""
     if not shape:

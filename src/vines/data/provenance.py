@@ -17,6 +17,7 @@ import numpy as np
 
 from .schema import CONVENTIONS
 
+
 def config_sha256(subset) -> str:
     """sha256 of a JSON-able config subset (keys sorted, floats in repr form)."""
     blob = json.dumps(subset, sort_keys=True, separators=(",", ":"), default=_json_default)

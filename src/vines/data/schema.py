@@ -10,7 +10,6 @@ from __future__ import annotations
 import numpy as np
 
 CONVENTIONS = "CF-1.10"
-from ..core.params import PARAM_NAMES as DIMS  # noqa: E402
 
 COORD_ATTRS = {
     "eta": {"long_name": "ball-to-LO mass ratio eta = m/M", "units": "1"},

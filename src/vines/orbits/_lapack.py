@@ -43,7 +43,7 @@ def _dgeev_nn(typingctx, a, wr, wi, work):
                                                dptr, dptr, dptr, ip, dptr, ip, dptr, ip, ip])
         fn = cgutils.get_or_insert_function(builder.module, fnty, _SYMBOL)
         arr = [context.make_array(t)(context, builder, v)
-               for t, v in zip(signature.args, args)]
+               for t, v in zip(signature.args, args, strict=False)]
         nn = builder.trunc(arr[1].nitems, i32)          # n = len(wr)
         job = cgutils.alloca_once_value(builder, ir.Constant(i8, ord("N")))
         n = cgutils.alloca_once_value(builder, nn)

@@ -29,8 +29,15 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..core.params import (D_DEFAULT, R_DEFAULT, ModelParams, ParameterError, check_int,
-                           check_param, check_real)
+from ..core.params import (
+    D_DEFAULT,
+    R_DEFAULT,
+    ModelParams,
+    ParameterError,
+    check_int,
+    check_param,
+    check_real,
+)
 from . import augmented as ag
 from . import shooting as sh
 from .arclength import Tracer
@@ -315,9 +322,9 @@ def _on_curve(curves, seed, step) -> bool:
     # the mirror image of an asymmetric orbit swaps its flights: one curve for both
     key = (family, kind, None if graze is None else graze[1])
     for c in curves:
-        if (c.family, c.type, None if c.graze is None else c.graze[1]) == key:
-            if np.min(np.hypot(*(c.all_points - z0[-2:]).T)) < 3.0 * step:
-                return True
+        if ((c.family, c.type, None if c.graze is None else c.graze[1]) == key
+                and np.min(np.hypot(*(c.all_points - z0[-2:]).T)) < 3.0 * step):
+            return True
     return False
 
 

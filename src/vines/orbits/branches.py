@@ -199,7 +199,9 @@ class _Follower:
             fa, fb = tva[typ], tvb[typ]
             if not (np.isfinite(fa) and np.isfinite(fb)) or (fa > 0.0) == (fb > 0.0):
                 continue
-            test = (lambda z, t, typ=typ: self._test(z, t, typ))
+            def test(z, t, typ=typ):
+                return self._test(z, t, typ)
+
             loc = self.tr.locate(st, test, fa, fb)
             if typ == "symmetry-breaking" and fam == "asymmetric":
                 loc = self._on_symmetric(st if loc is None else loc)
@@ -210,7 +212,9 @@ class _Follower:
             elif loc is not None and abs(test(loc[1], loc[2])) <= 1e-3 * min(abs(fa), abs(fb)):
                 found.append((loc[0], typ, loc[1], loc[2]))
         if oa.admissible != ob.admissible:
-            flag = (lambda z, t: bool(getattr(self.sys.orbit(z), "admissible", False)))
+            def flag(z, t):
+                return bool(getattr(self.sys.orbit(z), "admissible", False))
+
             after, before = self.tr.bisect(st, flag, oa.admissible)
             # at a grazing arrival (impact velocity 0) the maps have a pole: the point just
             # on the other side stands for the event when the maps fail at the first

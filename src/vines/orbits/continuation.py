@@ -26,16 +26,25 @@ the parameter:
 """
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
-from ..core.exact import oscillators
+from ..core.params import (
+    BRANCH_KINDS,
+    CONTINUATION_METHODS,
+    D_DEFAULT,
+    MAX_INADMISSIBLE_DEFAULT,
+    MAX_POINTS_DEFAULT,
+    MAX_POINTS_MAX,
+    PARAM_NAMES,
+    R_DEFAULT,
+    ModelParams,
+    ParameterError,
+    check_int,
+    check_param,
+    check_real,
+    check_step_points,
+)
 from ..core.walls import WALL_L, WALL_R
-from ..core.params import (BRANCH_KINDS, CONTINUATION_METHODS, MAX_INADMISSIBLE_DEFAULT,
-                           MAX_POINTS_DEFAULT, MAX_POINTS_MAX, PARAM_NAMES, D_DEFAULT,
-                           R_DEFAULT, ModelParams, ParameterError, check_int, check_param,
-                           check_real, check_step_points)
 from .branch import EVENT_TYPES, Branch, make_branch
 from .periodic import PeriodicOrbit, find_1to1, solve_orbit
 

@@ -25,9 +25,9 @@ import math
 import numpy as np
 from numba import njit
 
-from ..core.kernel import first_contact
 from ..core.exact import oscillators
 from ..core.flow import I_RATE, flow
+from ..core.kernel import first_contact
 from ..core.params import ModelParams
 from ..core.walls import WALL_L, WALL_R, impact_velocities
 

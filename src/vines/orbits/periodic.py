@@ -32,10 +32,10 @@ from numba import njit
 
 from ..core.exact import oscillators
 from ..core.flow import I_ARES, I_NRES, I_PC, I_PS, I_RES, I_W, flow, fundamentals
+from ..core.params import D_DEFAULT, R_DEFAULT, ModelParams
 from ..core.walls import WALL_L, WALL_R, impact_velocities
 from ._lapack import lambda_max_4
 from .maps import admissible_kernel, map_kernel
-from ..core.params import D_DEFAULT, R_DEFAULT, ModelParams
 
 SYM_TOL = 1e-6          # flight times equal to this: symmetric
 DEDUP_TOL = 1e-8
@@ -139,10 +139,10 @@ def newton_1to1(osc, eta, r, omega, phi, x0, s1, s2, x, xR, J1, J2, fl):
             fac = 0.125 * T / abs(dx[3])
         for i in range(4):
             x[i] += fac * dx[i]
-        if it > 6 and res < 1e-9 * xs and fac == 1.0:
-            # slow final convergence (near a fold): accept when the step is negligible
-            if max(abs(dx[0]), abs(dx[1]), abs(dx[2]), abs(dx[3])) <= 1e-13 * xs:
-                return res
+        # slow final convergence (near a fold): accept when the step is negligible
+        if (it > 6 and res < 1e-9 * xs and fac == 1.0
+                and max(abs(dx[0]), abs(dx[1]), abs(dx[2]), abs(dx[3])) <= 1e-13 * xs):
+            return res
     return res if res <= 1e-10 else math.inf
 
 
@@ -686,7 +686,7 @@ def seed_kernel(osc, eta, r, omega, phi, F, rows, ws):
 @njit(cache=True, nogil=True)
 def _is_new(rows, n, T):
     """rows[n] is not ``same_rows`` as any of rows[:n]."""
-    for q in range(n):
+    for q in range(n):  # noqa: SIM110 (numba: no generator in all())
         if same_rows(rows[n], rows[q], T):
             return False
     return True

@@ -32,7 +32,7 @@ from ..core.params import ParameterError
 from ..core.walls import WALL_L, WALL_R
 from . import jets
 from . import shooting_kernels as kernels
-from .jets import cos, exp, sin, sqrt
+from .jets import cos, exp, sin
 from .tape import record
 
 FAMILIES = ("symmetric", "asymmetric")

@@ -31,11 +31,31 @@ from numba import njit
 
 from ..core.exact import oscillators
 from ..core.flow import make_osc
-from ..core.params import (D_DEFAULT, MAX_GAIN, R_DEFAULT, ModelParams, ParameterError,
-                           check_conditioning, check_int)
-from .periodic import (N_ROW, N_SEED_MAX, ROW_ADM, ROW_DWL, ROW_FL, ROW_LAM, ROW_SYM, ROW_X,
-                       orbit_classify, orbit_solve, orbit_workspace, seed_kernel, seed_orbits,
-                       solve_orbit)
+from ..core.params import (
+    D_DEFAULT,
+    MAX_GAIN,
+    R_DEFAULT,
+    ModelParams,
+    ParameterError,
+    check_conditioning,
+    check_int,
+)
+from .periodic import (
+    N_ROW,
+    N_SEED_MAX,
+    ROW_ADM,
+    ROW_DWL,
+    ROW_FL,
+    ROW_LAM,
+    ROW_SYM,
+    ROW_X,
+    orbit_classify,
+    orbit_solve,
+    orbit_workspace,
+    seed_kernel,
+    seed_orbits,
+    solve_orbit,
+)
 
 CLS_NONE, CLS_SYM_STABLE, CLS_ASYM_STABLE, CLS_UNSTABLE = 0, 1, 2, 3
 
@@ -190,7 +210,7 @@ def _column_py(etas, omega, F, r, d, out, j):
                     if abs(dx[3]) < 0.25 * p.period:
                         x = x + f * dx
                         fl = [a + f * (a - b) for a, b in zip(o_prev.flight_times,
-                                                              o_old.flight_times)]
+                                                              o_old.flight_times, strict=False)]
             o = solve_orbit(p, x, fl[0], fl[1], osc)
             if o is not None:
                 cands.append(o)

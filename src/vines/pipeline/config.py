@@ -25,8 +25,16 @@ def _with_defaults(validator_class):
     return jsonschema.validators.extend(validator_class, {"properties": set_defaults})
 
 
-def load_schema(path) -> dict:
+#: the config schema (with every default), shipped inside the package
+SCHEMA_FILE = "config.schema.yaml"
+
+
+def load_schema(path=None) -> dict:
+    """The config schema: the package's own (default) or the file at ``path``."""
     import yaml
+    if path is None:
+        from importlib.resources import files
+        return yaml.safe_load(files(__package__).joinpath(SCHEMA_FILE).read_text())
     with open(path) as fh:
         return yaml.safe_load(fh)
 
@@ -98,10 +106,8 @@ def validate_config(config: dict, schema: dict) -> dict:
 def main(argv=None) -> int:
     """Check config files: ``python -m vines.pipeline.config FILE...`` (exit 2 if invalid)."""
     import sys
-    from pathlib import Path
     args = sys.argv[1:] if argv is None else argv
-    schema = load_schema(Path(__file__).resolve().parents[3] / "workflow" / "schemas"
-                         / "config.schema.yaml")
+    schema = load_schema()
     status = 0
     for path in args:
         try:

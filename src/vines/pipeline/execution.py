@@ -11,7 +11,8 @@ def compute(tasks: list, n_workers: int, scheduler: str | None, progress: bool):
     """Compute dask.delayed ``tasks`` in order; threaded, or on a distributed scheduler."""
     import dask
     if scheduler:
-        from dask.distributed import Client, progress as dprogress
+        from dask.distributed import Client
+        from dask.distributed import progress as dprogress
         with Client(scheduler) as client:
             futs = client.compute(tasks)
             if progress:

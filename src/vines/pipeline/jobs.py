@@ -11,6 +11,7 @@ import sys
 import traceback
 from pathlib import Path
 
+
 def _job_name(sm) -> str:
     wc = ", ".join(f"{k}={v}" for k, v in dict(sm.wildcards).items())
     return f"{sm.rule}[{wc}]" if wc else str(sm.rule)

@@ -18,7 +18,6 @@ from ..data.provenance import provenance_attrs
 from .axes import DIMS, axis_values
 from .execution import compute
 
-
 # ------------------------------------------------------------------ simulate-grid
 
 def _batch_block(eta, omega, F, kw):
@@ -32,6 +31,7 @@ def compute_chunk(chunk: dict, *, model: dict, simulation: dict, n_workers: int 
     """``simulate_batch`` fields of shape (n_eta, n_omega, n_F) for one chunk (sub-grid),
     in dask blocks of ``block_size`` points."""
     import dask
+
     from ..core.simulation import BATCH_FIELDS
     e, w, f = np.meshgrid(*(np.asarray(chunk[d], dtype=float) for d in DIMS), indexing="ij")
     shape = e.shape
@@ -45,7 +45,7 @@ def compute_chunk(chunk: dict, *, model: dict, simulation: dict, n_workers: int 
     out = {}
     for k, dt in BATCH_FIELDS.items():
         arr = np.empty(e.size, dtype=dt)
-        for i, part in zip(starts, parts):
+        for i, part in zip(starts, parts, strict=False):
             arr[i:i + bs] = part[k]
         out[k] = arr.reshape(shape)
     return out
@@ -73,7 +73,7 @@ def _chunk_settings(chunks, paths) -> dict:
     def settings(c):
         return {k[len("solver_"):]: v for k, v in c.attrs.items() if k.startswith("solver_")}
     first = settings(chunks[0])
-    for c, p in zip(chunks[1:], list(paths)[1:]):
+    for c, p in zip(chunks[1:], list(paths)[1:], strict=False):
         if {k: _plain(v) for k, v in settings(c).items()} != {k: _plain(v) for k, v in first.items()}:
             raise ValueError(f"{p}: solver settings differ from those of {list(paths)[0]}")
     return first
@@ -135,7 +135,7 @@ def compute_sweep(spec: dict, *, model: dict, periodic_shortcut: bool = True,
     inst = {k: [] for k in ("value", "outer_value", "direction", "line", "phi", "status",
                             "shortcut_time", "row_size")}
     samp = {k: [] for k in ("dw", "phase", "wall")}
-    for li, ((ov, direction, _, _), r) in enumerate(zip(lines, res)):
+    for li, ((ov, direction, _, _), r) in enumerate(zip(lines, res, strict=False)):
         n = r["value"].size
         inst["outer_value"].append(np.full(n, ov))
         inst["direction"].append(np.full(n, 1 if direction == "up" else -1, dtype="i1"))
@@ -267,6 +267,7 @@ def robust_map(spec: dict, *, model: dict, simulation: dict, code: str, title: s
     """Dataset of one robust-TET map over (eta, omega) at ``spec['F']``: a census of
     ``spec['n']`` Sobol states (seed ``spec['seed']``) per point, in dask blocks."""
     import dask
+
     from ..attractors.maps import ROBUST_FIELDS
     eta, omega = axis_values(spec["eta"]), axis_values(spec["omega"])
     points = [(e, w) for e in eta for w in omega]

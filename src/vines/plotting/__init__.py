@@ -6,17 +6,59 @@ Figure scripts use ``import vines.plotting as P``.
 Figures only *read* the pipeline's datasets (``results/<run>/...``); restyling a figure
 never reruns a computation.
 """
-from .checks import (CLASS_VALUES, FigureInputError, basin_slice, branch, fixed_value, grid2d,
-                     load, marked_sections, measures, require, robust_map, sorted_by_fixed,
-                     stability, sweep, sweep_fixed, sweep_points, timehistory)
-from .draw import (C_BALL, C_BRANCH, C_LO, CLASSES, LABELS, SYMBOLS, bifurcation_dots,
-                   branch_lines, class_handles, class_map, contour_map, eigenvalue_panel, figure, fmt,
-                   impact_phase_panel, metres, panel_label, point_impacts, save, th_title,
-                   time_history, twin_measures)
+from .checks import (
+                     CLASS_VALUES,
+                     FigureInputError,
+                     basin_slice,
+                     branch,
+                     fixed_value,
+                     grid2d,
+                     load,
+                     marked_sections,
+                     measures,
+                     require,
+                     robust_map,
+                     sorted_by_fixed,
+                     stability,
+                     sweep,
+                     sweep_fixed,
+                     sweep_points,
+                     timehistory,
+)
+from .draw import (
+                     C_BALL,
+                     C_BRANCH,
+                     C_LO,
+                     CLASSES,
+                     LABELS,
+                     SYMBOLS,
+                     bifurcation_dots,
+                     branch_lines,
+                     class_handles,
+                     class_map,
+                     contour_map,
+                     eigenvalue_panel,
+                     figure,
+                     fmt,
+                     impact_phase_panel,
+                     metres,
+                     panel_label,
+                     point_impacts,
+                     save,
+                     th_title,
+                     time_history,
+                     twin_measures,
+)
 from .layouts import ZOOM_PAD, time_history_figure, zoom_figure, zoom_range
 from .stable_region import reaches_1to1, region_counts, stability_margin, stable_at
-from .sweep_regimes import (REGIME_ASYM, REGIME_SYM, REGIMES, point_regime, regime_grid,
-                            sweep_regimes)
+from .sweep_regimes import (
+                     REGIME_ASYM,
+                     REGIME_SYM,
+                     REGIMES,
+                     point_regime,
+                     regime_grid,
+                     sweep_regimes,
+)
 
 __all__ = [
     # checks

@@ -33,7 +33,7 @@ def _rows(br: xr.Dataset) -> list[slice]:
     if "row_size" not in br:
         return [slice(0, br.sizes["point"])]
     edges = np.concatenate([[0], np.cumsum(br["row_size"].values)])
-    return [slice(int(a), int(b)) for a, b in zip(edges[:-1], edges[1:])]
+    return [slice(int(a), int(b)) for a, b in zip(edges[:-1], edges[1:], strict=False)]
 
 
 def continued_branches(branches) -> list[xr.Dataset]:
@@ -100,7 +100,7 @@ def draw_curves(ax, ds: xr.Dataset) -> set:
     xlim, ylim = ax.get_xlim(), ax.get_ylim()
     etas, omegas = ragged_rows(ds, "eta"), ragged_rows(ds, "omega")
     types = ds["curve_type"].values.tolist()
-    for typ, e, w in zip(types, etas, omegas):
+    for typ, e, w in zip(types, etas, omegas, strict=False):
         colour, ls = CURVE_STYLES[typ]
         ax.plot(e, w, ls, color=colour, lw=1.1, path_effects=HALO)
     ax.set_xlim(xlim)
@@ -114,7 +114,7 @@ def draw_on_panels(fig, axes, F_values, paths, legend=True) -> list:
     drawn; ``legend``: also draw them as one legend below the figure."""
     by_F = {round(float(ds.attrs["F"]), 9): ds for ds in map(boundaries, paths)}
     drawn = set()
-    for ax, F in zip(axes, F_values):
+    for ax, F in zip(axes, F_values, strict=False):
         ds = by_F.get(round(float(F), 9))
         if ds is None:
             raise FigureInputError(f"no boundary curves at F = {F} (curves at F = {sorted(by_F)})")

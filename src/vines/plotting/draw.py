@@ -15,8 +15,8 @@ from matplotlib.colors import BoundaryNorm, ListedColormap, LogNorm  # noqa: E40
 from matplotlib.patches import Patch  # noqa: E402
 from matplotlib.ticker import MaxNLocator  # noqa: E402
 
-from ..core.params import L_HALF_M  # noqa: E402
 from ..core.conventions import WALL_L, WALL_R  # noqa: E402
+from ..core.params import L_HALF_M  # noqa: E402
 from ..data.netcdf import new_file_mode  # noqa: E402
 from .checks import FigureInputError  # noqa: E402
 
@@ -97,7 +97,7 @@ def time_history(ax_t, ax_p, ds: xr.Dataset, i: int):
     ax_t.plot(t, zb, color=C_BALL, lw=0.9, label=r"ball $z_b$")
     imp = point_impacts(ds, i)
     shown = (imp["t"] >= t[0]) & (imp["t"] <= t[-1])
-    for same, (lab, mk, col) in zip((True, False), IMPACT_STYLES):
+    for same, (lab, mk, col) in zip((True, False), IMPACT_STYLES, strict=False):
         m = shown & (_same_way(imp["phase"]) == same)
         ax_t.plot(imp["t"][m], np.interp(imp["t"][m], t, zb), mk, color=col, ms=4,
                   ls="", label=lab)
@@ -133,7 +133,7 @@ def impact_phase_panel(ax, ds: xr.Dataset, i: int) -> dict:
     counts = {}
     for wall, name, filled in ((WALL_R, "right end", True), (WALL_L, "left end", False)):
         at = imp["wall"] == wall
-        for same, (_, mk, col) in zip((True, False), IMPACT_STYLES):
+        for same, (_, mk, col) in zip((True, False), IMPACT_STYLES, strict=False):
             m = at & (_same_way(ph) == same)
             ax.plot(ph[m], np.abs(imp["dw"][m]), mk, ls="", ms=4.5, alpha=0.7, mec=col,
                     mfc=col if filled else "none", mew=0.8, rasterized=True)

@@ -5,8 +5,19 @@ import numpy as np
 import xarray as xr
 
 from .checks import sweep_points
-from .draw import (LABELS, SYMBOLS, bifurcation_dots, branch_lines, eigenvalue_panel, figure,
-                   fmt, impact_phase_panel, panel_label, th_title, time_history)
+from .draw import (
+    LABELS,
+    SYMBOLS,
+    bifurcation_dots,
+    branch_lines,
+    eigenvalue_panel,
+    figure,
+    fmt,
+    impact_phase_panel,
+    panel_label,
+    th_title,
+    time_history,
+)
 
 #: a zoom window is the stable 1:1 interval widened by this fraction of its width each side
 ZOOM_PAD = 0.6

@@ -70,7 +70,7 @@ def sweep_regimes(ds: xr.Dataset) -> np.ndarray:
     """Regime code of every point of a sweep dataset (needs the attribute solver_n_record)."""
     n_record = int(ds.attrs["solver_n_record"])
     rows = [ragged_rows(ds, k) for k in ("dw", "phase", "wall")]
-    return np.array([point_regime(d, p, w, n_record) for d, p, w in zip(*rows)], dtype=int)
+    return np.array([point_regime(d, p, w, n_record) for d, p, w in zip(*rows, strict=False)], dtype=int)
 
 
 def regime_grid(ds: xr.Dataset, direction: int):

@@ -212,7 +212,7 @@ class _RefRun:
                 if g1 >= 0 and (g0 < 0 or (g0 == 0 and x0 > 0)):
                     if g0 == 0:
                         return x0, wall
-                    return _illinois(lambda s: wall * (probe(s)[0] - wall),
+                    return _illinois(lambda s, wall=wall: wall * (probe(s)[0] - wall),
                                      x0, x1, g0, g1, tol), wall
             return None
 

@@ -340,7 +340,7 @@ class _RKEventLoop:
         res = self._integrate(self._rhs_stuck, [zm, vm, 0.0, 0.0], [rel, ext])
         t1 = float(res.t[-1])
         y1 = res.y[:, -1]
-        for te, ye in zip(res.t_events[1], res.y_events[1]):
+        for te, ye in zip(res.t_events[1], res.y_events[1], strict=False):
             self.note_x(te, ye[0])
         released = res.status == 1
         if released:
@@ -398,7 +398,7 @@ class _RKEventLoop:
             t1, hit = graze
             y1 = res.sol(t1)
             turned = False
-        for te, ye in zip(res.t_events[0], res.y_events[0]):
+        for te, ye in zip(res.t_events[0], res.y_events[0], strict=False):
             if te <= t1:
                 self.note_x(te, ye[0])
         self._close_segment(t1, y1, res.sol, 0)
@@ -417,14 +417,14 @@ class _RKEventLoop:
         stepped over; it is located with brentq between the previous extremum (or the
         segment start), where w is monotone, and the extremum."""
         t = t_prev = self.t
-        for te, ye in zip(res.t_events[1], res.y_events[1]):
+        for te, ye in zip(res.t_events[1], res.y_events[1], strict=False):
             if te > t1:
                 break
             wx = ye[0] - ye[2]
             if te > t and abs(wx) > 1.0 + self.tol_w:
                 s = 1 if wx > 0 else -1
 
-                def wf(tt):
+                def wf(tt, s=s):
                     yy = res.sol(tt)
                     return yy[0] - yy[2] - s
                 if wf(t_prev) * s < 0:
@@ -480,7 +480,7 @@ def _terminal_event(res, kinds, t1):
     """(wall hit at t1 or None, turned back at t1) from the terminal events of a segment."""
     hit, turned = None, False
     if res.status == 1:
-        for kind, te in zip(kinds, res.t_events):
+        for kind, te in zip(kinds, res.t_events, strict=False):
             if kind in ("L", "R", "turn") and te.size and te[-1] == t1:
                 if kind == "L":
                     hit = 1

@@ -10,8 +10,15 @@ The studies return plain results (numpy arrays in small dataclasses, with the se
 describe them); ``vines.data.studies`` builds their CF datasets.
 """
 from .contours import area_above, contour_distance, contour_lines, nested_axis
-from .convergence import (STUDIES, GridConvergence, VStickConvergence, WindowConvergence,
-                          grid_convergence, vstick_convergence, window_convergence)
+from .convergence import (
+                          STUDIES,
+                          GridConvergence,
+                          VStickConvergence,
+                          WindowConvergence,
+                          grid_convergence,
+                          vstick_convergence,
+                          window_convergence,
+)
 from .workprecision import WorkPrecisionResult, errors, timed, visible, work_precision
 
 __all__ = [

@@ -43,8 +43,8 @@ def area_above(x, y, z, level) -> float:
                                       name="serial", fill_type="OuterOffset")
     polys, offsets = gen.filled(float(level), np.nextafter(top, np.inf))
     area = 0.0
-    for pts, off in zip(polys, offsets):
-        for a, b in zip(off[:-1], off[1:]):
+    for pts, off in zip(polys, offsets, strict=False):
+        for a, b in zip(off[:-1], off[1:], strict=False):
             px, py = pts[a:b, 0], pts[a:b, 1]
             ring = 0.5 * abs(np.dot(px, np.roll(py, -1)) - np.dot(py, np.roll(px, -1)))
             area += ring if a == off[0] else -ring

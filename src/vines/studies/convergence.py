@@ -29,8 +29,16 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..core.params import (D_DEFAULT, L_HALF_M, MAX_IMPACTS_DEFAULT, R_DEFAULT, ROOT_TOL_DEFAULT,
-                           T_END_DEFAULT, T_TRANSIENT_DEFAULT, V_STICK_DEFAULT)
+from ..core.params import (
+    D_DEFAULT,
+    L_HALF_M,
+    MAX_IMPACTS_DEFAULT,
+    R_DEFAULT,
+    ROOT_TOL_DEFAULT,
+    T_END_DEFAULT,
+    T_TRANSIENT_DEFAULT,
+    V_STICK_DEFAULT,
+)
 from ..core.simulation import BATCH_FIELDS, simulate_batch
 from .contours import area_above, contour_distance, contour_lines, line_length, nested_axis
 
@@ -287,7 +295,9 @@ def window_convergence(points, t_ends=(7000.0, 10000.0, 14000.0, 20000.0, 28000.
 
 # ------------------------------------------------------------------ (b) sticking threshold
 
-def vstick_convergence(points, v_sticks=tuple(10.0 ** -np.arange(3, 11)), *, ke_tol=1e-3,
+V_STICKS_DEFAULT = tuple(10.0 ** -np.arange(3, 11))
+
+def vstick_convergence(points, v_sticks=V_STICKS_DEFAULT, *, ke_tol=1e-3,
                        xmax_rtol=1e-2, t_end=T_END_DEFAULT, t_transient=T_TRANSIENT_DEFAULT,
                        v_stick=V_STICK_DEFAULT, r=R_DEFAULT, d=D_DEFAULT,
                        max_impacts=MAX_IMPACTS_DEFAULT, root_tol=ROOT_TOL_DEFAULT,
@@ -339,7 +349,7 @@ def _contour_measures(eta, omega, ke, strides, level, area_total) -> dict:
     lines = [contour_lines(omega[::s], eta[::s], ke[::s, ::s], level) for s in strides]
     ref = lines[-1]
     mean, mx, haus, length, area = [], [], [], [], []
-    for ln, s in zip(lines, strides):
+    for ln, s in zip(lines, strides, strict=False):
         if s == 1:      # the finest grid itself: zero by definition (not round-off)
             m1 = x1 = x2 = 0.0 if ln else math.nan
         else:

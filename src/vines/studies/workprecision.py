@@ -26,10 +26,17 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..reference.hiprec import DPS_DEFAULT, H_SAMPLE_DEFAULT, V_STICK_REFERENCE, reference_run
-from ..core.params import (D_DEFAULT, R_DEFAULT, ROOT_TOL_DEFAULT, V_STICK_DEFAULT, ModelParams,
-                     ParameterError, SolverSettings)
+from ..core.params import (
+    D_DEFAULT,
+    R_DEFAULT,
+    ROOT_TOL_DEFAULT,
+    V_STICK_DEFAULT,
+    ModelParams,
+    ParameterError,
+    SolverSettings,
+)
 from ..core.simulation import RK_METHODS, simulate
+from ..reference.hiprec import DPS_DEFAULT, H_SAMPLE_DEFAULT, V_STICK_REFERENCE, reference_run
 
 V_VISIBLE_DEFAULT = 1e-3
 
@@ -155,7 +162,7 @@ def work_precision(eta, omega, F, *, t_end, t_transient, r=R_DEFAULT, d=D_DEFAUL
     rows = []
     for solver, method, knob, tol, vs, reference, kw in _plan(
             root_tols, v_sticks, rk_methods, rtols, v_stick, ref, ref_limit):
-        sec, res = timed(lambda: simulate(**base, **kw), min_time=min_time)
+        sec, res = timed(lambda kw=kw: simulate(**base, **kw), min_time=min_time)
         e = errors(res, reference, v_visible)
         rows.append(dict(solver=solver, method=method, knob=knob, tolerance=float(tol),
                          v_stick=float(vs), seconds=sec,

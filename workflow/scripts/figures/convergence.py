@@ -168,7 +168,7 @@ def grid_panels(fig, ax_e, ax_f, ax_leg, g):
     cb.set_label(P.LABELS["ke_ratio"] + f" ({int(res.max())}$^2$ grid)", fontsize=7)
     cmap = plt.get_cmap("plasma")
     handles = []
-    for q, (n, s) in enumerate(zip(res, g["stride"].values)):
+    for q, (n, s) in enumerate(zip(res, g["stride"].values, strict=False)):
         c = cmap(q / max(1, res.size - 1) * 0.85)
         s = int(s)
         ax_f.contour(om[::s], eta[::s], ke[::s, ::s], levels=[level], colors=[c],

@@ -10,8 +10,8 @@ import numpy as np
 from matplotlib.patches import Patch
 
 import vines.plotting as P
-from vines.plotting import bifurcation as B
 from vines.pipeline.jobs import run_job
+from vines.plotting import bifurcation as B
 
 
 def overlay(ax, grid, smap, F):

@@ -38,7 +38,7 @@ def panel(ax, s, W_sel, codes):
 
 def main(sm):
     sweeps = [P.sweep(p) for p in sm.input.sweeps]
-    for s, p in zip(sweeps, sm.input.sweeps):
+    for s, p in zip(sweeps, sm.input.sweeps, strict=False):
         if s.attrs.get("swept_parameter") != "eta" or s.attrs.get("outer_parameter") != "omega":
             raise P.FigureInputError(f"{p}: Fig 14 needs eta sweeps at several W, got "
                                      f"{s.attrs.get('swept_parameter')!r} over "

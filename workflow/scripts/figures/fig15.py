@@ -6,8 +6,8 @@ asymmetric 1:1 orbit (vines.plotting.sweep_regimes) are drawn in blue and labell
 import numpy as np
 
 import vines.plotting as P
-from vines.plotting import bifurcation as B
 from vines.pipeline.jobs import run_job
+from vines.plotting import bifurcation as B
 
 #: colour of the dots on a stable asymmetric 1:1 orbit
 C_ASYM = "tab:blue"

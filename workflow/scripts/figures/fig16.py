@@ -6,8 +6,8 @@ stable symmetric tongue just below W = 0.5 as what it is; a dashed line marks W 
 from matplotlib.lines import Line2D
 
 import vines.plotting as P
-from vines.plotting import bifurcation as B
 from vines.pipeline.jobs import run_job
+from vines.plotting import bifurcation as B
 
 #: lower edge of the paper's Omega range (Figs 12, 16): marked when a map extends below it
 OMEGA_PAPER_MIN = 0.5

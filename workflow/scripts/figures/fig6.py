@@ -2,8 +2,8 @@
 solid stable, dotted unstable) and |lambda| of J_P2 J_P1 vs eta with the |lambda| = 1 line;
 one row per branch fig6_* (F = 0.05, 0.1 at W = 1)."""
 import vines.plotting as P
-from vines.plotting import bifurcation as B
 from vines.pipeline.jobs import run_job
+from vines.plotting import bifurcation as B
 
 
 def main(sm):
