@@ -49,7 +49,7 @@ def main():
     print("  amplitude [mm]   F      LO alone   TMD    VI NES rest  VI NES any attractor")
     any_ = v["worst_ratio_any_attractor_per_amplitude"] or [None] * len(v["F"])
     for A, F, w, a in zip(d["curves"]["amplitude_m"], v["F"], v["worst_ratio_per_amplitude"],
-                          any_):
+                          any_, strict=True):
         a_txt = "n/a" if a is None else f"{a:.2f}"
         print(f"  {1e3 * A:13.3g} {F:7.4f} {lo['worst_ratio']:9.2f} {t['worst_ratio']:7.3f}"
               f" {w:11.2f}  {a_txt:>10}")

@@ -10,8 +10,14 @@ from __future__ import annotations
 
 import argparse
 
-from ..core.params import (C_DAMP_NS_PER_M, K_SPRING_N_PER_M, M_LO_KG, R_DEFAULT,
-                           T_END_DEFAULT, T_TRANSIENT_DEFAULT)
+from ..core.params import (
+    C_DAMP_NS_PER_M,
+    K_SPRING_N_PER_M,
+    M_LO_KG,
+    R_DEFAULT,
+    T_END_DEFAULT,
+    T_TRANSIENT_DEFAULT,
+)
 
 #: defaults of vines.studies.design (repeated here so that --help does not load numba;
 #: tests/test_design_cli.py checks that they agree)
@@ -124,7 +130,7 @@ def text(d: dict) -> str:
              f"attractors ({v['view'] or 'not evaluated'})"]
     any_ = v["worst_ratio_any_attractor_per_amplitude"] or [None] * len(v["F"])
     for A, F, w, a in zip(d["curves"]["amplitude_m"], v["F"], v["worst_ratio_per_amplitude"],
-                          any_):
+                          any_, strict=True):
         lines.append(f"    A = {1e3 * A:.4g} mm (F = {F:.4g}): {_fmt(w)} from rest, "
                      f"{_fmt(a)} over attractors")
     lines.append(f"  cost {d['cost']['wall_s']:.1f} s, {d['cost']['n_runs_from_rest']} runs "

@@ -33,10 +33,22 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from ..core.params import (C_DAMP_NS_PER_M, K_SPRING_N_PER_M, L_HALF_M, M_LO_KG,
-                           MAX_IMPACTS_DEFAULT, R_DEFAULT, ROOT_TOL_DEFAULT, T_END_DEFAULT,
-                           T_TRANSIENT_DEFAULT, V_STICK_DEFAULT, ModelParams, ParameterError,
-                           SolverSettings, check_real)
+from ..core.params import (
+    C_DAMP_NS_PER_M,
+    K_SPRING_N_PER_M,
+    L_HALF_M,
+    M_LO_KG,
+    MAX_IMPACTS_DEFAULT,
+    R_DEFAULT,
+    ROOT_TOL_DEFAULT,
+    T_END_DEFAULT,
+    T_TRANSIENT_DEFAULT,
+    V_STICK_DEFAULT,
+    ModelParams,
+    ParameterError,
+    SolverSettings,
+    check_real,
+)
 from . import design_checks as _chk
 from . import tmd as _tmd
 

@@ -4,8 +4,19 @@ from __future__ import annotations
 
 import math
 
-from ..core.params import (C_DAMP_NS_PER_M, D_MAX, ETA_MAX, F_MAX, K_SPRING_N_PER_M, M_LO_KG,
-                           OMEGA_MAX, ParameterError, check_int, check_param, check_real)
+from ..core.params import (
+    C_DAMP_NS_PER_M,
+    D_MAX,
+    ETA_MAX,
+    F_MAX,
+    K_SPRING_N_PER_M,
+    M_LO_KG,
+    OMEGA_MAX,
+    ParameterError,
+    check_int,
+    check_param,
+    check_real,
+)
 
 
 def _pair(name, value) -> tuple:
