@@ -4,7 +4,10 @@
   measured against the high-precision reference (``vines.reference.hiprec``);
 * :mod:`vines.studies.convergence`: the measures against run length and window, sticking
   threshold v_stick and grid resolution;
-* :mod:`vines.studies.contours`: contour geometry of the grid-resolution study.
+* :mod:`vines.studies.contours`: contour geometry of the grid-resolution study;
+* :mod:`vines.studies.design` (``vines.design``): a VI NES design for a frequency band and
+  base amplitudes against the LO alone and the optimal TMD (:mod:`vines.studies.tmd`),
+  inputs checked by :mod:`vines.studies.design_checks` (docs/design.md).
 
 The studies return plain results (numpy arrays in small dataclasses, with the settings that
 describe them); ``vines.data.studies`` builds their CF datasets.

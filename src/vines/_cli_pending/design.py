@@ -1,0 +1,138 @@
+"""``vines design``: choose (or judge) a VI NES for a frequency band and base amplitudes.
+
+Pending: to be wired into the CLI package (``add_parser(subparsers)`` builds the
+sub-parser, ``run(args) -> dict`` returns the JSON object; the CLI's own error handling
+turns a ParameterError into exit status 2 with one line naming the flag). Every value is
+read as a string and validated by ``vines.design`` itself, so the CLI and the API accept
+the same values.
+"""
+from __future__ import annotations
+
+import argparse
+
+from ..core.params import (
+    C_DAMP_NS_PER_M,
+    K_SPRING_N_PER_M,
+    M_LO_KG,
+    R_DEFAULT,
+    T_END_DEFAULT,
+    T_TRANSIENT_DEFAULT,
+)
+
+#: defaults of vines.studies.design (repeated here so that --help does not load numba;
+#: tests/test_design_cli.py checks that they agree)
+BAND = (0.8, 1.2)
+N_OMEGA = 21
+AMPLITUDES_M = (0.00075, 0.003, 0.006)
+N_ETA, N_CLEARANCE, CENSUS_N = 5, 13, 64
+VIEWS = ("t_end",)
+
+#: flag -> name of the ParameterError raised by vines.design (for the CLI's messages)
+FLAG_OF = {"omega_band": "--omega-band", "n_omega": "--n-omega", "amplitude": "--amplitude",
+           "M": "--M", "k": "--k", "c": "--c", "d": "--d", "r": "--r", "eta": "--eta",
+           "clearance": "--clearance", "eta_max": "--eta-max",
+           "clearance_range": "--clearance-range", "n_eta": "--n-eta",
+           "n_clearance": "--n-clearance", "view": "--view", "census_n": "--census-n",
+           "n_threads": "--threads", "t_end": "--t-end", "t_transient": "--t-transient"}
+
+
+def add_parser(subparsers) -> argparse.ArgumentParser:
+    """The ``design`` sub-parser (handler: ``run``)."""
+    p = subparsers.add_parser(
+        "design",
+        help="choose a VI NES (ball mass ratio, clearance) for a frequency band and base "
+             "amplitudes, against the LO alone and the optimal TMD of the same mass",
+        description="Worst-case transmissibility x_max/A over the band omega = w/w0 and the "
+                    "base amplitudes, from rest and over every attractor holding >= 1 %% of "
+                    "a census's states, for a given design (--eta, --clearance) or the best "
+                    "one with eta <= --eta-max (grid over eta and log clearance, then a "
+                    "compass search). References: the LO alone and the TMD of mass ratio "
+                    "eta (eta-max) tuned for the same worst case (closed form).")
+    band = p.add_argument_group("excitation")
+    band.add_argument("--omega-band", nargs=2, metavar=("LO", "HI"), default=list(BAND),
+                      help=f"band of omega = w/w0 [0 < LO < HI <= 1000; default "
+                           f"{BAND[0]:g} {BAND[1]:g}]")
+    band.add_argument("--n-omega", metavar="N", default=N_OMEGA,
+                      help=f"grid points over the band [an integer >= 2; default {N_OMEGA}]")
+    band.add_argument("--amplitude", nargs="+", metavar="A", default=list(AMPLITUDES_M),
+                      help="base amplitudes in metres [numbers > 0; default "
+                           + " ".join(f"{a:g}" for a in AMPLITUDES_M) + "]")
+    lo = p.add_argument_group("structure (Table 1 by default)")
+    lo.add_argument("--M", metavar="KG", default=None,
+                    help=f"LO mass in kg [> 0; default {M_LO_KG:g}]")
+    lo.add_argument("--k", metavar="N_PER_M", default=None,
+                    help=f"LO stiffness in N/m [> 0; default {K_SPRING_N_PER_M:g}]")
+    damp = lo.add_mutually_exclusive_group()
+    damp.add_argument("--c", metavar="NS_PER_M", default=None,
+                      help=f"LO damping in N s/m [>= 0; default {C_DAMP_NS_PER_M:g}]")
+    damp.add_argument("--d", metavar="D", default=None,
+                      help="dimensionless LO damping c/(M w0) instead of --c [>= 0]")
+    lo.add_argument("--r", metavar="R", default=R_DEFAULT,
+                    help=f"coefficient of restitution [0 <= r <= 1; default {R_DEFAULT:g}]")
+    des = p.add_argument_group("design: --eta with --clearance (evaluate) or --eta-max "
+                               "(optimise)")
+    des.add_argument("--eta", metavar="E", default=None, help="ball-to-LO mass ratio m/M")
+    des.add_argument("--clearance", metavar="L", default=None,
+                     help="clearance in metres: half the cavity length (Table 1: 0.015)")
+    des.add_argument("--eta-max", metavar="E", default=None,
+                     help="optimise with 0 < eta <= E; also the TMD's mass ratio")
+    des.add_argument("--clearance-range", nargs=2, metavar=("LO", "HI"), default=None,
+                     help="clearances searched, metres [default: A_max/2 .. 100 A_min]")
+    des.add_argument("--n-eta", metavar="N", default=N_ETA,
+                     help=f"grid points in eta [default {N_ETA}]")
+    des.add_argument("--n-clearance", metavar="N", default=N_CLEARANCE,
+                     help=f"grid points in log clearance [default {N_CLEARANCE}]")
+    run = p.add_argument_group("attractor view and runs")
+    run.add_argument("--view", choices=VIEWS, default="t_end",
+                     help="census view of worst_ratio_any_attractor [default t_end]")
+    run.add_argument("--census-n", metavar="N", default=CENSUS_N,
+                     help=f"initial states per census, 0 to skip the view [default {CENSUS_N}]")
+    run.add_argument("--t-end", metavar="T", default=T_END_DEFAULT,
+                     help=f"length of every run [default {T_END_DEFAULT:g}]")
+    run.add_argument("--t-transient", metavar="T0", default=T_TRANSIENT_DEFAULT,
+                     help=f"start of the x_max window [default {T_TRANSIENT_DEFAULT:g}]")
+    run.add_argument("--threads", metavar="N", default=None,
+                     help="threads [an integer >= 1; default: all cores]")
+    p.add_argument("--json", action="store_true",
+                   help="print one JSON object on stdout (keys: inputs, curves, lo_alone, "
+                        "tmd, vines, search, worst_case, cost)")
+    p.set_defaults(handler=run)
+    return p
+
+
+def run(args: argparse.Namespace) -> dict:
+    """The design's JSON object (``DesignResult.to_dict``); ParameterError on bad input."""
+    from ..studies.design import design
+    res = design(omega_band=args.omega_band, n_omega=args.n_omega,
+                 amplitudes_m=args.amplitude, M_kg=args.M, k_N_per_m=args.k,
+                 c_Ns_per_m=args.c, d=args.d, r=args.r, eta=args.eta,
+                 clearance_m=args.clearance, eta_max=args.eta_max,
+                 clearance_range_m=args.clearance_range, n_eta=args.n_eta,
+                 n_clearance=args.n_clearance, view=args.view, census_n=args.census_n,
+                 t_end=args.t_end, t_transient=args.t_transient, n_threads=args.threads)
+    return res.to_dict()
+
+
+def _fmt(x) -> str:
+    return "n/a" if x is None else f"{x:.3g}"
+
+
+def text(d: dict) -> str:
+    """A reader's summary of ``run``'s object."""
+    v, t, lo = d["vines"], d["tmd"], d["lo_alone"]
+    lines = [f"band omega {d['inputs']['omega_band'][0]:g}-{d['inputs']['omega_band'][1]:g}"
+             f" ({d['inputs']['n_omega']} points), {d['inputs']['mode']}",
+             f"  LO alone: worst x_max/A {_fmt(lo['worst_ratio'])}",
+             f"  TMD  eta {t['eta']:g}: f = {t['frequency_ratio']:.4f}, zeta = "
+             f"{t['damping_ratio']:.4f}: worst {_fmt(t['worst_ratio'])}",
+             f"  VI NES eta {v['eta']:.4g}, clearance {1e3 * v['clearance_m']:.4g} mm: worst "
+             f"{_fmt(v['worst_ratio'])} from rest, {_fmt(v['worst_ratio_any_attractor'])} over "
+             f"attractors ({v['view'] or 'not evaluated'})"]
+    any_ = v["worst_ratio_any_attractor_per_amplitude"] or [None] * len(v["F"])
+    for A, F, w, a in zip(d["curves"]["amplitude_m"], v["F"], v["worst_ratio_per_amplitude"],
+                          any_, strict=True):
+        lines.append(f"    A = {1e3 * A:.4g} mm (F = {F:.4g}): {_fmt(w)} from rest, "
+                     f"{_fmt(a)} over attractors")
+    lines.append(f"  cost {d['cost']['wall_s']:.1f} s, {d['cost']['n_runs_from_rest']} runs "
+                 f"from rest, {d['cost']['n_runs_census']} census runs")
+    return "\n".join(lines)

@@ -1,0 +1,140 @@
+"""The linear references of a design: the LO alone and the optimal tuned mass damper (TMD).
+
+Dimensionless like the VI NES model (SPEC 1): time w0 t, omega = w/w0, d = c/(M w0). The
+base moves as y = A sin(w t); the LO's absolute displacement x obeys
+x'' + d (x' - y') + (x - y) = (force of the absorber). The transmissibility is |X/Y| (the
+VI NES's x_max/A once the motion has settled on a harmonic response).
+
+* LO alone: |X/Y| = |1 + i d omega| / |1 - omega^2 + i d omega| (``lo_ratio``).
+* TMD of mass ratio mu = m_a/M, natural frequency ratio f = w_a/w0 and damping ratio zeta
+  (c_a = 2 zeta m_a w_a), attached to the LO (not to the base): with
+  G = (f^2 + 2 i zeta f omega) / (f^2 - omega^2 + 2 i zeta f omega) (absorber / LO motion),
+
+      X/Y = (1 + i d omega) / (1 - omega^2 + i d omega - mu omega^2 G)     (``tmd_ratio``).
+
+``optimal_tmd`` chooses (f, zeta) minimising the largest |X/Y| over a frequency band
+(a minimax, the H-infinity criterion restricted to the band): a coarse (f, zeta) grid, then
+Nelder-Mead on (log f, log zeta). With d = 0 and a band holding both of Den Hartog's fixed
+points this is the classical H-infinity problem; ``den_hartog`` gives his fixed-point
+approximation of its solution.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass
+
+import numpy as np
+
+from ..core.linear import stuck_amplitude, stuck_peak
+
+#: points of the dense grid on which band maxima are located before refinement
+N_BAND_GRID = 2001
+#: search box of the TMD's tuning: f = w_a/w0 and zeta (Nelder-Mead stays inside)
+F_BOUNDS = (0.05, 20.0)
+ZETA_BOUNDS = (1e-5, 10.0)
+
+
+def lo_ratio(omega, d):
+    """Transmissibility |X/Y| of the LO alone (closed form; broadcasts)."""
+    return stuck_amplitude(0.0, omega, 1.0, d)
+
+
+def lo_worst(band, d) -> tuple[float, float]:
+    """Exact (max, argmax) of ``lo_ratio`` over omega in band = (lo, hi): the closed-form
+    peak (``core.linear.stuck_peak`` with eta = 0) when it lies in the band, else the larger
+    band edge (the curve rises up to the peak and falls after it). inf at omega = 1 for
+    d = 0."""
+    lo, hi = band
+    w_peak, peak = stuck_peak(0.0, 1.0, d)
+    if lo <= w_peak <= hi:
+        return float(peak), float(w_peak)
+    edge = hi if lo_ratio(hi, d) > lo_ratio(lo, d) else lo
+    return float(lo_ratio(edge, d)), float(edge)
+
+
+def tmd_ratio(omega, d, mu, f, zeta):
+    """Transmissibility |X/Y| of the LO with a TMD (module docstring); broadcasts."""
+    w = np.asarray(omega, dtype=float)
+    iw = 1j * w
+    g = (f * f + 2.0 * zeta * f * iw) / (f * f - w * w + 2.0 * zeta * f * iw)
+    return np.abs((1.0 + d * iw) / (1.0 - w * w + d * iw - mu * w * w * g))
+
+
+def band_max(fun, band, n=N_BAND_GRID) -> tuple[float, float]:
+    """(max, argmax) of a smooth fun(omega) over the closed band: its values on n points,
+    then each interior local maximum within 10 % of the largest is refined by a bounded
+    scalar search between its grid neighbours."""
+    from scipy.optimize import minimize_scalar
+    w = np.linspace(band[0], band[1], n)
+    y = fun(w)
+    best = int(np.argmax(y))
+    top, arg = float(y[best]), float(w[best])
+    inner = np.flatnonzero((y[1:-1] >= y[:-2]) & (y[1:-1] >= y[2:])) + 1
+    for i in inner[y[inner] >= 0.9 * top]:
+        res = minimize_scalar(lambda x: -float(fun(x)), bounds=(w[i - 1], w[i + 1]),
+                              method="bounded", options={"xatol": 1e-12 * max(1.0, w[i])})
+        if -res.fun > top:
+            top, arg = float(-res.fun), float(res.x)
+    return top, arg
+
+
+@dataclass(frozen=True)
+class TunedMassDamper:
+    """An optimal TMD: mass ratio ``eta`` = m_a/M, ``frequency_ratio`` f = w_a/w0,
+    ``damping_ratio`` zeta = c_a/(2 m_a w_a), ``worst_ratio`` = largest |X/Y| over the band
+    (exact up to the refinement of ``band_max``), ``worst_omega`` where it occurs."""
+
+    eta: float
+    frequency_ratio: float
+    damping_ratio: float
+    worst_ratio: float
+    worst_omega: float
+
+    def ratio(self, omega, d):
+        """Transmissibility at omega for LO damping d."""
+        return tmd_ratio(omega, d, self.eta, self.frequency_ratio, self.damping_ratio)
+
+    def to_dict(self) -> dict:
+        return asdict(self)
+
+
+def den_hartog(mu: float) -> tuple[float, float, float]:
+    """Den Hartog's TMD on an undamped LO (force or, equivalently, base excitation through
+    the spring): (frequency ratio 1/(1 + mu), damping ratio sqrt(3 mu / (8 (1 + mu)^3)),
+    height sqrt(1 + 2/mu) of the fixed points)."""
+    return (1.0 / (1.0 + mu), math.sqrt(3.0 * mu / (8.0 * (1.0 + mu) ** 3)),
+            math.sqrt(1.0 + 2.0 / mu))
+
+
+def _coarse_tuning(mu, d, band) -> tuple[float, float]:
+    """Best (f, zeta) of a 41 x 41 grid (f linear around the band, zeta logarithmic), by
+    the maximum over 401 band points."""
+    f_grid = np.linspace(max(F_BOUNDS[0], 0.5 * band[0]), min(F_BOUNDS[1], 1.5 * band[1]), 41)
+    z_grid = np.geomspace(1e-3, 1.0, 41)
+    w = np.linspace(band[0], band[1], 401)
+    worst = np.array([[tmd_ratio(w, d, mu, f, z).max() for z in z_grid] for f in f_grid])
+    i, j = np.unravel_index(int(np.argmin(worst)), worst.shape)
+    return float(f_grid[i]), float(z_grid[j])
+
+
+def optimal_tmd(mu: float, d: float, band) -> TunedMassDamper:
+    """TMD of mass ratio mu minimising the largest transmissibility over omega in band
+    (module docstring). Deterministic: a fixed grid, then Nelder-Mead in (log f, log zeta)
+    within F_BOUNDS x ZETA_BOUNDS to xatol 1e-9."""
+    from scipy.optimize import minimize
+
+    def worst(x):
+        f, z = math.exp(x[0]), math.exp(x[1])
+        return band_max(lambda w: tmd_ratio(w, d, mu, f, z), band)[0]
+
+    f0, z0 = _coarse_tuning(mu, d, band)
+    bounds = [tuple(map(math.log, F_BOUNDS)), tuple(map(math.log, ZETA_BOUNDS))]
+    res = minimize(worst, [math.log(f0), math.log(z0)], method="Nelder-Mead", bounds=bounds,
+                   options={"xatol": 1e-9, "fatol": 1e-12, "maxiter": 4000,
+                            "initial_simplex": [[math.log(f0), math.log(z0)],
+                                                [math.log(f0) + 0.05, math.log(z0)],
+                                                [math.log(f0), math.log(z0) + 0.2]]})
+    f, z = math.exp(res.x[0]), math.exp(res.x[1])
+    top, arg = band_max(lambda w: tmd_ratio(w, d, mu, f, z), band)
+    return TunedMassDamper(eta=float(mu), frequency_ratio=f, damping_ratio=z,
+                           worst_ratio=top, worst_omega=arg)

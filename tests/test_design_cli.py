@@ -1,0 +1,53 @@
+"""The pending ``vines design`` command (src/vines/_cli_pending/design.py): its defaults are
+the API's, its flags reach ``vines.design`` and bad values raise ParameterError naming a flag."""
+import argparse
+import json
+
+import pytest
+
+from vines import ParameterError
+from vines._cli_pending import design as cmd
+from vines.studies import design as api
+
+
+def _parse(argv):
+    parser = argparse.ArgumentParser(prog="vines")
+    cmd.add_parser(parser.add_subparsers(dest="command"))
+    return parser.parse_args(["design", *argv])
+
+
+def test_defaults_are_the_apis():
+    assert cmd.BAND == api.DEFAULT_BAND and cmd.N_OMEGA == api.DEFAULT_N_OMEGA
+    assert cmd.AMPLITUDES_M == api.DEFAULT_AMPLITUDES_M
+    assert (cmd.N_ETA, cmd.N_CLEARANCE, cmd.CENSUS_N) == (
+        api.N_ETA_DEFAULT, api.N_CLEARANCE_DEFAULT, api.CENSUS_N_DEFAULT)
+    assert set(cmd.VIEWS) == set(api.VIEWS)
+
+
+def test_run_evaluates_a_design():
+    args = _parse(["--omega-band", "0.95", "1.05", "--n-omega", "3", "--amplitude", "0.001",
+                   "--eta", "0.05", "--clearance", "0.02", "--census-n", "2", "--t-end", "2000",
+                   "--t-transient", "1500", "--threads", "1", "--d", "0.02", "--json"])
+    d = cmd.run(args)
+    json.dumps(d, allow_nan=False)
+    assert d["inputs"]["d"] == 0.02 and d["vines"]["eta"] == 0.05
+    assert d["curves"]["omega"] == [0.95, 1.0, 1.05]
+    assert "LO alone" in cmd.text(d)
+
+
+@pytest.mark.parametrize("argv, flag", [
+    (["--eta", "0.1"], "--clearance"),
+    (["--eta-max", "0.1", "--clearance-range", "0.02", "0.01"], "--clearance-range"),
+    (["--eta", "0.1", "--clearance", "0.01", "--amplitude", "0.001", "-1"], "--amplitude"),
+    (["--eta", "0.1", "--clearance", "0.01", "--n-omega", "x"], "--n-omega"),
+    (["--eta", "0.1", "--clearance", "0.01", "--threads", "0"], "--threads"),
+])
+def test_bad_values_name_the_flag(argv, flag):
+    with pytest.raises(ParameterError) as err:
+        cmd.run(_parse(argv))
+    assert cmd.FLAG_OF[err.value.name] == flag
+
+
+def test_c_and_d_are_exclusive():
+    with pytest.raises(SystemExit):
+        _parse(["--c", "2", "--d", "0.01", "--eta", "0.1", "--clearance", "0.01"])
