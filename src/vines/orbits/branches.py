@@ -15,8 +15,13 @@ symmetric orbit, B = J_P2 J_P1):
                          on the unit circle (not a real reciprocal pair)
     admissibility-loss   the admissibility flag (either direction)
 
-A sign change between two points is located along the arclength (``Tracer.locate``,
-``Tracer.bisect``) and the located point is inserted into the branch.
+A sign change between two points is located along the arclength (``Tracer.locate``) and
+the located point is inserted into the branch. A change of the admissibility flag is
+bisected (``Tracer.bisect``) only to seed the grazing that causes it, which is then solved
+with the continued parameter free (``augmented.grazing_point``): at a grazing arrival the
+maps have a pole, and the bisection alone stops where the corrector fails near it. There
+the inserted branch point is the bisected one next to the event (the maps are undefined
+at the event); the event's parameters are the solved ones.
 
 Termination: the parameter leaves [min(start, stop), max(start, stop)] (the crossing is
 located and kept), the branch closes on itself, ``max_inadmissible`` consecutive points are
