@@ -13,6 +13,8 @@ def _impact_times_agree(a, b, t_max, tol):
     ta = a.impacts["t"][a.impacts["t"] <= t_max]
     tb = b.impacts["t"][b.impacts["t"] <= t_max]
     assert ta.size == tb.size and ta.size > 0
+    # the error is the DOP853 reference's (rtol 1e-12, grown over ~100 impacts: measured
+    # 3e-9..5e-9 at 1e-8); the exact solver's impact times are round-off (~1e-15)
     assert np.max(np.abs(ta - tb)) <= tol
     assert np.array_equal(a.impacts["wall"][: ta.size], b.impacts["wall"][: tb.size])
 

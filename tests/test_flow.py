@@ -122,4 +122,6 @@ def test_velocity_square_integral_near_resonance(m, d, W, F, x0, v0):
         exact = fl.v2_integral(osc, x0, v0, sth, cth, L)
         num = quad(lambda s: fl.flow(osc, x0, v0, sth, cth, s)[1] ** 2, 0.0, L,
                    epsabs=0.0, epsrel=1e-13, limit=400)[0]
+        # quad is asked for a relative 1e-13 (epsrel) and the closed form has a few ulps of
+        # round-off: 2e-13 is that request's bound, not this CPU's round-off
         assert abs(exact - num) <= 2e-13 * num

@@ -136,6 +136,25 @@ def solve(system: Codim1System, z0, tol=1e-11, max_iter=30):
     return None
 
 
+def grazing_point(model: sh.Model, family: str, u, param: str, par: dict, max_margin=1e-3):
+    """The grazing that ends admissibility near the orbit u at par, solved as the square
+    system with ``param`` free: (graze, u, value of param) or None (no grazing within
+    ``max_margin`` of u, see ``grazing_guess``, or Newton fails).
+
+    The shooting residual has the flight times as unknowns, so it stays regular where an
+    arrival velocity vanishes (the maps' pole): the point is solved, not bisected for."""
+    graze, s_g, margin = grazing_guess(model, family, u, par)
+    if not margin <= max_margin:
+        return None
+    system = Codim1System(model, family, "grazing", (param,),
+                          {q: v for q, v in par.items() if q != param}, graze)
+    z0 = list(u[:system.nu]) + ([s_g] if system.has_sg else []) + [par[param]]
+    z = solve(system, z0)
+    if z is None:
+        return None
+    return graze, z[:system.nu], float(z[-1])
+
+
 def grazing_guess(model: sh.Model, family: str, u, par: dict, n_sample=400):
     """The grazing of the orbit u closest to a wall contact: ((k, wall), s_g, margin).
 

@@ -15,8 +15,13 @@ symmetric orbit, B = J_P2 J_P1):
                          on the unit circle (not a real reciprocal pair)
     admissibility-loss   the admissibility flag (either direction)
 
-A sign change between two points is located along the arclength (``Tracer.locate``,
-``Tracer.bisect``) and the located point is inserted into the branch.
+A sign change between two points is located along the arclength (``Tracer.locate``) and
+the located point is inserted into the branch. A change of the admissibility flag is
+bisected (``Tracer.bisect``) only to seed the grazing that causes it, which is then solved
+with the continued parameter free (``augmented.grazing_point``): at a grazing arrival the
+maps have a pole, and the bisection alone stops where the corrector fails near it. There
+the inserted branch point is the bisected one next to the event (the maps are undefined
+at the event); the event's parameters are the solved ones.
 
 Termination: the parameter leaves [min(start, stop), max(start, stop)] (the crossing is
 located and kept), the branch closes on itself, ``max_inadmissible`` consecutive points are
@@ -212,13 +217,7 @@ class _Follower:
             elif loc is not None and abs(test(loc[1], loc[2])) <= 1e-3 * min(abs(fa), abs(fb)):
                 found.append((loc[0], typ, loc[1], loc[2]))
         if oa.admissible != ob.admissible:
-            def flag(z, t):
-                return bool(getattr(self.sys.orbit(z), "admissible", False))
-
-            after, before = self.tr.bisect(st, flag, oa.admissible)
-            # at a grazing arrival (impact velocity 0) the maps have a pole: the point just
-            # on the other side stands for the event when the maps fail at the first
-            tau, z, t = after if self.sys.orbit(after[1]) is not None else before
+            (tau, z, t), near = self._admissibility(st, oa.admissible)
             found.append((tau, "admissibility-loss", z, t))
         p_end = st.z1[-1]
         bound = self.hi if p_end > self.hi else self.lo if p_end < self.lo else None
@@ -235,12 +234,18 @@ class _Follower:
                 self.stopped = "left the parameter interval"
                 return True
             got = self.add(z, t, s + tau)
+            if got is None and typ == "admissibility-loss":
+                # a grazing arrival: the maps have a pole at the event itself; the branch
+                # point is the bisected one next to it (the event keeps the solved values)
+                got = self.add(near[1], near[2], s + near[0])
             if got is None:
                 continue
             o = got[0]
             if typ == "neimark-sacker" and not is_ns(fam, o):
                 continue
             p = o.params
+            if typ == "admissibility-loss":
+                p = self.sys.params(z)          # the solved grazing, also next to a pole
             ev = {"type": typ, "at": float(z[-1]), "eta": p.eta, "omega": p.omega, "F": p.F,
                   "index": len(self.pts) - 1, "z": z, "t": t}
             if typ == "symmetry-breaking":
@@ -250,6 +255,38 @@ class _Follower:
                 self.stopped = "reached the symmetric branch (symmetry-breaking)"
                 return True
         return False
+
+    def _admissibility(self, st: Step, flag0: bool):
+        """(tau, z, t) of the admissibility change along a step: the flag is bisected to a
+        seed, then the grazing that ends admissibility is solved with the continued
+        parameter free (``augmented.grazing_point``); the bisected point when no grazing
+        is solved within the step. Returns that and the bisected point where the maps are
+        defined."""
+        def flag(z, t):
+            return bool(getattr(self.sys.orbit(z), "admissible", False))
+
+        after, before = self.tr.bisect(st, flag, flag0)
+        # at a grazing arrival (impact velocity 0) the maps have a pole: the point just
+        # on the other side seeds the solve when the maps fail at the first
+        seed = after if self.sys.orbit(after[1]) is not None else before
+        got = self._grazing(st, seed[1])
+        return (seed if got is None else got), seed
+
+    def _grazing(self, st: Step, z):
+        """The solved grazing near the branch point z, as (tau, z, t) on the step, or None
+        (no grazing there, or the solution lies off the step)."""
+        from .augmented import grazing_point
+        p = self.sys.par(z)
+        got = grazing_point(self.sys.m, self.sys.family, z[:-1], self.sys.param, p)
+        if got is None:
+            return None
+        zg = np.append(got[1], got[2])
+        tau = self.tr.dot(st.t0, zg - st.z0)
+        slack = 1e-6 * st.h
+        if not -slack <= tau <= st.h + slack:
+            return None
+        _, Rz = self.sys(zg)
+        return min(max(tau, 0.0), st.h), zg, self.tr.tangent(Rz, st.t0)
 
     def _on_symmetric(self, loc):
         """The symmetry-breaking point on the symmetric branch near the located point of
