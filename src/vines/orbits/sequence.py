@@ -601,3 +601,42 @@ def _user_seed(sd, walls: str, T: float) -> list:
         return []
     x0, fl = sd
     return [(x0, fl)]
+
+
+# --------------------------------------------------------------------------- flips, states
+
+def flip_seeds(orbit: SequenceOrbit, eps=(1e-3, 1e-2, 3e-2)) -> list:
+    """Seeds of the period-doubled sequence (walls twice, 2 periods) near ``orbit``: its
+    start displaced by +- eps along the eigenvector of its most negative real eigenvalue
+    (a flip point of the family gives birth to that branch). Empty without such an
+    eigenvalue."""
+    M = monodromy(list(orbit.jacobians))
+    ev, V = np.linalg.eig(M)
+    real_neg = [k for k in range(4) if abs(ev[k].imag) <= 1e-9 * max(1.0, abs(ev[k]))
+                and ev[k].real < 0.0]
+    if not real_neg:
+        return []
+    k = min(real_neg, key=lambda j: ev[j].real)
+    v = V[:, k].real / np.linalg.norm(V[:, k].real)
+    fl = np.concatenate([orbit.flight_times, orbit.flight_times])
+    return [(orbit.states[0] + sg * e * v, fl) for e in eps for sg in (1.0, -1.0)]
+
+
+def state_at(orbit: SequenceOrbit, t: float) -> np.ndarray:
+    """State (z_m, z_m', z_b, z_b') of the orbit at absolute time t (any t: the orbit is
+    periodic with period periods T), by the closed-form flight from the impact before t."""
+    p = orbit.params
+    osc = oscillators(p)[0]
+    n = len(orbit.walls)
+    P = orbit.periods * p.period
+    t0 = orbit.states[0, 3]
+    tau = (t - t0) % P
+    k = int(np.searchsorted(np.cumsum(orbit.flight_times), tau, side="right"))
+    k = min(k, n - 1)
+    x = orbit.states[k]
+    s = tau - (x[3] - t0)
+    vp, vbp = impact_velocities(p.eta, p.r, x[0], x[1])
+    th0 = p.omega * x[3] + p.phi
+    z, v, _, _, _ = flow(osc, x[2] + WALL_CODES[orbit.walls[k]], vp, math.sin(th0),
+                         math.cos(th0), s)
+    return np.array([z, v, x[2] + vbp * s, vbp])
