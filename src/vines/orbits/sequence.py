@@ -592,15 +592,22 @@ def find_sequence(params: ModelParams, walls: str, periods: int = 1, *, seeds=No
 
 
 def _user_seed(sd, walls: str, T: float) -> list:
-    if isinstance(sd, SequenceOrbit):
-        if sd.walls == walls:
-            return [(sd.states[0], sd.flight_times)]
-        if mirror_walls(sd.walls) == walls:
-            x = sd.states[0]
-            return [([-x[0], -x[1], -x[2], x[3] + 0.5 * T], sd.flight_times)]
-        return []
-    x0, fl = sd
-    return [(x0, fl)]
+    """(x_0, flights) from a seed: a pair, or an orbit of the same sequence or of its mirror
+    image, started at any impact whose rotation of the sequence is ``walls``."""
+    if not isinstance(sd, SequenceOrbit):
+        x0, fl = sd
+        return [(x0, fl)]
+    out = []
+    n = len(sd.walls)
+    for mirrored, w in ((False, sd.walls), (True, mirror_walls(sd.walls))):
+        for k in range(n):
+            if w[k:] + w[:k] != walls:
+                continue
+            x = np.array(sd.states[k], dtype=float)
+            if mirrored:
+                x = np.array([-x[0], -x[1], -x[2], x[3] + 0.5 * T])
+            out.append((x, np.roll(sd.flight_times, -k)))
+    return out
 
 
 # --------------------------------------------------------------------------- flips, states
