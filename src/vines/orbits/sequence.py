@@ -576,13 +576,19 @@ def find_sequence(params: ModelParams, walls: str, periods: int = 1, *, seeds=No
         return []
     starts = affine_seeds(p, osc, walls, periods)
     if simulation:
-        states = SIM_STATES[:1] if (walls, periods) == ("LR", 1) else sim_states
         if (walls, periods) == ("LR", 1):
             from .periodic import _simulation_seed
             found_sim = _simulation_seed(p, osc)
             starts += [(o.x_L, o.flight_times) for o in found_sim if o is not None]
         else:
-            starts += simulation_seeds(p, walls, states)
+            starts += simulation_seeds(p, walls, sim_states)
+    return solve_seeds(p, osc, walls, periods, starts, seeds)
+
+
+def solve_seeds(p: ModelParams, osc, walls: str, periods: int, starts, seeds=()) -> list:
+    """Newton from every (x_0, flights) in ``starts`` and every seed of ``seeds`` (see
+    ``find_sequence``); distinct orbits, stable admissible ones first."""
+    starts = list(starts)
     for sd in seeds or ():
         starts += _user_seed(sd, walls, p.period)
     found = [solve_sequence(p, walls, periods, x0, fl, osc) for x0, fl in starts]

@@ -1,0 +1,159 @@
+"""Which periodic families exist, are admissible and stable at one (eta, omega, F) point.
+
+``atlas_point`` solves every family of ``FAMILIES`` (docs/bifurcation.md, "Families of
+periodic orbits") on the maps (``orbits.sequence``) from:
+
+* the affine seeds of each sequence (closed form / flight-time scans where they exist);
+* one short simulation from rest, shared by all families (its impact record and its
+  mirror image searched for each sequence);
+* flip seeds: each period-2 family also starts from the orbits of the family it doubles,
+  displaced along their most negative eigenvector; a mirror family from the mirror images
+  of its partner's orbits;
+* optional orbits of a neighbouring point (``seeds``), so that a grid swept in order
+  continues every family found at the previous point.
+
+The answer is a finite search: a family reported absent may exist (no seed reached it).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..core.exact import oscillators
+from ..core.params import ModelParams, ParameterError
+from .sequence import (SIM_T_END, _mirror_record, affine_seeds, flip_seeds, record_seed,
+                       solve_seeds)
+
+#: family key -> (walls, periods, symmetry: True symmetric only, False asymmetric only,
+#: None both); the keys are the family names of docs/bifurcation.md
+FAMILIES = {
+    "LR/1-sym": ("LR", 1, True),
+    "LR/1-asym": ("LR", 1, False),
+    "LLRR/1-sym": ("LLRR", 1, True),
+    "LLRR/1-asym": ("LLRR", 1, False),
+    "LLR/1": ("LLR", 1, None),
+    "LRR/1": ("LRR", 1, None),
+    "LRLR/2": ("LRLR", 2, None),
+    "LLRLLR/2": ("LLRLLR", 2, None),
+    "LRRLRR/2": ("LRRLRR", 2, None),
+    "LLRRLLRR/2": ("LLRRLLRR", 2, None),
+}
+#: the paper's (``core.regime``'s) label of each family
+PAPER_LABELS = {"LR/1-sym": "1:1", "LR/1-asym": "1:1", "LLRR/1-sym": "2:2",
+                "LLRR/1-asym": "2:2", "LLR/1": "2:1", "LRR/1": "2:1", "LRLR/2": "period-2",
+                "LLRLLR/2": "period-2", "LRRLRR/2": "period-2", "LLRRLLRR/2": "period-2"}
+#: sequence -> (sequences whose orbits seed it, how): "flip" doubles, "mirror" mirrors
+_DERIVED = {
+    "LRR": (("LLR", "mirror"),),
+    "LRLR": (("LR", "flip"),),
+    "LLRLLR": (("LLR", "flip"),),
+    "LRRLRR": (("LRR", "flip"), ("LLRLLR", "mirror")),
+    "LLRRLLRR": (("LLRR", "flip"),),
+}
+_SEQUENCES = ("LR", "LLRR", "LLR", "LRR", "LRLR", "LLRLLR", "LRRLRR", "LLRRLLRR")
+
+
+@dataclass
+class FamilyState:
+    """One family at one point: any orbit found, any admissible, any stable admissible;
+    lambda_max: the smallest lambda_max of its admissible orbits (nan without one)."""
+
+    found: bool
+    admissible: bool
+    stable: bool
+    lambda_max: float
+    n_orbits: int
+
+    def to_dict(self) -> dict:
+        return {"found": self.found, "admissible": self.admissible, "stable": self.stable,
+                "lambda_max": float(self.lambda_max), "n_orbits": self.n_orbits}
+
+
+def _rest_records(p: ModelParams, t_end: float) -> list:
+    from ..core.simulation import simulate
+    res = simulate(p.eta, p.omega, p.F, r=p.r, d=p.d, phi=p.phi, t_end=t_end,
+                   t_transient=0.5 * t_end, max_impacts=200_000)
+    return [res.impacts, _mirror_record(res.impacts, p.period)]
+
+
+def sequence_orbits(p: ModelParams, seeds=None, simulation=True,
+                    sim_t_end=SIM_T_END) -> dict:
+    """Every orbit found of each sequence of the atlas: {walls: [SequenceOrbit, ...]}.
+
+    ``seeds``: orbits of a neighbouring point ({walls: orbits}, as returned here).
+    """
+    osc = oscillators(p)[0]
+    if p.F == 0.0:
+        return {w: [] for w in _SEQUENCES}
+    records = _rest_records(p, sim_t_end) if simulation else []
+    seeds = seeds or {}
+    out = {}
+    for walls in _SEQUENCES:
+        periods = FAMILIES[next(k for k, v in FAMILIES.items() if v[0] == walls)][1]
+        starts = affine_seeds(p, osc, walls, periods)
+        for rec in records:
+            sd = record_seed(rec, walls)
+            if sd is not None:
+                starts.append(sd)
+        extra = list(seeds.get(walls, ()))
+        for src, how in _DERIVED.get(walls, ()):
+            for o in out.get(src, ()):
+                if how == "flip":
+                    starts += flip_seeds(o)
+                else:
+                    extra.append(o)
+        out[walls] = solve_seeds(p, osc, walls, periods, starts, extra)
+    return out
+
+
+def classify_families(orbits: dict) -> dict:
+    """{family key: FamilyState} from ``sequence_orbits``."""
+    out = {}
+    for key, (walls, _, sym) in FAMILIES.items():
+        mine = [o for o in orbits.get(walls, ()) if sym is None or o.symmetric == sym]
+        adm = [o for o in mine if o.admissible]
+        out[key] = FamilyState(
+            found=bool(mine), admissible=bool(adm), stable=any(o.stable for o in adm),
+            lambda_max=min((o.lambda_max for o in adm), default=float("nan")),
+            n_orbits=len(mine))
+    return out
+
+
+def atlas_point(params: ModelParams, seeds=None, simulation=True,
+                sim_t_end=SIM_T_END) -> tuple[dict, dict]:
+    """(families, orbits): ``classify_families`` of the point and the orbits found (pass
+    them as ``seeds`` to the next point of a sweep)."""
+    if not isinstance(params, ModelParams):
+        raise ParameterError("params", params, "must be a ModelParams")
+    orbits = sequence_orbits(params, seeds, simulation, sim_t_end)
+    return classify_families(orbits), orbits
+
+
+def atlas_arrays(eta, omega, F, *, r=None, d=None, simulation=True,
+                 sim_t_end=SIM_T_END, progress=None) -> dict:
+    """The atlas over an (eta, omega) grid at one F, swept along omega for each eta with
+    the previous point's orbits as seeds: arrays (eta, omega) per family key of
+    ``admissible``, ``stable`` (bool) and ``lambda_max`` (float), under keys
+    f"{key}:admissible" etc."""
+    eta = np.asarray(eta, float)
+    omega = np.asarray(omega, float)
+    kw = {k: v for k, v in (("r", r), ("d", d)) if v is not None}
+    shape = (eta.size, omega.size)
+    out = {}
+    for key in FAMILIES:
+        out[f"{key}:admissible"] = np.zeros(shape, bool)
+        out[f"{key}:stable"] = np.zeros(shape, bool)
+        out[f"{key}:lambda_max"] = np.full(shape, np.nan)
+    for i, e in enumerate(eta):
+        prev = None
+        for j, w in enumerate(omega):
+            p = ModelParams(eta=float(e), omega=float(w), F=float(F), **kw)
+            fam, prev = atlas_point(p, prev, simulation, sim_t_end)
+            for key, st in fam.items():
+                out[f"{key}:admissible"][i, j] = st.admissible
+                out[f"{key}:stable"][i, j] = st.stable
+                out[f"{key}:lambda_max"][i, j] = st.lambda_max
+            if progress:
+                progress(i * omega.size + j + 1, eta.size * omega.size)
+    return out
