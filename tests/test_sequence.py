@@ -206,3 +206,34 @@ def test_names_and_bad_input():
         with pytest.raises(ParameterError, match="periods"):
             find_sequence(p, "LR", periods)
     assert find_sequence(ModelParams(eta=0.2, omega=0.8, F=0.0), "LR", 1) == []
+
+
+# --------------------------------------------------------------------------- continuation
+
+def test_continuation_locates_the_1to1_flip_and_switches_to_period2():
+    from vines.orbits.continuation import continue_branch
+    from vines.orbits.sequence_branches import continue_sequence
+    p = ModelParams(eta=0.142, omega=0.74, F=0.2)
+    one = [o for o in find_sequence(p, "LR", 1, simulation=False)
+           if o.admissible and not o.symmetric][0]
+    br = continue_sequence(p, "LR", 1, "omega", 0.78, orbit=one, switch=True, step=0.002)
+    flips = [e for e in br.events if e["type"] == "flip"]
+    # the 1:1 shooting continuation (independent derivatives: Taylor jets) finds the same flip
+    ref = continue_branch("omega", 0.74, 0.78, fixed={"eta": 0.142, "F": 0.2},
+                          branch="asymmetric", step=0.002)
+    ref_flips = [e["at"] for e in ref.events if e["type"] == "flip"]
+    assert len(flips) == 1 == len(ref_flips)
+    assert abs(flips[0]["at"] - ref_flips[0]) < 1e-9
+    # the period-2 branch born there: LRLR over two periods, |lambda| ~ 1 at its birth,
+    # the orbit of find_sequence (the flip test above) where it passes omega = 0.765
+    (sub,) = br.switched
+    assert (sub.walls, sub.periods) == ("LRLR", 2) and sub.born_at["type"] == "flip"
+    assert abs(sub.points[0].lambda_max - 1.0) < 0.05
+    near = min(sub.points, key=lambda o: abs(o.params.omega - 0.765))
+    q = find_sequence(ModelParams(eta=0.142, omega=0.765, F=0.2), "LRLR", 2,
+                      simulation=False, seeds=[near])
+    assert any(o.stable and abs(o.lambda_max - 0.6170245573) < 1e-6 for o in q)
+    # every point of both branches is a fixed point of its composed maps (the JSON too)
+    d = br.to_dict()
+    assert d["switched"][0]["walls"] == "LRLR" and d["events"][0]["type"] == "flip"
+    assert all(np.isfinite(pt["lambda_max"]) for pt in d["branch"])
