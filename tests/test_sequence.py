@@ -156,8 +156,8 @@ def test_2to1_and_mirror_from_rest(eta, omega, F, walls):
 def test_period2_born_at_flip_of_asymmetric_1to1():
     # the asymmetric 1:1 orbit flips between omega 0.758 (-0.997) and 0.76 (-1.048)
     p = ModelParams(eta=0.142, omega=0.765, F=0.2)
-    one = [o for o in find_sequence(p, "LR", 1, simulation=False)
-           if o.admissible and not o.symmetric][0]
+    one = next(o for o in find_sequence(p, "LR", 1, simulation=False)
+           if o.admissible and not o.symmetric)
     assert not one.stable and np.min(one.eigenvalues.real) < -1.0
     start = state_at(one, 0.0) + 1e-6                    # leaves the unstable 1:1 orbit
     o, dist = _settles_on_map_orbit(p, "LRLR", 2, start, seeds=flip_seeds(one))
@@ -214,8 +214,8 @@ def test_continuation_locates_the_1to1_flip_and_switches_to_period2():
     from vines.orbits.continuation import continue_branch
     from vines.orbits.sequence_branches import continue_sequence
     p = ModelParams(eta=0.142, omega=0.74, F=0.2)
-    one = [o for o in find_sequence(p, "LR", 1, simulation=False)
-           if o.admissible and not o.symmetric][0]
+    one = next(o for o in find_sequence(p, "LR", 1, simulation=False)
+           if o.admissible and not o.symmetric)
     br = continue_sequence(p, "LR", 1, "omega", 0.78, orbit=one, switch=True, step=0.002)
     flips = [e for e in br.events if e["type"] == "flip"]
     # the 1:1 shooting continuation (independent derivatives: Taylor jets) finds the same flip

@@ -12,8 +12,7 @@ import contextlib
 import sys
 
 from ..core.params import ModelParams
-from ..orbits.sequence import (MAX_IMPACTS_PER_ORBIT, MAX_PERIODS, check_periods,
-                               check_walls)
+from ..orbits.sequence import (MAX_IMPACTS_PER_ORBIT, MAX_PERIODS, check_periods, check_walls)
 
 WALLS_ALLOWED = f"1 to {MAX_IMPACTS_PER_ORBIT} letters L or R, e.g. LR, LLRR, LLR, RLRL"
 PERIODS_ALLOWED = f"an integer 1 <= N <= {MAX_PERIODS}"
@@ -54,9 +53,9 @@ def run(args: argparse.Namespace) -> dict:
 def text(d: dict) -> str:
     """Human-readable form of ``run``'s result."""
     p, sols = d["params"], d["solutions"]
-    lines = [f"eta = {p['eta']:g}, omega = {p['omega']:g}, F = {p['F']:g}: "
+    lines = [(f"eta = {p['eta']:g}, omega = {p['omega']:g}, F = {p['F']:g}: "
              f"{len(sols)} solution(s) of {d['walls']} over {d['periods']} period(s) "
-             f"(family {d['family']})"]
+             f"(family {d['family']})")]
     for s in sols:
         sym = "symmetric" if s["symmetric"] else "asymmetric"
         adm = "admissible" if s["admissible"] else "NOT admissible"

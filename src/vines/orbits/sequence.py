@@ -36,12 +36,11 @@ import numpy as np
 from numba import njit
 
 from ..core.exact import oscillators
+from ..core.flow import flow
 from ..core.params import ModelParams, ParameterError, check_int
 from ..core.walls import WALL_L, WALL_R, impact_velocities
 from .maps import admissible_kernel, map_kernel
-from .periodic import (DEDUP_TOL, N_SCAN, SYM_TOL, _flow_zv, _s_factors, _solve_into,
-                       asymmetric_seeds, symmetric_seeds)
-from ..core.flow import flow
+from .periodic import DEDUP_TOL, N_SCAN, SYM_TOL, _solve_into, asymmetric_seeds, symmetric_seeds
 
 WALL_CODES = {"L": WALL_L, "R": WALL_R}
 WALL_NAMES = {WALL_L: "L", WALL_R: "R"}

@@ -32,8 +32,8 @@ import numpy as np
 from numba import njit
 
 from ..core.exact import oscillators
-from ..core.params import (MAX_INADMISSIBLE_DEFAULT, MAX_POINTS_MAX, PARAM_NAMES,
-                           ModelParams, ParameterError, check_int, check_param, check_real)
+from ..core.params import (MAX_INADMISSIBLE_DEFAULT, MAX_POINTS_MAX, PARAM_NAMES, ModelParams,
+                           ParameterError, check_int, check_param, check_real)
 from .arclength import Tracer
 from .maps import map_kernel
 from .sequence import (SequenceOrbit, _codes, check_periods, check_walls, find_sequence,
