@@ -6,9 +6,11 @@ periodic orbits") on the maps (``orbits.sequence``) from:
 * the affine seeds of each sequence (closed form / flight-time scans where they exist);
 * one short simulation from rest, shared by all families (its impact record and its
   mirror image searched for each sequence);
-* flip seeds: each period-2 family also starts from the orbits of the family it doubles,
-  displaced along their most negative eigenvector; a mirror family from the mirror images
-  of its partner's orbits;
+* flip seeds: each period-2 family also starts from the admissible orbits of the family it
+  doubles that have a real eigenvalue below -0.5, displaced along that eigenvector; a
+  mirror family from the mirror images of its partner's orbits; pitchfork seeds: the
+  symmetric orbits of a sequence displaced along the eigenvector of their largest positive
+  real eigenvalue (the asymmetric orbits born at a symmetry-breaking point);
 * optional orbits of a neighbouring point (``seeds``), so that a grid swept in order
   continues every family found at the previous point.
 
@@ -22,8 +24,8 @@ import numpy as np
 
 from ..core.exact import oscillators
 from ..core.params import ModelParams, ParameterError
-from .sequence import (SIM_T_END, _mirror_record, affine_seeds, flip_seeds, record_seed,
-                       solve_seeds)
+from .sequence import (SIM_T_END, _mirror_record, affine_seeds, flip_seeds, paper_label,
+                       pitchfork_seeds, record_seed, solve_seeds)
 
 #: family key -> (walls, periods, symmetry: True symmetric only, False asymmetric only,
 #: None both); the keys are the family names of docs/bifurcation.md
@@ -34,24 +36,35 @@ FAMILIES = {
     "LLRR/1-asym": ("LLRR", 1, False),
     "LLR/1": ("LLR", 1, None),
     "LRR/1": ("LRR", 1, None),
+    "LLLRR/1": ("LLLRR", 1, None),
+    "LLRRR/1": ("LLRRR", 1, None),
+    "LLLRRR/1": ("LLLRRR", 1, None),
     "LRLR/2": ("LRLR", 2, None),
     "LLRLLR/2": ("LLRLLR", 2, None),
     "LRRLRR/2": ("LRRLRR", 2, None),
     "LLRRLLRR/2": ("LLRRLLRR", 2, None),
+    "LLLRRLLLRR/2": ("LLLRRLLLRR", 2, None),
+    "LLRRRLLRRR/2": ("LLRRRLLRRR", 2, None),
 }
 #: the paper's (``core.regime``'s) label of each family
-PAPER_LABELS = {"LR/1-sym": "1:1", "LR/1-asym": "1:1", "LLRR/1-sym": "2:2",
-                "LLRR/1-asym": "2:2", "LLR/1": "2:1", "LRR/1": "2:1", "LRLR/2": "period-2",
-                "LLRLLR/2": "period-2", "LRRLRR/2": "period-2", "LLRRLLRR/2": "period-2"}
+PAPER_LABELS = {key: paper_label(walls, periods) for key, (walls, periods, _) in FAMILIES.items()}
 #: sequence -> (sequences whose orbits seed it, how): "flip" doubles, "mirror" mirrors
 _DERIVED = {
     "LRR": (("LLR", "mirror"),),
+    "LLRRR": (("LLLRR", "mirror"),),
     "LRLR": (("LR", "flip"),),
     "LLRLLR": (("LLR", "flip"),),
     "LRRLRR": (("LRR", "flip"), ("LLRLLR", "mirror")),
     "LLRRLLRR": (("LLRR", "flip"),),
+    "LLLRRLLLRR": (("LLLRR", "flip"),),
+    "LLRRRLLRRR": (("LLRRR", "flip"), ("LLLRRLLLRR", "mirror")),
 }
-_SEQUENCES = ("LR", "LLRR", "LLR", "LRR", "LRLR", "LLRLLR", "LRRLRR", "LLRRLLRR")
+#: flip seeds come from admissible orbits with a real eigenvalue below -FLIP_FROM (near or
+#: past a flip), displaced by FLIP_EPS (far past the flip the doubled orbit is far away)
+FLIP_FROM = 0.5
+FLIP_EPS = (1e-2, 0.1, 0.3)
+_SEQUENCES = tuple(dict.fromkeys(walls for walls, _, _ in FAMILIES.values()))
+_PERIODS = {walls: periods for walls, periods, _ in FAMILIES.values()}
 
 
 @dataclass
@@ -90,7 +103,7 @@ def sequence_orbits(p: ModelParams, seeds=None, simulation=True,
     seeds = seeds or {}
     out = {}
     for walls in _SEQUENCES:
-        periods = FAMILIES[next(k for k, v in FAMILIES.items() if v[0] == walls)][1]
+        periods = _PERIODS[walls]
         starts = affine_seeds(p, osc, walls, periods)
         for rec in records:
             sd = record_seed(rec, walls)
@@ -100,10 +113,13 @@ def sequence_orbits(p: ModelParams, seeds=None, simulation=True,
         for src, how in _DERIVED.get(walls, ()):
             for o in out.get(src, ()):
                 if how == "flip":
-                    starts += flip_seeds(o)
+                    if o.admissible and np.min(o.eigenvalues.real) < -FLIP_FROM:
+                        starts += flip_seeds(o, eps=FLIP_EPS)
                 else:
                     extra.append(o)
-        out[walls] = solve_seeds(p, osc, walls, periods, starts, extra)
+        found = solve_seeds(p, osc, walls, periods, starts, extra)
+        sym = [st for o in found if o.symmetric for st in pitchfork_seeds(o)]
+        out[walls] = solve_seeds(p, osc, walls, periods, sym, found) if sym else found
     return out
 
 

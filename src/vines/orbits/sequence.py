@@ -617,21 +617,38 @@ def _user_seed(sd, walls: str, T: float) -> list:
 
 # --------------------------------------------------------------------------- flips, states
 
+def _real_eigenvector(orbit: SequenceOrbit, negative: bool):
+    """Unit eigenvector of the most negative (negative) or largest positive real eigenvalue
+    of the orbit's monodromy matrix, or None."""
+    ev, V = np.linalg.eig(monodromy(list(orbit.jacobians)))
+    real = [k for k in range(4) if abs(ev[k].imag) <= 1e-9 * max(1.0, abs(ev[k]))
+            and (ev[k].real < 0.0) == negative and ev[k].real != 0.0]
+    if not real:
+        return None
+    k = min(real, key=lambda j: ev[j].real) if negative else max(real, key=lambda j: ev[j].real)
+    return V[:, k].real / np.linalg.norm(V[:, k].real)
+
+
 def flip_seeds(orbit: SequenceOrbit, eps=(1e-3, 1e-2, 3e-2)) -> list:
     """Seeds of the period-doubled sequence (walls twice, 2 periods) near ``orbit``: its
     start displaced by +- eps along the eigenvector of its most negative real eigenvalue
     (a flip point of the family gives birth to that branch). Empty without such an
     eigenvalue."""
-    M = monodromy(list(orbit.jacobians))
-    ev, V = np.linalg.eig(M)
-    real_neg = [k for k in range(4) if abs(ev[k].imag) <= 1e-9 * max(1.0, abs(ev[k]))
-                and ev[k].real < 0.0]
-    if not real_neg:
+    v = _real_eigenvector(orbit, True)
+    if v is None:
         return []
-    k = min(real_neg, key=lambda j: ev[j].real)
-    v = V[:, k].real / np.linalg.norm(V[:, k].real)
     fl = np.concatenate([orbit.flight_times, orbit.flight_times])
     return [(orbit.states[0] + sg * e * v, fl) for e in eps for sg in (1.0, -1.0)]
+
+
+def pitchfork_seeds(orbit: SequenceOrbit, eps=(1e-2, 5e-2)) -> list:
+    """Seeds of asymmetric orbits of the same sequence near a symmetric ``orbit``: its start
+    displaced by +- eps along the eigenvector of its largest positive real eigenvalue (a
+    symmetry-breaking point gives birth to the asymmetric pair there)."""
+    v = _real_eigenvector(orbit, False)
+    if v is None:
+        return []
+    return [(orbit.states[0] + sg * e * v, orbit.flight_times) for e in eps for sg in (1.0, -1.0)]
 
 
 def state_at(orbit: SequenceOrbit, t: float) -> np.ndarray:
