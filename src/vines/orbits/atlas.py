@@ -12,7 +12,9 @@ periodic orbits") on the maps (``orbits.sequence``) from:
   symmetric orbits of a sequence displaced along the eigenvector of their largest positive
   real eigenvalue (the asymmetric orbits born at a symmetry-breaking point);
 * optional orbits of a neighbouring point (``seeds``), so that a grid swept in order
-  continues every family found at the previous point.
+  continues every family found at the previous point;
+* a second pass from all orbits of the first and of each family's relatives (mirror images
+  both ways, flips), so that mirror families end with mirror images of the same orbits.
 
 The answer is a finite search: a family reported absent may exist (no seed reached it).
 """
@@ -49,16 +51,16 @@ FAMILIES = {
 #: the paper's (``core.regime``'s) label of each family
 PAPER_LABELS = {key: paper_label(walls, periods) for key, (walls, periods, _) in FAMILIES.items()}
 #: sequence -> (sequences whose orbits seed it, how): "flip" doubles, "mirror" mirrors
-_DERIVED = {
-    "LRR": (("LLR", "mirror"),),
-    "LLRRR": (("LLLRR", "mirror"),),
-    "LRLR": (("LR", "flip"),),
-    "LLRLLR": (("LLR", "flip"),),
-    "LRRLRR": (("LRR", "flip"), ("LLRLLR", "mirror")),
-    "LLRRLLRR": (("LLRR", "flip"),),
-    "LLLRRLLLRR": (("LLLRR", "flip"),),
-    "LLRRRLLRRR": (("LLRRR", "flip"), ("LLLRRLLLRR", "mirror")),
-}
+_FLIPS = {"LRLR": "LR", "LLRLLR": "LLR", "LRRLRR": "LRR", "LLRRLLRR": "LLRR",
+          "LLLRRLLLRR": "LLLRR", "LLRRRLLRRR": "LLRRR"}
+_MIRRORS = (("LLR", "LRR"), ("LLLRR", "LLRRR"), ("LLRLLR", "LRRLRR"),
+            ("LLLRRLLLRR", "LLRRRLLRRR"))
+_RELATIVES = {}
+for _doubled, _single in _FLIPS.items():
+    _RELATIVES.setdefault(_doubled, []).append((_single, "flip"))
+for _a, _b in _MIRRORS:
+    _RELATIVES.setdefault(_a, []).append((_b, "mirror"))
+    _RELATIVES.setdefault(_b, []).append((_a, "mirror"))
 #: flip seeds come from admissible orbits with a real eigenvalue below -FLIP_FROM (near or
 #: past a flip), displaced by FLIP_EPS (far past the flip the doubled orbit is far away)
 FLIP_FROM = 0.5
@@ -94,33 +96,46 @@ def sequence_orbits(p: ModelParams, seeds=None, simulation=True,
                     sim_t_end=SIM_T_END) -> dict:
     """Every orbit found of each sequence of the atlas: {walls: [SequenceOrbit, ...]}.
 
-    ``seeds``: orbits of a neighbouring point ({walls: orbits}, as returned here).
+    ``seeds``: orbits of a neighbouring point ({walls: orbits}, as returned here). Two
+    passes: the first from the affine, simulation, neighbour and relatives' seeds (flips and
+    mirror images of the sequences already solved), the second from every orbit of the first
+    and of all relatives (mirror images both ways), so that a mirror pair ends with mirror
+    images of the same orbits.
     """
     osc = oscillators(p)[0]
     if p.F == 0.0:
         return {w: [] for w in _SEQUENCES}
     records = _rest_records(p, sim_t_end) if simulation else []
     seeds = seeds or {}
-    out = {}
+    first = {}
     for walls in _SEQUENCES:
-        periods = _PERIODS[walls]
-        starts = affine_seeds(p, osc, walls, periods)
+        starts = affine_seeds(p, osc, walls, _PERIODS[walls])
         for rec in records:
             sd = record_seed(rec, walls)
             if sd is not None:
                 starts.append(sd)
-        extra = list(seeds.get(walls, ()))
-        for src, how in _DERIVED.get(walls, ()):
-            for o in out.get(src, ()):
-                if how == "flip":
-                    if o.admissible and np.min(o.eigenvalues.real) < -FLIP_FROM:
-                        starts += flip_seeds(o, eps=FLIP_EPS)
-                else:
-                    extra.append(o)
-        found = solve_seeds(p, osc, walls, periods, starts, extra)
-        sym = [st for o in found if o.symmetric for st in pitchfork_seeds(o)]
-        out[walls] = solve_seeds(p, osc, walls, periods, sym, found) if sym else found
+        first[walls] = _solve_family(p, osc, walls, starts, list(seeds.get(walls, ())), first)
+    out = {}
+    for walls in _SEQUENCES:
+        out[walls] = _solve_family(p, osc, walls, [], first[walls], out, first)
     return out
+
+
+def _solve_family(p, osc, walls, starts, extra, *solved) -> list:
+    """Orbits of ``walls`` from ``starts`` ((x_0, flights) pairs), ``extra`` (orbits) and
+    the orbits of its relatives in the dicts ``solved``, then the pitchfork seeds of the
+    symmetric orbits found."""
+    periods = _PERIODS[walls]
+    starts, extra = list(starts), list(extra)
+    for src, how in _RELATIVES.get(walls, ()):
+        for o in (q for d in solved for q in d.get(src, ())):
+            if how == "mirror":
+                extra.append(o)
+            elif o.admissible and np.min(o.eigenvalues.real) < -FLIP_FROM:
+                starts += flip_seeds(o, eps=FLIP_EPS)
+    found = solve_seeds(p, osc, walls, periods, starts, extra)
+    sym = [st for o in found if o.symmetric for st in pitchfork_seeds(o)]
+    return solve_seeds(p, osc, walls, periods, sym, found) if sym else found
 
 
 def classify_families(orbits: dict) -> dict:
