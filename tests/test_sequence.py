@@ -17,8 +17,16 @@ import pytest
 from vines.core.params import ModelParams, ParameterError
 from vines.core.simulation import simulate
 from vines.orbits.periodic import find_1to1
-from vines.orbits.sequence import (canonical_walls, family_name, find_sequence, flip_seeds,
-                                   paper_label, record_seed, solve_sequence, state_at)
+from vines.orbits.sequence import (
+    canonical_walls,
+    family_name,
+    find_sequence,
+    flip_seeds,
+    paper_label,
+    record_seed,
+    solve_sequence,
+    state_at,
+)
 
 REST = (0.0, 0.0, 0.0, 0.0)
 AGREE = 1e-7
@@ -243,9 +251,11 @@ def test_continuation_locates_the_1to1_flip_and_switches_to_period2():
 
 def _args(**kw):
     import argparse
+
     from vines.core.params import D_DEFAULT, R_DEFAULT
-    base = dict(eta="0.2", omega="0.8", F="0.4", r=R_DEFAULT, d=D_DEFAULT, walls="LLRR",
-                periods="1")
+    base = {"eta": "0.2", "omega": "0.8", "F": "0.4", "r": R_DEFAULT, "d": D_DEFAULT,
+            "walls": "LLRR",
+                "periods": "1"}
     base.update(kw)
     return argparse.Namespace(**base)
 
@@ -265,7 +275,7 @@ def test_pending_periodic_walls_command():
     ref = find_1to1(ModelParams(eta=0.55, omega=1.0, F=0.4), None, None)
     assert [s["lambda_max"] for s in one["solutions"]] == [o.lambda_max for o in ref]
     assert [s["dw"] for s in one["solutions"]] == [[o.dw_L, o.dw_R] for o in ref]
-    for bad, name in ((dict(walls="LQ"), "walls"), (dict(periods="0"), "periods"),
-                      (dict(eta="-1"), "eta")):
+    for bad, name in (({"walls": "LQ"}, "walls"), ({"periods": "0"}, "periods"),
+                      ({"eta": "-1"}, "eta")):
         with pytest.raises(ParameterError, match=name):
             periodic_walls.run(_args(**bad))
