@@ -254,8 +254,7 @@ def _args(**kw):
 
     from vines.core.params import D_DEFAULT, R_DEFAULT
     base = {"eta": "0.2", "omega": "0.8", "F": "0.4", "r": R_DEFAULT, "d": D_DEFAULT,
-            "walls": "LLRR",
-                "periods": "1"}
+            "walls": "LLRR", "periods": "1"}
     base.update(kw)
     return argparse.Namespace(**base)
 
