@@ -17,8 +17,11 @@ from vines.pipeline.codeversion import (
 )
 
 KINDS = {"compute": COMPUTE, "studies": STUDIES, "attractors": ATTRACTORS, "figures": FIGURES}
+#: commands written for the CLI and not yet wired into it: untracked, as the CLI itself
+PENDING_CLI = "_cli_pending"
 MODULES = sorted(p.relative_to(PKG_DIR) for p in PKG_DIR.rglob("*.py")
-                 if p.name not in NOT_TRACKED or p.parent != PKG_DIR)
+                 if (p.name not in NOT_TRACKED or p.parent != PKG_DIR)
+                 and p.relative_to(PKG_DIR).parts[0] != PENDING_CLI)
 
 
 @pytest.fixture(scope="module")
@@ -62,7 +65,7 @@ def test_cli_changes_no_code_version(pkg_copy):
 
 
 def test_every_subpackage_is_known():
-    subs = {p.parent.name for p in PKG_DIR.glob("*/__init__.py")}
+    subs = {p.parent.name for p in PKG_DIR.glob("*/__init__.py")} - {PENDING_CLI}
     assert subs == set(STUDIES) | set(ATTRACTORS) | set(FIGURES)
     with pytest.raises(ValueError, match="no subpackage"):
         tracked_files(("nonexistent",))

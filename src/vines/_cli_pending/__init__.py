@@ -1,0 +1,1 @@
+"""Commands written for the CLI, waiting to be wired into ``vines.cli`` by the coordinator."""

@@ -1,0 +1,190 @@
+"""Which periodic families exist, are admissible and stable at one (eta, omega, F) point.
+
+``atlas_point`` solves every family of ``FAMILIES`` (docs/bifurcation.md, "Families of
+periodic orbits") on the maps (``orbits.sequence``) from:
+
+* the affine seeds of each sequence (closed form / flight-time scans where they exist);
+* one short simulation from rest, shared by all families (its impact record and its
+  mirror image searched for each sequence);
+* flip seeds: each period-2 family also starts from the admissible orbits of the family it
+  doubles that have a real eigenvalue below -0.5, displaced along that eigenvector; a
+  mirror family from the mirror images of its partner's orbits; pitchfork seeds: the
+  symmetric orbits of a sequence displaced along the eigenvector of their largest positive
+  real eigenvalue (the asymmetric orbits born at a symmetry-breaking point);
+* optional orbits of a neighbouring point (``seeds``), so that a grid swept in order
+  continues every family found at the previous point;
+* a second pass from all orbits of the first and of each family's relatives (mirror images
+  both ways, flips), so that mirror families end with mirror images of the same orbits.
+
+The answer is a finite search: a family reported absent may exist (no seed reached it).
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..core.exact import oscillators
+from ..core.params import ModelParams, ParameterError
+from .sequence import (SIM_T_END, _mirror_record, affine_seeds, flip_seeds, paper_label,
+                       pitchfork_seeds, record_seed, solve_seeds)
+
+#: family key -> (walls, periods, symmetry: True symmetric only, False asymmetric only,
+#: None both); the keys are the family names of docs/bifurcation.md
+FAMILIES = {
+    "LR/1-sym": ("LR", 1, True),
+    "LR/1-asym": ("LR", 1, False),
+    "LLRR/1-sym": ("LLRR", 1, True),
+    "LLRR/1-asym": ("LLRR", 1, False),
+    "LLR/1": ("LLR", 1, None),
+    "LRR/1": ("LRR", 1, None),
+    "LLLRR/1": ("LLLRR", 1, None),
+    "LLRRR/1": ("LLRRR", 1, None),
+    "LLLRRR/1": ("LLLRRR", 1, None),
+    "LRLR/2": ("LRLR", 2, None),
+    "LLRLLR/2": ("LLRLLR", 2, None),
+    "LRRLRR/2": ("LRRLRR", 2, None),
+    "LLRRLLRR/2": ("LLRRLLRR", 2, None),
+    "LLLRRLLLRR/2": ("LLLRRLLLRR", 2, None),
+    "LLRRRLLRRR/2": ("LLRRRLLRRR", 2, None),
+}
+#: the paper's (``core.regime``'s) label of each family
+PAPER_LABELS = {key: paper_label(walls, periods) for key, (walls, periods, _) in FAMILIES.items()}
+#: sequence -> (sequences whose orbits seed it, how): "flip" doubles, "mirror" mirrors
+_FLIPS = {"LRLR": "LR", "LLRLLR": "LLR", "LRRLRR": "LRR", "LLRRLLRR": "LLRR",
+          "LLLRRLLLRR": "LLLRR", "LLRRRLLRRR": "LLRRR"}
+_MIRRORS = (("LLR", "LRR"), ("LLLRR", "LLRRR"), ("LLRLLR", "LRRLRR"),
+            ("LLLRRLLLRR", "LLRRRLLRRR"))
+_RELATIVES = {}
+for _doubled, _single in _FLIPS.items():
+    _RELATIVES.setdefault(_doubled, []).append((_single, "flip"))
+for _a, _b in _MIRRORS:
+    _RELATIVES.setdefault(_a, []).append((_b, "mirror"))
+    _RELATIVES.setdefault(_b, []).append((_a, "mirror"))
+#: flip seeds come from admissible orbits with a real eigenvalue below -FLIP_FROM (near or
+#: past a flip), displaced by FLIP_EPS (far past the flip the doubled orbit is far away)
+FLIP_FROM = 0.5
+FLIP_EPS = (1e-2, 0.1, 0.3)
+_SEQUENCES = tuple(dict.fromkeys(walls for walls, _, _ in FAMILIES.values()))
+_PERIODS = {walls: periods for walls, periods, _ in FAMILIES.values()}
+
+
+@dataclass
+class FamilyState:
+    """One family at one point: any orbit found, any admissible, any stable admissible;
+    lambda_max: the smallest lambda_max of its admissible orbits (nan without one)."""
+
+    found: bool
+    admissible: bool
+    stable: bool
+    lambda_max: float
+    n_orbits: int
+
+    def to_dict(self) -> dict:
+        return {"found": self.found, "admissible": self.admissible, "stable": self.stable,
+                "lambda_max": float(self.lambda_max), "n_orbits": self.n_orbits}
+
+
+def _rest_records(p: ModelParams, t_end: float) -> list:
+    from ..core.simulation import simulate
+    res = simulate(p.eta, p.omega, p.F, r=p.r, d=p.d, phi=p.phi, t_end=t_end,
+                   t_transient=0.5 * t_end, max_impacts=200_000)
+    return [res.impacts, _mirror_record(res.impacts, p.period)]
+
+
+def sequence_orbits(p: ModelParams, seeds=None, simulation=True,
+                    sim_t_end=SIM_T_END) -> dict:
+    """Every orbit found of each sequence of the atlas: {walls: [SequenceOrbit, ...]}.
+
+    ``seeds``: orbits of a neighbouring point ({walls: orbits}, as returned here). Two
+    passes: the first from the affine, simulation, neighbour and relatives' seeds (flips and
+    mirror images of the sequences already solved), the second from every orbit of the first
+    and of all relatives (mirror images both ways), so that a mirror pair ends with mirror
+    images of the same orbits.
+    """
+    osc = oscillators(p)[0]
+    if p.F == 0.0:
+        return {w: [] for w in _SEQUENCES}
+    records = _rest_records(p, sim_t_end) if simulation else []
+    seeds = seeds or {}
+    first = {}
+    for walls in _SEQUENCES:
+        starts = affine_seeds(p, osc, walls, _PERIODS[walls])
+        for rec in records:
+            sd = record_seed(rec, walls)
+            if sd is not None:
+                starts.append(sd)
+        first[walls] = _solve_family(p, osc, walls, starts, list(seeds.get(walls, ())), first)
+    out = {}
+    for walls in _SEQUENCES:
+        out[walls] = _solve_family(p, osc, walls, [], first[walls], out, first)
+    return out
+
+
+def _solve_family(p, osc, walls, starts, extra, *solved) -> list:
+    """Orbits of ``walls`` from ``starts`` ((x_0, flights) pairs), ``extra`` (orbits) and
+    the orbits of its relatives in the dicts ``solved``, then the pitchfork seeds of the
+    symmetric orbits found."""
+    periods = _PERIODS[walls]
+    starts, extra = list(starts), list(extra)
+    for src, how in _RELATIVES.get(walls, ()):
+        for o in (q for d in solved for q in d.get(src, ())):
+            if how == "mirror":
+                extra.append(o)
+            elif o.admissible and np.min(o.eigenvalues.real) < -FLIP_FROM:
+                starts += flip_seeds(o, eps=FLIP_EPS)
+    found = solve_seeds(p, osc, walls, periods, starts, extra)
+    sym = [st for o in found if o.symmetric for st in pitchfork_seeds(o)]
+    return solve_seeds(p, osc, walls, periods, sym, found) if sym else found
+
+
+def classify_families(orbits: dict) -> dict:
+    """{family key: FamilyState} from ``sequence_orbits``."""
+    out = {}
+    for key, (walls, _, sym) in FAMILIES.items():
+        mine = [o for o in orbits.get(walls, ()) if sym is None or o.symmetric == sym]
+        adm = [o for o in mine if o.admissible]
+        out[key] = FamilyState(
+            found=bool(mine), admissible=bool(adm), stable=any(o.stable for o in adm),
+            lambda_max=min((o.lambda_max for o in adm), default=float("nan")),
+            n_orbits=len(mine))
+    return out
+
+
+def atlas_point(params: ModelParams, seeds=None, simulation=True,
+                sim_t_end=SIM_T_END) -> tuple[dict, dict]:
+    """(families, orbits): ``classify_families`` of the point and the orbits found (pass
+    them as ``seeds`` to the next point of a sweep)."""
+    if not isinstance(params, ModelParams):
+        raise ParameterError("params", params, "must be a ModelParams")
+    orbits = sequence_orbits(params, seeds, simulation, sim_t_end)
+    return classify_families(orbits), orbits
+
+
+def atlas_arrays(eta, omega, F, *, r=None, d=None, simulation=True,
+                 sim_t_end=SIM_T_END, progress=None) -> dict:
+    """The atlas over an (eta, omega) grid at one F, swept along omega for each eta with
+    the previous point's orbits as seeds: arrays (eta, omega) per family key of
+    ``admissible``, ``stable`` (bool) and ``lambda_max`` (float), under keys
+    f"{key}:admissible" etc."""
+    eta = np.asarray(eta, float)
+    omega = np.asarray(omega, float)
+    kw = {k: v for k, v in (("r", r), ("d", d)) if v is not None}
+    shape = (eta.size, omega.size)
+    out = {}
+    for key in FAMILIES:
+        out[f"{key}:admissible"] = np.zeros(shape, bool)
+        out[f"{key}:stable"] = np.zeros(shape, bool)
+        out[f"{key}:lambda_max"] = np.full(shape, np.nan)
+    for i, e in enumerate(eta):
+        prev = None
+        for j, w in enumerate(omega):
+            p = ModelParams(eta=float(e), omega=float(w), F=float(F), **kw)
+            fam, prev = atlas_point(p, prev, simulation, sim_t_end)
+            for key, st in fam.items():
+                out[f"{key}:admissible"][i, j] = st.admissible
+                out[f"{key}:stable"][i, j] = st.stable
+                out[f"{key}:lambda_max"][i, j] = st.lambda_max
+            if progress:
+                progress(i * omega.size + j + 1, eta.size * omega.size)
+    return out

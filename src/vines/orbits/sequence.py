@@ -1,0 +1,671 @@
+"""Periodic orbits of any wall sequence: fixed points of the composed impact maps.
+
+A family is named by its wall sequence and its number of forcing periods (docs/
+bifurcation.md, "Families of periodic orbits"): ``walls`` = "LLRR", ``periods`` = 1 is the
+orbit with pre-impact states x_0 .. x_{n-1} (x = (z_m', z_b', z_b, t), ``orbits.maps``) at
+walls L, L, R, R, in that order, whose maps P(walls[k] -> walls[k+1]) (cyclically) bring
+x_0 back to x_0 + (0, 0, 0, periods T). Unknown x_0; Newton on the composed map with the
+exact Jacobian J_{n-1} ... J_0 - I (the same damped iteration as ``periodic.newton_1to1``,
+which it reproduces bit for bit on "LR", 1). Admissibility flight by flight
+(``maps.admissible_kernel``), stability from the eigenvalues of J_{n-1} ... J_0.
+
+Seeds (each polished by that Newton iteration, then deduplicated):
+
+* "LR", 1: the seeds of ``periodic`` (symmetric closed form, asymmetric flight-time scan),
+  so that the 1:1 orbits are those of ``find_1to1``;
+* half-period symmetry (n even, walls[k + n/2] = opposite of walls[k]): with the flight
+  times fixed, the conditions for x_{n/2} = mirror(x_0) + (0, 0, 0, periods T / 2) are affine
+  in (z_m', z_b', z_b, sin theta_0, cos theta_0) (as in ``periodic``): closed form for
+  n = 2 (the symmetric "LR" orbits of any period), a scan of the first flight time for n = 4
+  ("LLRR");
+* short simulations (exact kernel) from a few initial states: the last occurrence of the
+  sequence in the impact record and in its mirror image (z -> -z, t -> t + T/2, a
+  trajectory as well);
+* caller-supplied seeds (``SequenceOrbit`` objects of the same sequence, e.g. from a
+  neighbouring parameter point, or (x_0, flight times) pairs).
+
+A root whose orbit repeats a shorter sequence (e.g. "LRLR", 2 on a 1:1 orbit) is not an
+orbit of this family and is dropped.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from numba import njit
+
+from ..core.exact import oscillators
+from ..core.flow import flow
+from ..core.params import ModelParams, ParameterError, check_int
+from ..core.walls import WALL_L, WALL_R, impact_velocities
+from .maps import admissible_kernel, map_kernel
+from .periodic import DEDUP_TOL, N_SCAN, SYM_TOL, _solve_into, asymmetric_seeds, symmetric_seeds
+
+WALL_CODES = {"L": WALL_L, "R": WALL_R}
+WALL_NAMES = {WALL_L: "L", WALL_R: "R"}
+MAX_IMPACTS_PER_ORBIT = 64      # longest wall sequence accepted
+MAX_PERIODS = 64                # most forcing periods accepted
+SIM_T_END = 600.0               # length of a seeding simulation
+#: initial states (z_m, z_m', z_b, z_b') of the seeding simulations (rest first)
+SIM_STATES = ((0.0, 0.0, 0.0, 0.0), (0.0, 0.0, 0.9, 0.0), (0.0, 0.5, 0.0, -0.5),
+              (0.5, 0.0, -0.4, 0.0))
+
+
+# --------------------------------------------------------------------------- names
+
+def check_walls(walls) -> str:
+    """The wall sequence as an upper-case string of L and R; ParameterError otherwise."""
+    allowed = (f"must be a sequence of 1 to {MAX_IMPACTS_PER_ORBIT} walls, each L or R "
+               "(e.g. LR, LLRR, LLR)")
+    if not isinstance(walls, str):
+        raise ParameterError("walls", walls, allowed)
+    s = walls.strip().upper()
+    if not 1 <= len(s) <= MAX_IMPACTS_PER_ORBIT or set(s) - set("LR"):
+        raise ParameterError("walls", walls, allowed)
+    return s
+
+
+def check_periods(periods) -> int:
+    return check_int("periods", periods, lo=1, hi=MAX_PERIODS)
+
+
+def mirror_walls(walls: str) -> str:
+    """L <-> R."""
+    return walls.translate(str.maketrans("LR", "RL"))
+
+
+def canonical_walls(walls: str) -> str:
+    """The rotation of the sequence that is first in alphabetical order (L before R)."""
+    return min(walls[k:] + walls[:k] for k in range(len(walls)))
+
+
+def family_name(walls: str, periods: int) -> str:
+    """Family name "WALLS/N" of the canonical rotation (docs/bifurcation.md)."""
+    return f"{canonical_walls(walls)}/{int(periods)}"
+
+
+def paper_label(walls: str, periods: int) -> str:
+    """The paper's (and ``core.regime``'s) wording: "p:q" (impacts per period on the wall
+    hit more often : on the other) for one period, "period-N" otherwise."""
+    if periods > 1:
+        return f"period-{periods}"
+    nl, nr = walls.count("L"), walls.count("R")
+    return f"{max(nl, nr)}:{min(nl, nr)}"
+
+
+def has_half_symmetry(walls: str) -> bool:
+    """True when the second half of the sequence is the mirror image of the first."""
+    n = len(walls)
+    return n % 2 == 0 and walls[n // 2:] == mirror_walls(walls[:n // 2])
+
+
+def _codes(walls: str) -> np.ndarray:
+    return np.array([WALL_CODES[c] for c in walls], dtype=np.int64)
+
+
+# --------------------------------------------------------------------------- Newton
+
+@njit(cache=True, nogil=True)
+def newton_sequence(osc, eta, r, omega, phi, walls, NT, x0, s, xs, Js, P):
+    """Newton on P_{n-1}(...P_0(x)) - x - (0, 0, 0, NT) from x0.
+
+    walls: n wall codes (flight k from walls[k] to walls[(k+1) % n]); s: flight-time guesses
+    (<= 0: first contact), overwritten with the flight times. Fills xs (n+1 states, xs[0] the
+    fixed point, xs[k+1] = P_k(xs[k])), Js (the n map Jacobians) and P (their product
+    J_{n-1} ... J_0, loop order of ``newton_1to1``). Returns the residual norm (inf on
+    failure). For n = 2 every operation is that of ``periodic.newton_1to1``.
+    """
+    n = walls.size
+    x = xs[0]
+    for i in range(4):
+        x[i] = x0[i]
+    R = np.empty(4)
+    M = np.empty((4, 4))
+    Q = np.empty((4, 4))
+    dx = np.empty(4)
+    res = math.inf
+    for it in range(40):
+        for k in range(n):
+            sk = map_kernel(osc, eta, r, omega, phi, xs[k], walls[k], walls[(k + 1) % n],
+                            s[k], xs[k + 1], Js[k])
+            if not math.isfinite(sk):
+                return math.inf
+            s[k] = sk
+        res = 0.0
+        xsc = 1.0
+        for i in range(4):
+            R[i] = xs[n, i] - x[i]
+            xsc = max(xsc, abs(x[i]))
+        R[3] -= NT
+        for i in range(4):
+            res = max(res, abs(R[i]))
+        _product(Js, P, Q)
+        if res <= 1e-13 * xsc:
+            return res
+        for i in range(4):
+            for k in range(4):
+                M[i, k] = P[i, k] - (1.0 if i == k else 0.0)
+        for i in range(4):
+            R[i] = -R[i]
+        if not _solve_into(M, R, dx):
+            return math.inf
+        fac = 1.0
+        big = max(abs(dx[0]), abs(dx[1]), abs(dx[2]))
+        if big > 1.0:
+            fac = 1.0 / big
+        T = 2.0 * math.pi / omega       # time steps of at most T/8, as newton_1to1
+        if abs(dx[3]) * fac > 0.125 * T:
+            fac = 0.125 * T / abs(dx[3])
+        for i in range(4):
+            x[i] += fac * dx[i]
+        if it > 6 and res < 1e-9 * xsc and fac == 1.0:
+            if max(abs(dx[0]), abs(dx[1]), abs(dx[2]), abs(dx[3])) <= 1e-13 * xsc:
+                return res
+    return res if res <= 1e-10 else math.inf
+
+
+@njit(cache=True, nogil=True)
+def _product(Js, P, Q):
+    """P = J_{n-1} ... J_0 (for n = 2 the sum order of ``newton_1to1``'s J2 J1)."""
+    n = Js.shape[0]
+    for i in range(4):
+        for k in range(4):
+            P[i, k] = Js[0, i, k]
+    for j in range(1, n):
+        for i in range(4):
+            for k in range(4):
+                acc = 0.0
+                for m in range(4):
+                    acc += Js[j, i, m] * P[m, k]
+                Q[i, k] = acc
+        for i in range(4):
+            for k in range(4):
+                P[i, k] = Q[i, k]
+
+
+# --------------------------------------------------------------------------- affine seeds
+
+@njit(cache=True, nogil=True)
+def _chain(osc, eta, r, omega, u, w, s, m, sign, E):
+    """Residuals of m flights with fixed times s from u = (z_m', z_b', z_b, sin, cos) at
+    wall w[0]: arrivals at w[1], ..., w[m-1], then sign * w[0]; closure of (z_m', z_b', z_b)
+    on sign times the start (sign -1: mirror image). Affine in u; m + 3 residuals."""
+    vm, vb, zb, sth, cth = u[0], u[1], u[2], u[3], u[4]
+    for k in range(m):
+        wall = w[k]
+        target = w[k + 1] if k + 1 < m else sign * w[0]
+        vp, vbp = impact_velocities(eta, r, vm, vb)
+        z, v, _, _, _ = flow(osc, zb + wall, vp, sth, cth, s[k])
+        zb = zb + vbp * s[k]
+        E[k] = z - zb - target
+        c = math.cos(omega * s[k])
+        sn = math.sin(omega * s[k])
+        sth, cth = sth * c + cth * sn, cth * c - sth * sn
+        vm, vb = v, vbp
+    E[m] = vm - sign * u[0]
+    E[m + 1] = vb - sign * u[1]
+    E[m + 2] = zb - sign * u[2]
+
+
+@njit(cache=True, nogil=True)
+def _affine_chain(osc, eta, r, omega, w, s, m, sign, A, b):
+    """E(u) = A u + b for ``_chain`` (A: (m+3) x 5)."""
+    u = np.zeros(5)
+    E = np.empty(m + 3)
+    _chain(osc, eta, r, omega, u, w, s, m, sign, E)
+    for i in range(m + 3):
+        b[i] = E[i]
+    for k in range(5):
+        u[:] = 0.0
+        u[k] = 1.0
+        _chain(osc, eta, r, omega, u, w, s, m, sign, E)
+        for i in range(m + 3):
+            A[i, k] = E[i] - b[i]
+
+
+@njit(cache=True, nogil=True)
+def _circle2(osc, eta, r, omega, w, s0, S, sign, u):
+    """sin^2 + cos^2 - 1 of the affine solution of two flights s0, S - s0 (nan if singular)."""
+    s = np.empty(2)
+    s[0], s[1] = s0, S - s0
+    A = np.empty((5, 5))
+    b = np.empty(5)
+    _affine_chain(osc, eta, r, omega, w, s, 2, sign, A, b)
+    for i in range(5):
+        b[i] = -b[i]
+    if not _solve_into(A, b, u):
+        return math.nan
+    return u[3] * u[3] + u[4] * u[4] - 1.0
+
+
+@njit(cache=True, nogil=True)
+def scan_seeds(osc, eta, r, omega, w, S, sign, n_scan, out):
+    """Two-flight seeds (z_m', z_b', z_b, theta_0, s0) from a scan of s0 over (0, S) with
+    sign changes of the circle residual refined by bisection; returns how many."""
+    u = np.empty(5)
+    n = 0
+    h_prev = math.nan
+    s_prev = 0.0
+    for k in range(n_scan):
+        sk = S * (k + 0.5) / n_scan
+        h = _circle2(osc, eta, r, omega, w, sk, S, sign, u)
+        if math.isfinite(h) and math.isfinite(h_prev) and (h > 0.0) != (h_prev > 0.0) \
+                and n < out.shape[0]:
+            a, fa, bb = s_prev, h_prev, sk
+            for _ in range(50):
+                mid = 0.5 * (a + bb)
+                fm = _circle2(osc, eta, r, omega, w, mid, S, sign, u)
+                if not math.isfinite(fm):
+                    break
+                if (fm > 0.0) == (fa > 0.0):
+                    a, fa = mid, fm
+                else:
+                    bb = mid
+                if bb - a < 1e-13 * S:
+                    break
+            mid = 0.5 * (a + bb)
+            fm = _circle2(osc, eta, r, omega, w, mid, S, sign, u)
+            if math.isfinite(fm) and abs(fm) < 1e-3:       # not a pole
+                out[n, 0], out[n, 1], out[n, 2] = u[0], u[1], u[2]
+                out[n, 3] = math.atan2(u[3], u[4])
+                out[n, 4] = mid
+                n += 1
+        h_prev = h
+        s_prev = sk
+    return n
+
+
+def _closed_form_seeds(osc, eta, r, omega, w, S, sign) -> list:
+    """One flight of time S: 4 affine conditions in 5 unknowns, a line meeting the unit
+    circle: 0 or 2 seeds (z_m', z_b', z_b, theta_0)."""
+    A = np.empty((4, 5))
+    b = np.empty(4)
+    _affine_chain(osc, eta, r, omega, w, np.array([S]), 1, sign, A, b)
+    if not (np.all(np.isfinite(A)) and np.all(np.isfinite(b))):
+        return []
+    _, sv, Vt = np.linalg.svd(A)
+    if sv[-1] <= 1e-14 * sv[0]:
+        return []
+    q = Vt[-1]
+    p = np.linalg.lstsq(A, -b, rcond=None)[0]
+    a2 = q[3] * q[3] + q[4] * q[4]
+    a1 = 2.0 * (p[3] * q[3] + p[4] * q[4])
+    a0 = p[3] * p[3] + p[4] * p[4] - 1.0
+    disc = a1 * a1 - 4.0 * a2 * a0
+    if a2 == 0.0 or disc < 0.0:
+        return []
+    out = []
+    for lam in ((-a1 - math.sqrt(disc)) / (2 * a2), (-a1 + math.sqrt(disc)) / (2 * a2)):
+        u = p + lam * q
+        out.append((u[0], u[1], u[2], math.atan2(u[3], u[4])))
+    return out
+
+
+# --------------------------------------------------------------------------- orbits
+
+@dataclass
+class SequenceOrbit:
+    """One periodic orbit of a wall sequence and its stability.
+
+    walls         the wall sequence ("LLRR"), impact k at wall walls[k]
+    periods       forcing periods of the orbit (its period is periods * T)
+    states        (n, 4) pre-impact states x_k = (z_m', z_b', z_b, t), t_0 in [0, T)
+    flight_times  n flight times, flight k from impact k to impact k+1 (cyclically)
+    symmetric     invariant under the mirror z -> -z with t -> t + periods T / 2 (flight k
+                  as long as flight k + n/2, walls opposite; only for odd periods)
+    eigenvalues   of J_{n-1} ... J_0 (the Jacobians of the maps along the orbit);
+                  lambda_max = max |eigenvalue|
+    admissible    every flight is a genuine impact-to-impact flight (``maps``)
+    stable        admissible and lambda_max < 1
+    dw            relative velocity w' = z_m' - z_b' just before each impact
+    phases        impact phases mod(omega t + phi, 2 pi)
+    """
+
+    walls: str
+    periods: int
+    states: np.ndarray
+    flight_times: np.ndarray
+    symmetric: bool
+    admissible: bool
+    eigenvalues: np.ndarray
+    lambda_max: float
+    stable: bool
+    dw: np.ndarray
+    phases: np.ndarray
+    residual: float = 0.0
+    jacobians: np.ndarray = field(default=None, repr=False)
+    params: ModelParams | None = field(default=None, repr=False)
+
+    @property
+    def family(self) -> str:
+        return family_name(self.walls, self.periods)
+
+    @property
+    def paper_label(self) -> str:
+        return paper_label(self.walls, self.periods)
+
+    def to_dict(self) -> dict:
+        return {
+            "walls": self.walls,
+            "periods": int(self.periods),
+            "family": self.family,
+            "paper_label": self.paper_label,
+            "symmetric": bool(self.symmetric),
+            "admissible": bool(self.admissible),
+            "stable": bool(self.stable),
+            "lambda_max": float(self.lambda_max),
+            "eigenvalues": [[float(z.real), float(z.imag)] for z in self.eigenvalues],
+            "dw": [float(v) for v in self.dw],
+            "phases": [float(v) for v in self.phases],
+            "flight_times": [float(v) for v in self.flight_times],
+            "states": [[float(v) for v in x] for x in self.states],
+        }
+
+
+def monodromy(jacobians) -> np.ndarray:
+    """J_{n-1} ... J_0 by numpy matmul (for n = 2: J2 @ J1 as ``periodic._orbit``)."""
+    P = jacobians[0]
+    for J in jacobians[1:]:
+        P = J @ P
+    return P
+
+
+def is_symmetric(walls: str, periods: int, flight_times) -> bool:
+    n = len(walls)
+    if periods % 2 == 0 or not has_half_symmetry(walls):
+        return False
+    h = n // 2
+    return bool(np.all(np.abs(np.asarray(flight_times[:h]) - flight_times[h:]) <= SYM_TOL))
+
+
+def _orbit(p: ModelParams, osc, walls: str, periods: int, codes, xs, Js, fl,
+           res) -> SequenceOrbit:
+    n = len(walls)
+    adm = all(admissible_kernel(osc, p.eta, p.r, p.omega, p.phi, xs[k], codes[k],
+                                codes[(k + 1) % n], fl[k]) for k in range(n))
+    ev = np.linalg.eigvals(monodromy(list(Js)))
+    ev = ev[np.argsort(-np.abs(ev))]
+    lam = float(np.hypot(ev.real, ev.imag).max())
+    states = xs[:n].copy()
+    return SequenceOrbit(
+        walls=walls, periods=periods, states=states, flight_times=fl.copy(),
+        symmetric=is_symmetric(walls, periods, fl), admissible=bool(adm), eigenvalues=ev,
+        lambda_max=lam, stable=bool(adm and lam < 1.0), dw=states[:, 0] - states[:, 1],
+        phases=np.mod(p.omega * states[:, 3] + p.phi, 2.0 * math.pi), residual=float(res),
+        jacobians=Js.copy(), params=p)
+
+
+def solve_sequence(p: ModelParams, walls: str, periods: int, x0, flight_times=None,
+                   osc=None) -> SequenceOrbit | None:
+    """Newton from x0 (pre-impact state at walls[0]) with optional flight-time guesses.
+
+    The orbit found (any admissibility), or None when Newton fails, a flight time is not
+    positive, the flights do not add up to periods T, or the orbit repeats a shorter
+    sequence.
+    """
+    if osc is None:
+        osc = oscillators(p)[0]
+    n = len(walls)
+    codes = _codes(walls)
+    T = p.period
+    NT = periods * T
+    s = np.full(n, -1.0) if flight_times is None else np.array(flight_times, dtype=float)
+    xs = np.empty((n + 1, 4))
+    Js = np.empty((n, 4, 4))
+    P = np.empty((4, 4))
+    x0 = np.asarray(x0, dtype=float).copy()
+    res = newton_sequence(osc, p.eta, p.r, p.omega, p.phi, codes, NT, x0, s, xs, Js, P)
+    if not math.isfinite(res) or not np.all(np.isfinite(xs[0])):
+        return None
+    if not np.all(s > 0.0) or abs(s.sum() - NT) > 1e-8 * (1.0 + NT):
+        return None
+    k = math.floor(xs[0, 3] / T)
+    if k != 0:
+        xs[:, 3] -= k * T
+    if not _primitive(walls, periods, xs, s, T):
+        return None
+    return _orbit(p, osc, walls, periods, codes, xs, Js, s, res)
+
+
+def _primitive(walls, periods, xs, fl, T) -> bool:
+    """False when the orbit repeats itself after m < n impacts (a shorter family)."""
+    n = len(walls)
+    for m in range(1, n):
+        if n % m or walls[m:] + walls[:m] != walls:
+            continue
+        tau = float(np.sum(fl[:m]))
+        j = round(tau / T)
+        if j >= 1 and abs(tau - j * T) <= 1e-6 * (1.0 + T) and np.all(
+                np.abs(xs[m, :3] - xs[0, :3]) <= 1e-6 * (1.0 + np.abs(xs[0, :3]))):
+            return False
+    return True
+
+
+def same_orbit(a: SequenceOrbit, b: SequenceOrbit, T: float) -> bool:
+    """a and b are the same orbit (b possibly started at another impact of the same
+    wall pattern), to DEDUP_TOL."""
+    if a.walls != b.walls or a.periods != b.periods:
+        return False
+    n = len(a.walls)
+    for k in range(n):
+        if b.walls[k:] + b.walls[:k] != a.walls:
+            continue
+        dt = abs(a.states[0, 3] - b.states[k, 3]) % T
+        dt = min(dt, T - dt)
+        if dt <= DEDUP_TOL * (1.0 + T) and np.all(
+                np.abs(a.states[0, :3] - b.states[k, :3])
+                <= DEDUP_TOL * (1.0 + np.abs(a.states[0, :3]))):
+            return True
+    return False
+
+
+def dedup(orbits, T) -> list:
+    out = []
+    for o in orbits:
+        if o is not None and not any(same_orbit(o, q, T) for q in out):
+            out.append(o)
+    return out
+
+
+# --------------------------------------------------------------------------- seeds
+
+def _theta_to_t(theta, p: ModelParams) -> float:
+    return float(np.mod((theta - p.phi) / p.omega, p.period))
+
+
+def _seeds_1to1(p: ModelParams, osc) -> list:
+    """The built-in seeds of ``periodic.seed_orbits`` (same order), as (x_0, flights)."""
+    T = p.period
+    out = [([vm, vb, zb, _theta_to_t(th, p)], [0.5 * T, 0.5 * T])
+           for vm, vb, zb, th in symmetric_seeds(osc, p.eta, p.r, p.omega)]
+    buf = np.empty((16, 5))
+    n = asymmetric_seeds(osc, p.eta, p.r, p.omega, N_SCAN, buf)
+    out += [([vm, vb, zb, _theta_to_t(th, p)], [s1, T - s1]) for vm, vb, zb, th, s1 in buf[:n]]
+    return out
+
+
+def affine_seeds(p: ModelParams, osc, walls: str, periods: int) -> list:
+    """Seeds (x_0, flight times) from the affine forms (module docstring): the symmetric
+    ansatz when the sequence has the half symmetry and periods is odd (closed form for two
+    impacts, a scan for four), the full two-flight scan for two impacts."""
+    if (walls, periods) == ("LR", 1):
+        return _seeds_1to1(p, osc)
+    n = len(walls)
+    NT = periods * p.period
+    codes = _codes(walls)
+    out = []
+    if has_half_symmetry(walls) and periods % 2 == 1:
+        h = n // 2
+        S = 0.5 * NT
+        if h == 1:
+            for vm, vb, zb, th in _closed_form_seeds(osc, p.eta, p.r, p.omega, codes, S, -1):
+                out.append(([vm, vb, zb, _theta_to_t(th, p)], [S, S]))
+        elif h == 2:
+            out += _scan(p, osc, codes, S, -1, lambda s0: [s0, S - s0, s0, S - s0])
+    if n == 2:
+        out += _scan(p, osc, codes, NT, 1, lambda s0: [s0, NT - s0])
+    elif n == 1:
+        for vm, vb, zb, th in _closed_form_seeds(osc, p.eta, p.r, p.omega, codes, NT, 1):
+            out.append(([vm, vb, zb, _theta_to_t(th, p)], [NT]))
+    return out
+
+
+def _scan(p, osc, codes, S, sign, flights) -> list:
+    buf = np.empty((16, 5))
+    k = scan_seeds(osc, p.eta, p.r, p.omega, codes, S, sign, N_SCAN, buf)
+    return [([vm, vb, zb, _theta_to_t(th, p)], flights(s0)) for vm, vb, zb, th, s0 in buf[:k]]
+
+
+def _mirror_record(imp, T) -> dict:
+    return {"wall": -imp["wall"], "v_m": -imp["v_m"], "v_b": -imp["v_b"],
+            "z_b": -imp["z_b"], "t": imp["t"] + 0.5 * T}
+
+
+def record_seed(imp, walls: str):
+    """(x_0, flight times) at the last occurrence of the sequence (and its first wall
+    again) in an impact record (fields wall, v_m, v_b, z_b, t), or None."""
+    n = len(walls)
+    text = "".join(WALL_NAMES.get(int(w), "?") for w in imp["wall"])
+    k = text.rfind(walls + walls[0])
+    if k < 0:
+        return None
+    t = imp["t"]
+    x0 = [imp["v_m"][k], imp["v_b"][k], imp["z_b"][k], t[k]]
+    return x0, list(np.diff(t[k:k + n + 1]))
+
+
+def simulation_seeds(p: ModelParams, walls: str, states=SIM_STATES,
+                     t_end=SIM_T_END) -> list:
+    """Seeds from short exact simulations from ``states`` (and their mirror images)."""
+    from ..core.simulation import simulate
+    out = []
+    for st in states:
+        try:
+            res = simulate(p.eta, p.omega, p.F, r=p.r, d=p.d, phi=p.phi, t_end=t_end,
+                           t_transient=0.5 * t_end, max_impacts=200_000, state0=st)
+        except (ParameterError, RuntimeError):     # pragma: no cover - a seed is optional
+            continue
+        for rec in (res.impacts, _mirror_record(res.impacts, p.period)):
+            sd = record_seed(rec, walls)
+            if sd is not None:
+                out.append(sd)
+    return out
+
+
+def _sort_key(o: SequenceOrbit):
+    return (not o.admissible, not o.stable, not o.symmetric, o.lambda_max)
+
+
+def find_sequence(params: ModelParams, walls: str, periods: int = 1, *, seeds=None,
+                  simulation=True, sim_states=SIM_STATES) -> list[SequenceOrbit]:
+    """Every distinct orbit of the sequence found (admissible or not), stable admissible
+    ones first (the order of ``find_1to1``).
+
+    ``seeds``: extra starting points, each a ``SequenceOrbit`` of the same sequence (or of
+    its mirror image, mirrored) or a pair (x_0, flight times). ``simulation``: also seed from
+    short simulations from ``sim_states`` (for "LR", 1: from rest only, as ``find_1to1``).
+    Raises ParameterError on a bad ``walls`` or ``periods``.
+    """
+    walls = check_walls(walls)
+    periods = check_periods(periods)
+    p = params
+    osc = oscillators(p)[0]
+    if p.F == 0.0:
+        return []
+    starts = affine_seeds(p, osc, walls, periods)
+    if simulation:
+        if (walls, periods) == ("LR", 1):
+            from .periodic import _simulation_seed
+            found_sim = _simulation_seed(p, osc)
+            starts += [(o.x_L, o.flight_times) for o in found_sim if o is not None]
+        else:
+            starts += simulation_seeds(p, walls, sim_states)
+    return solve_seeds(p, osc, walls, periods, starts, seeds)
+
+
+def solve_seeds(p: ModelParams, osc, walls: str, periods: int, starts, seeds=()) -> list:
+    """Newton from every (x_0, flights) in ``starts`` and every seed of ``seeds`` (see
+    ``find_sequence``); distinct orbits, stable admissible ones first."""
+    starts = list(starts)
+    for sd in seeds or ():
+        starts += _user_seed(sd, walls, p.period)
+    found = [solve_sequence(p, walls, periods, x0, fl, osc) for x0, fl in starts]
+    out = dedup(found, p.period)
+    out.sort(key=_sort_key)
+    return out
+
+
+def _user_seed(sd, walls: str, T: float) -> list:
+    """(x_0, flights) from a seed: a pair, or an orbit of the same sequence or of its mirror
+    image, started at any impact whose rotation of the sequence is ``walls``."""
+    if not isinstance(sd, SequenceOrbit):
+        x0, fl = sd
+        return [(x0, fl)]
+    out = []
+    n = len(sd.walls)
+    for mirrored, w in ((False, sd.walls), (True, mirror_walls(sd.walls))):
+        for k in range(n):
+            if w[k:] + w[:k] != walls:
+                continue
+            x = np.array(sd.states[k], dtype=float)
+            if mirrored:
+                x = np.array([-x[0], -x[1], -x[2], x[3] + 0.5 * T])
+            out.append((x, np.roll(sd.flight_times, -k)))
+    return out
+
+
+# --------------------------------------------------------------------------- flips, states
+
+def _real_eigenvector(orbit: SequenceOrbit, negative: bool):
+    """Unit eigenvector of the most negative (negative) or largest positive real eigenvalue
+    of the orbit's monodromy matrix, or None."""
+    ev, V = np.linalg.eig(monodromy(list(orbit.jacobians)))
+    real = [k for k in range(4) if abs(ev[k].imag) <= 1e-9 * max(1.0, abs(ev[k]))
+            and (ev[k].real < 0.0) == negative and ev[k].real != 0.0]
+    if not real:
+        return None
+    k = min(real, key=lambda j: ev[j].real) if negative else max(real, key=lambda j: ev[j].real)
+    return V[:, k].real / np.linalg.norm(V[:, k].real)
+
+
+def flip_seeds(orbit: SequenceOrbit, eps=(1e-3, 1e-2, 3e-2)) -> list:
+    """Seeds of the period-doubled sequence (walls twice, 2 periods) near ``orbit``: its
+    start displaced by +- eps along the eigenvector of its most negative real eigenvalue
+    (a flip point of the family gives birth to that branch). Empty without such an
+    eigenvalue."""
+    v = _real_eigenvector(orbit, True)
+    if v is None:
+        return []
+    fl = np.concatenate([orbit.flight_times, orbit.flight_times])
+    return [(orbit.states[0] + sg * e * v, fl) for e in eps for sg in (1.0, -1.0)]
+
+
+def pitchfork_seeds(orbit: SequenceOrbit, eps=(1e-2, 5e-2)) -> list:
+    """Seeds of asymmetric orbits of the same sequence near a symmetric ``orbit``: its start
+    displaced by +- eps along the eigenvector of its largest positive real eigenvalue (a
+    symmetry-breaking point gives birth to the asymmetric pair there)."""
+    v = _real_eigenvector(orbit, False)
+    if v is None:
+        return []
+    return [(orbit.states[0] + sg * e * v, orbit.flight_times) for e in eps for sg in (1.0, -1.0)]
+
+
+def state_at(orbit: SequenceOrbit, t: float) -> np.ndarray:
+    """State (z_m, z_m', z_b, z_b') of the orbit at absolute time t (any t: the orbit is
+    periodic with period periods T), by the closed-form flight from the impact before t."""
+    p = orbit.params
+    osc = oscillators(p)[0]
+    n = len(orbit.walls)
+    P = orbit.periods * p.period
+    t0 = orbit.states[0, 3]
+    tau = (t - t0) % P
+    k = int(np.searchsorted(np.cumsum(orbit.flight_times), tau, side="right"))
+    k = min(k, n - 1)
+    x = orbit.states[k]
+    s = tau - (x[3] - t0)
+    vp, vbp = impact_velocities(p.eta, p.r, x[0], x[1])
+    th0 = p.omega * x[3] + p.phi
+    z, v, _, _, _ = flow(osc, x[2] + WALL_CODES[orbit.walls[k]], vp, math.sin(th0),
+                         math.cos(th0), s)
+    return np.array([z, v, x[2] + vbp * s, vbp])
