@@ -101,7 +101,7 @@ def test_LR_one_period_is_the_1to1_solver(eta, omega, F, simulation):
     ref = find_1to1(p, None, None, simulation=simulation)
     got = find_sequence(p, "LR", 1, simulation=simulation)
     assert len(got) == len(ref) > 0
-    for o, q in zip(got, ref):
+    for o, q in zip(got, ref, strict=True):
         assert np.array_equal(o.states[0], q.x_L) and np.array_equal(o.states[1], q.x_R)
         assert np.array_equal(o.flight_times, q.flight_times)
         assert np.array_equal(o.eigenvalues, q.eigenvalues)

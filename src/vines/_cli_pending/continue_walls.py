@@ -13,8 +13,14 @@ import argparse
 import contextlib
 import sys
 
-from ..core.params import (MAX_POINTS_MAX, ModelParams, ParameterError, check_int, check_real,
-                           check_step_points)
+from ..core.params import (
+    MAX_POINTS_MAX,
+    ModelParams,
+    ParameterError,
+    check_int,
+    check_real,
+    check_step_points,
+)
 from ..orbits.sequence import check_periods, check_walls
 from .periodic_walls import PERIODS_ALLOWED, WALLS_ALLOWED
 

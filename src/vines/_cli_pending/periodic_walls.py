@@ -12,7 +12,7 @@ import contextlib
 import sys
 
 from ..core.params import ModelParams
-from ..orbits.sequence import (MAX_IMPACTS_PER_ORBIT, MAX_PERIODS, check_periods, check_walls)
+from ..orbits.sequence import MAX_IMPACTS_PER_ORBIT, MAX_PERIODS, check_periods, check_walls
 
 WALLS_ALLOWED = f"1 to {MAX_IMPACTS_PER_ORBIT} letters L or R, e.g. LR, LLRR, LLR, RLRL"
 PERIODS_ALLOWED = f"an integer 1 <= N <= {MAX_PERIODS}"

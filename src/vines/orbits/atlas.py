@@ -26,8 +26,16 @@ import numpy as np
 
 from ..core.exact import oscillators
 from ..core.params import ModelParams, ParameterError
-from .sequence import (SIM_T_END, _mirror_record, affine_seeds, flip_seeds, paper_label,
-                       pitchfork_seeds, record_seed, solve_seeds)
+from .sequence import (
+    SIM_T_END,
+    _mirror_record,
+    affine_seeds,
+    flip_seeds,
+    paper_label,
+    pitchfork_seeds,
+    record_seed,
+    solve_seeds,
+)
 
 #: family key -> (walls, periods, symmetry: True symmetric only, False asymmetric only,
 #: None both); the keys are the family names of docs/bifurcation.md

@@ -159,9 +159,9 @@ def newton_sequence(osc, eta, r, omega, phi, walls, NT, x0, s, xs, Js, P):
             fac = 0.125 * T / abs(dx[3])
         for i in range(4):
             x[i] += fac * dx[i]
-        if it > 6 and res < 1e-9 * xsc and fac == 1.0:
-            if max(abs(dx[0]), abs(dx[1]), abs(dx[2]), abs(dx[3])) <= 1e-13 * xsc:
-                return res
+        if (it > 6 and res < 1e-9 * xsc and fac == 1.0
+                and max(abs(dx[0]), abs(dx[1]), abs(dx[2]), abs(dx[3])) <= 1e-13 * xsc):
+            return res
     return res if res <= 1e-10 else math.inf
 
 

@@ -32,12 +32,27 @@ import numpy as np
 from numba import njit
 
 from ..core.exact import oscillators
-from ..core.params import (MAX_INADMISSIBLE_DEFAULT, MAX_POINTS_MAX, PARAM_NAMES, ModelParams,
-                           ParameterError, check_int, check_param, check_real)
+from ..core.params import (
+    MAX_INADMISSIBLE_DEFAULT,
+    MAX_POINTS_MAX,
+    PARAM_NAMES,
+    ModelParams,
+    ParameterError,
+    check_int,
+    check_param,
+    check_real,
+)
 from .arclength import Tracer
 from .maps import map_kernel
-from .sequence import (SequenceOrbit, _codes, check_periods, check_walls, find_sequence,
-                       flip_seeds, solve_sequence)
+from .sequence import (
+    SequenceOrbit,
+    _codes,
+    check_periods,
+    check_walls,
+    find_sequence,
+    flip_seeds,
+    solve_sequence,
+)
 
 FLIP_NEAR = 1e-3        # a located flip needs an eigenvalue this close to -1 (not a pole)
 MAX_POINTS_DEFAULT = 2000
