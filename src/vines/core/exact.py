@@ -49,6 +49,16 @@ class Trajectory:
         return out
 
 
+def kernel_params(osc, p: ModelParams, st: SolverSettings, t_end: float, t_tr: float,
+                  record_from: float) -> eng.KernelParams:
+    """The kernel's ``KernelParams`` of a run of model p with settings st over [t0, t_end]
+    (window from t_tr, records from record_from); osc = ``oscillators(p)``."""
+    osc_f, osc_s = osc
+    return eng.KernelParams(osc_f, osc_s, float(p.eta), float(p.r), float(p.omega),
+                            float(p.phi), float(t_end), float(t_tr), float(st.v_stick),
+                            float(st.root_tol), int(st.max_impacts), float(record_from))
+
+
 class KernelRun:
     """One kernel trajectory: its state (cur, acc, cnt) and growing impact/segment buffers.
 
@@ -60,6 +70,7 @@ class KernelRun:
                  t_end: float, t_tr: float, record_from: float, mode: int = 0):
         self.p, self.st, self.osc = p, st, osc
         self.t_end, self.t_tr, self.record_from = t_end, t_tr, record_from
+        self.kp = kernel_params(osc, p, st, t_end, t_tr, record_from)
         self.cur = np.array([t0, state0[0], state0[1], state0[2], state0[3], mode, 0.0])
         self.acc = np.zeros(eng.N_ACC)
         self.acc[eng.A_XMAX_ALL] = abs(state0[0])
@@ -71,13 +82,11 @@ class KernelRun:
         self.seg = np.empty((2 * cap + 16, 6))
 
     def run(self, fn=eng.run_kernel, *extra) -> int:
-        """Call ``fn(kernel arguments, imp, seg, *extra)`` (run_kernel, run_kernel_until,
+        """Call ``fn(kp, (cur, acc, cnt), imp, seg, *extra)`` (run_kernel, run_kernel_until,
         shortcut.run_detect) until it returns anything but RC_BUFFER_FULL; grows buffers."""
-        p, st = self.p, self.st
+        st = self.st
         while True:
-            rc = fn(*self.osc, p.eta, p.r, p.omega, p.phi, self.t_end, self.t_tr, st.v_stick,
-                    st.root_tol, st.max_impacts, self.record_from, self.cur, self.acc,
-                    self.cnt, self.imp, self.seg, *extra)
+            rc = fn(self.kp, (self.cur, self.acc, self.cnt), self.imp, self.seg, *extra)
             if rc != eng.RC_BUFFER_FULL:
                 return rc
             if self.seg.shape[0] > 4 * st.max_impacts + 100_000:
@@ -148,7 +157,7 @@ def _run_with_shortcut(run: KernelRun) -> RawRun:
     sec[eng.S_TREACHED] = -math.inf
     hist, dr, ist, fst = det
     while True:
-        rc = run.run(sc.run_detect, sec, *det)
+        rc = run.run(sc.run_detect, sec, det)
         if rc == sc.RC_PERIODIC:
             orbit = _detected_orbit(run, det)
         elif rc == sc.RC_AT_REST:
