@@ -678,32 +678,30 @@ def _stick_speed_floor(osc_f, g, z, zb, b1, dvm):
 
 
 @njit(cache=True, nogil=True, inline="always")
-def _impact(ks, imp, kp, sg, pt, end, wall):
-    """Impact at ``wall`` at the point pt = (s, z, z', z'', z''', b1) of segment ``sg``,
-    end = (t_new, z_b, z_b') there (``_close_segment``); ks = (cur, acc, cnt), kp the run's
-    ``KernelParams``.
+def _impact(cur, acc, cnt, imp, osc_f, law, sg, hit):
+    """Impact hit = (s, t_new, z_m, z_m', z_b', b1, wall) at local time s of segment ``sg``
+    (z_m, z_m', b1 from the closed form there, z_b' the ball's velocity), with
+    law = (eta, r, v_stick, record_from).
 
     Records it (pre-impact state, ball placed exactly on the wall) from record_from on,
     applies the impact law and sets ``cur`` to the next segment: stuck on ``wall`` when
     the rebound is below max(v_stick, ``_stick_speed_floor``) and the free LO acceleration
     presses the ball on the wall, else free flight.
     """
-    cur, acc, cnt = ks
-    s, z, v, _, _, b1 = pt
-    t_new, _, vb = end
-    osc_f, eta = kp.osc_f, kp.eta
+    eta, r, v_stick, record_from = law
+    s, t_new, z, v, vb, b1, wall = hit
     zb_imp = z - wall
-    if t_new >= kp.record_from:
+    if t_new >= record_from:
         _record_row(imp, cnt, C_NIMP_REC, (t_new, z, v, zb_imp, vb, wall))
     cnt[C_NIMP_TOTAL] += 1
     if wall == WALL_L:
         cnt[C_NIMP_L] += 1
-    vm_p, vb_p = impact_velocities(eta, kp.r, v, vb)      # Newton's law, restitution r
+    vm_p, vb_p = impact_velocities(eta, r, v, vb)      # Newton's law, restitution r
     mode_new = MODE_FREE
     vc = _common_velocity(eta, v, vb)
     g = forcing(osc_f, sg.sth0, sg.cth0, s) - osc_f[I_D] * vc - z    # free LO acceleration
     v_floor = _stick_speed_floor(osc_f, g, z, zb_imp, b1, abs(vm_p - v))
-    if abs(vm_p - vb_p) <= max(kp.v_stick, v_floor) and wall * g > 0.0:
+    if abs(vm_p - vb_p) <= max(v_stick, v_floor) and wall * g > 0.0:
         mode_new = wall
         vm_p = vc
         vb_p = vc
@@ -743,9 +741,11 @@ def _snapshot(sec, cur, acc, cnt, t_reached):
 
 
 @njit(cache=True, nogil=True, inline="always")
-def _next_segment(kp, cur, cnt, seg):
+def _next_segment(cur, cnt, seg, times):
     """The ``Segment`` starting at ``cur`` (recorded in ``seg`` from record_from on, unless
-    it resumes after a pause) and the step it starts from (> 1: resumed)."""
+    it resumes after a pause) and the step it starts from (> 1: resumed);
+    times = (omega, phi, t_tr, record_from)."""
+    omega, phi, t_tr, record_from = times
     t0 = cur[CUR_T]
     zm0, vm0, zb0, vb0 = cur[CUR_ZM], cur[CUR_VM], cur[CUR_ZB], cur[CUR_VB]
     mode = int(cur[CUR_MODE])
@@ -754,11 +754,11 @@ def _next_segment(kp, cur, cnt, seg):
     step0 = cnt[C_SEG_STEP]               # > 0: resume a segment interrupted by a pause
     if step0 == 0:
         step0 = 1
-        if t0 >= kp.record_from:
+        if t0 >= record_from:
             _record_row(seg, cnt, C_NSEG_REC, (t0, zm0, vm0, zb0, vb0, mode))
     cnt[C_SEG_STEP] = 0
-    th0 = kp.omega * t0 + kp.phi
-    sg = Segment(mode, released, t0 >= kp.t_tr, t0, zm0, vm0, zb0, vb0, math.sin(th0),
+    th0 = omega * t0 + phi
+    sg = Segment(mode, released, t0 >= t_tr, t0, zm0, vm0, zb0, vb0, math.sin(th0),
                  math.cos(th0))
     return sg, step0
 
@@ -790,7 +790,10 @@ def run_kernel_until(kp, ks, imp, seg, t_pause, sec):
     with exactly the numbers of an uninterrupted run: pausing never changes the trajectory.
     """
     cur, acc, cnt = ks
-    t_end = kp.t_end
+    osc_f, osc_s = kp.osc_f, kp.osc_s
+    eta, r, omega, phi, t_end, t_tr, v_stick, root_tol, max_impacts, record_from = kp[2:]
+    law = (eta, r, v_stick, record_from)
+    times = (omega, phi, t_tr, record_from)
     while True:
         t0 = cur[CUR_T]
         if cnt[C_NZERO] > 1000:
@@ -799,13 +802,13 @@ def run_kernel_until(kp, ks, imp, seg, t_pause, sec):
             return RC_DONE
         if cnt[C_NSEG_REC] >= seg.shape[0] or cnt[C_NIMP_REC] >= imp.shape[0]:
             return RC_BUFFER_FULL
-        sg, step0 = _next_segment(kp, cur, cnt, seg)
-        osc = kp.osc_f if sg.mode == MODE_FREE else kp.osc_s
+        sg, step0 = _next_segment(cur, cnt, seg, times)
+        osc = osc_f if sg.mode == MODE_FREE else osc_s
         s_stop = t_end - t0
-        if t0 < kp.t_tr:
-            s_stop = min(s_stop, kp.t_tr - t0)
+        if t0 < t_tr:
+            s_stop = min(s_stop, t_tr - t0)
         event, wall, pt, gap, closing, steps = _advance_segment(
-            osc, sg, s_stop, kp.root_tol, acc, step0, t_pause - t0)
+            osc, sg, s_stop, root_tol, acc, step0, t_pause - t0)
         if event == EV_PAUSE:
             _snapshot(sec, cur, acc, cnt, t0 + pt[0])
             acc[A_SEG_S], acc[A_SEG_Z], acc[A_SEG_V], acc[A_SEG_A], acc[A_SEG_J], \
@@ -833,10 +836,11 @@ def run_kernel_until(kp, ks, imp, seg, t_pause, sec):
         elif event == EV_RELEASE:
             _start_release(cur, t_new, pt[1], pt[2], sg.mode)
         elif event == EV_STICK:
-            _start_sticking(cur, acc, kp.eta, t_new, pt[1], pt[2], vb_end, wall)
+            _start_sticking(cur, acc, eta, t_new, pt[1], pt[2], vb_end, wall)
         else:
-            _impact(ks, imp, kp, sg, pt, end, wall)
-            if cnt[C_NIMP_TOTAL] >= kp.max_impacts:
+            _impact(cur, acc, cnt, imp, osc_f, law, sg,
+                    (pt[0], t_new, pt[1], pt[2], vb_end, pt[5], wall))
+            if cnt[C_NIMP_TOTAL] >= max_impacts:
                 return RC_MAX_IMPACTS
         if paused:
             return RC_PAUSED
