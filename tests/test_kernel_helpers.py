@@ -4,7 +4,7 @@ import math
 import numpy as np
 
 from vines.core import kernel as k
-from vines.core.exact import oscillators
+from vines.core.exact import kernel_params, oscillators
 from vines.core.params import ModelParams, SolverSettings
 
 
@@ -50,8 +50,8 @@ def _run(buf_rows, t_end=300.0):
     imp, seg = np.empty((buf_rows, 6)), np.empty((2 * buf_rows, 6))
     n_full = 0
     while True:
-        rc = k.run_kernel(osc_f, osc_s, p.eta, p.r, p.omega, p.phi, st.t_end, st.t_transient,
-                          st.v_stick, st.root_tol, st.max_impacts, 0.0, cur, acc, cnt, imp, seg)
+        kp = kernel_params((osc_f, osc_s), p, st, st.t_end, st.t_transient, 0.0)
+        rc = k.run_kernel(kp, (cur, acc, cnt), imp, seg)
         if rc != k.RC_BUFFER_FULL:
             break
         n_full += 1
@@ -104,7 +104,7 @@ def test_interval_max_matches_a_dense_search():
             B2, B4 = min(B2, part_bounds(osc, b1, sb)[2]), min(B4, part_bounds(osc, b1, sb)[4])
             ref = _dense_max(osc, x0, v0, sth, cth, sa, sb)
             # from below the interval's max (refined) and from above (nothing to do)
-            got = k._interval_max(osc, x0, v0, sth, cth, sa, za, va, sb, zb, vb, B2, B4, 0.0)
+            ends = (osc, (x0, v0, sth, cth), (sa, za, va), (sb, zb, vb), B2, B4)
+            got = k._interval_max(*ends, 0.0)
             assert abs(got - ref) <= 1e-14 * (1 + ref)
-            assert k._interval_max(osc, x0, v0, sth, cth, sa, za, va, sb, zb, vb, B2, B4,
-                                   ref + 1e-3) == ref + 1e-3
+            assert k._interval_max(*ends, ref + 1e-3) == ref + 1e-3

@@ -9,7 +9,7 @@ import pytest
 import vines
 from vines import cli
 from vines.core import kernel as k
-from vines.core.exact import oscillators, run_exact
+from vines.core.exact import kernel_params, oscillators, run_exact
 from vines.core.params import ModelParams, SolverSettings
 from vines.core.sweep import bifurcation_sweep
 
@@ -34,9 +34,8 @@ def _kernel_run(p, st, pauses):
     it = iter(sorted(pauses))
     tp, n_mid, n_close = next(it, math.inf), 0, 0
     while True:
-        rc = k.run_kernel_until(osc_f, osc_s, p.eta, p.r, p.omega, p.phi, st.t_end,
-                                st.t_transient, st.v_stick, st.root_tol, st.max_impacts, 0.0,
-                                cur, acc, cnt, imp, seg, tp, sec)
+        kp = kernel_params((osc_f, osc_s), p, st, st.t_end, st.t_transient, 0.0)
+        rc = k.run_kernel_until(kp, (cur, acc, cnt), imp, seg, tp, sec)
         if rc != k.RC_PAUSED:
             break
         assert sec[k.S_T0] <= tp <= sec[k.S_TREACHED]

@@ -198,7 +198,8 @@ def _simulate_inputs(args: argparse.Namespace) -> dict:
     return dict(eta=params.eta, omega=params.omega, F=params.F, r=params.r, d=params.d,
                 phi=params.phi, t_end=settings.t_end, t_transient=settings.t_transient,
                 solver=args.solver, rtol=rtol, v_stick=settings.v_stick,
-                max_impacts=settings.max_impacts, periodic_shortcut=args.periodic_shortcut)
+                max_impacts=settings.max_impacts, periodic_shortcut=args.periodic_shortcut,
+                keep_impacts=False)
 
 
 def _emit(as_json: bool, d: dict, text) -> int:

@@ -14,7 +14,12 @@ from . import kernel as eng
 from . import shortcut as sc
 from .flow import make_osc
 from .params import ModelParams, SolverSettings, check_conditioning
+from .regime import strobe_times
 from .result import IMPACT_DTYPE, RawRun
+from .tally import ImpactTally
+
+#: rows of the impact buffer of a run that keeps no records (``KernelRun.stream``)
+STREAM_ROWS = 1 << 15
 
 
 def oscillators(p: ModelParams) -> tuple[np.ndarray, np.ndarray]:
@@ -49,6 +54,16 @@ class Trajectory:
         return out
 
 
+def kernel_params(osc, p: ModelParams, st: SolverSettings, t_end: float, t_tr: float,
+                  record_from: float) -> eng.KernelParams:
+    """The kernel's ``KernelParams`` of a run of model p with settings st over [t0, t_end]
+    (window from t_tr, records from record_from); osc = ``oscillators(p)``."""
+    osc_f, osc_s = osc
+    return eng.KernelParams(osc_f, osc_s, float(p.eta), float(p.r), float(p.omega),
+                            float(p.phi), float(t_end), float(t_tr), float(st.v_stick),
+                            float(st.root_tol), int(st.max_impacts), float(record_from))
+
+
 class KernelRun:
     """One kernel trajectory: its state (cur, acc, cnt) and growing impact/segment buffers.
 
@@ -60,6 +75,7 @@ class KernelRun:
                  t_end: float, t_tr: float, record_from: float, mode: int = 0):
         self.p, self.st, self.osc = p, st, osc
         self.t_end, self.t_tr, self.record_from = t_end, t_tr, record_from
+        self.kp = kernel_params(osc, p, st, t_end, t_tr, record_from)
         self.cur = np.array([t0, state0[0], state0[1], state0[2], state0[3], mode, 0.0])
         self.acc = np.zeros(eng.N_ACC)
         self.acc[eng.A_XMAX_ALL] = abs(state0[0])
@@ -69,17 +85,37 @@ class KernelRun:
         cap = int(min(st.max_impacts + 1, 6 * max(n_periods, 0.0) + 64))
         self.imp = np.empty((cap, 6))
         self.seg = np.empty((2 * cap + 16, 6))
+        self.tally, self.t_tail = None, -math.inf
+
+    def stream(self, tally: ImpactTally, t_tail: float) -> None:
+        """Keep no records: impacts go into ``tally`` block by block (``_flush``) and the
+        segments before the one holding t_tail are dropped, so memory does not grow with
+        t_end or max_impacts; the trajectory is then known from that segment on."""
+        self.tally, self.t_tail = tally, t_tail
+        cap = min(self.imp.shape[0], STREAM_ROWS)
+        self.imp = np.empty((cap, 6))
+        self.seg = np.empty((2 * cap + 16, 6))
+
+    def _flush(self) -> None:
+        """Streamed run: recorded impacts into the tally, segments before t_tail dropped."""
+        n = int(self.cnt[eng.C_NIMP_REC])
+        self.tally.add(self.imp[:n, 0], self.imp[:n, 5].astype(np.int8))
+        self.cnt[eng.C_NIMP_REC] = 0
+        m = int(self.cnt[eng.C_NSEG_REC])
+        i0 = max(int(np.searchsorted(self.seg[:m, 0], self.t_tail, side="right")) - 1, 0)
+        self.seg[:m - i0] = self.seg[i0:m]
+        self.cnt[eng.C_NSEG_REC] = m - i0
 
     def run(self, fn=eng.run_kernel, *extra) -> int:
-        """Call ``fn(kernel arguments, imp, seg, *extra)`` (run_kernel, run_kernel_until,
+        """Call ``fn(kp, (cur, acc, cnt), imp, seg, *extra)`` (run_kernel, run_kernel_until,
         shortcut.run_detect) until it returns anything but RC_BUFFER_FULL; grows buffers."""
-        p, st = self.p, self.st
+        st = self.st
         while True:
-            rc = fn(*self.osc, p.eta, p.r, p.omega, p.phi, self.t_end, self.t_tr, st.v_stick,
-                    st.root_tol, st.max_impacts, self.record_from, self.cur, self.acc,
-                    self.cnt, self.imp, self.seg, *extra)
+            rc = fn(self.kp, (self.cur, self.acc, self.cnt), self.imp, self.seg, *extra)
             if rc != eng.RC_BUFFER_FULL:
                 return rc
+            if self.tally is not None:
+                self._flush()
             if self.seg.shape[0] > 4 * st.max_impacts + 100_000:
                 return eng.RC_STALLED    # segments without impacts: never grow without bound
             if self.cnt[eng.C_NIMP_REC] >= self.imp.shape[0]:
@@ -104,6 +140,8 @@ class KernelRun:
         """RawRun of a finished run (return code rc of the kernel)."""
         acc, cnt = self.acc, self.cnt
         t_last = float(self.cur[0])
+        if self.tally is not None:
+            self._flush()
         return RawRun(
             impacts=self.impacts(), int_vm2=float(acc[eng.A_INT_VM2]),
             int_vb2=float(acc[eng.A_INT_VB2]), xmax_window=float(acc[eng.A_XMAX_WIN]),
@@ -116,21 +154,30 @@ class KernelRun:
             n_sticks=int(acc[eng.A_NSTICK]),
             solver_info={"root_tol": self.st.root_tol, "n_steps": int(acc[eng.A_NEVAL]),
                          "final_state": self.cur[1:5].copy(), "final_mode": int(self.cur[5])},
+            impact_tally=self.tally,
         )
 
 
 def run_exact(params: ModelParams, settings: SolverSettings, record_from: float = 0.0,
-              state0=None, t0: float = 0.0, periodic_shortcut: bool = False) -> RawRun:
+              state0=None, t0: float = 0.0, periodic_shortcut: bool = False,
+              keep_records: bool = True) -> RawRun:
     """Integrate one trajectory exactly from ``state0`` (default settings.state0) at t0.
 
     Impacts and segments are kept from ``record_from`` on (0: everything; t_transient:
     what the measures and the regime need). ``periodic_shortcut``: stop integrating once
     the motion has settled on a periodic orbit and take the rest of the run from one period
     of it (``vines.core.shortcut``); the RawRun then has ``shortcut_time`` (else NaN).
+    ``keep_records=False``: no impact list (the RawRun's ``impact_tally`` holds the
+    window's counts) and only the segments from the first stroboscopic time of
+    ``regime.strobe_times`` on: memory does not grow with t_end or max_impacts.
     """
     p, st = params, settings
     s0 = st.state0 if state0 is None else state0
     run = KernelRun(p, st, oscillators(p), s0, t0, st.t_end, st.t_transient, record_from)
+    if not keep_records:
+        ts = strobe_times(p.period, st.t_transient, st.t_end)
+        run.stream(ImpactTally.for_window(st.t_transient, ts),
+                   float(ts[0]) if ts.size else st.t_end)
     if not periodic_shortcut:
         return run.raw(run.run())
     return _run_with_shortcut(run)
@@ -148,7 +195,7 @@ def _run_with_shortcut(run: KernelRun) -> RawRun:
     sec[eng.S_TREACHED] = -math.inf
     hist, dr, ist, fst = det
     while True:
-        rc = run.run(sc.run_detect, sec, *det)
+        rc = run.run(sc.run_detect, sec, det)
         if rc == sc.RC_PERIODIC:
             orbit = _detected_orbit(run, det)
         elif rc == sc.RC_AT_REST:
@@ -273,13 +320,15 @@ def _piece_sums(run: KernelRun, orbit: _Orbit, pieces: list, cache: dict) -> dic
     return out
 
 
-def _replicate(rows: np.ndarray, t_s: float, P: float, t_end: float) -> np.ndarray:
+def _replicate(rows: np.ndarray, t_s: float, P: float, t_end: float, j0: int = 0,
+               j1: int | None = None) -> np.ndarray:
     """Copies of ``rows`` (time in column 0, within [t_s, t_s + P)) shifted by j P,
-    j = 0, 1, ..., up to t_end, in time order."""
+    j = j0, j0 + 1, ... (before j1), up to t_end, in time order."""
     if rows.shape[0] == 0:
         return rows
     rel = rows[:, 0] - t_s
-    j = np.arange(int((t_end - t_s) // P) + 1)
+    j_end = int((t_end - t_s) // P) + 1
+    j = np.arange(j0, j_end if j1 is None else min(j1, j_end))
     out = np.repeat(rows[None], j.size, axis=0)
     out[:, :, 0] = t_s + j[:, None] * P + rel[None, :]
     out = out.reshape(-1, rows.shape[1])
@@ -296,6 +345,8 @@ def _periodic_records(run: KernelRun, sec, orbit: _Orbit) -> tuple:
     seg = run.seg[:int(run.cnt[eng.C_NSEG_REC])]
     one_imp = orbit.one.imp[:int(orbit.one.cnt[eng.C_NIMP_REC])]
     one_seg = orbit.one.seg[:int(orbit.one.cnt[eng.C_NSEG_REC])]
+    if run.tally is not None:
+        return _streamed_records(run, orbit, imp, seg, one_imp, one_seg)
     rep_imp = _replicate(one_imp[one_imp[:, 0] < t_s + P], t_s, P, t_end)
     if one_imp.shape[0] == 0 and one_seg.shape[0] == 1:
         rep_seg = one_seg       # no events: one segment from t_s on (not one per period)
@@ -311,6 +362,32 @@ def _periodic_records(run: KernelRun, sec, orbit: _Orbit) -> tuple:
         impacts[name] = imp_all[:, k]
     impacts["wall"] = imp_all[:, 5].astype(np.int8)
     return impacts, seg_all
+
+
+def _streamed_records(run: KernelRun, orbit: _Orbit, imp, seg, one_imp, one_seg) -> tuple:
+    """``_periodic_records`` of a run that keeps no records (``KernelRun.stream``): the
+    impacts go into its tally (the period's copies in blocks of about STREAM_ROWS rows) and
+    only the segments from the one holding t_tail on are built. Returns (no impacts,
+    segments)."""
+    t_s, P, t_end, lo = orbit.t_s, orbit.P, run.t_end, run.record_from
+    pre = imp[imp[:, 0] < t_s]
+    run.tally.add(pre[:, 0], pre[:, 5].astype(np.int8))
+    rows = one_imp[one_imp[:, 0] < t_s + P]
+    n_j = int((t_end - t_s) // P) + 1
+    step = max(1, STREAM_ROWS // max(rows.shape[0], 1))
+    for j0 in range(0, n_j if rows.shape[0] else 0, step):
+        block = _replicate(rows, t_s, P, t_end, j0, j0 + step)
+        block = block[block[:, 0] >= lo]
+        run.tally.add(block[:, 0], block[:, 5].astype(np.int8))
+    if one_imp.shape[0] == 0 and one_seg.shape[0] == 1:
+        rep_seg = one_seg       # no events: one segment from t_s on
+    else:
+        j_tail = max(int((run.t_tail - t_s) // P) - 1, 0)
+        rep_seg = _replicate(one_seg[one_seg[:, 0] < t_s + P], t_s, P, t_end, j_tail)
+    rep_seg = rep_seg[max(np.searchsorted(rep_seg[:, 0], lo, side="right") - 1, 0):]
+    seg_all = np.concatenate([seg[seg[:, 0] < t_s], rep_seg])
+    i0 = max(int(np.searchsorted(seg_all[:, 0], run.t_tail, side="right")) - 1, 0)
+    return np.empty(0, dtype=IMPACT_DTYPE), seg_all[i0:].copy()
 
 
 def _periodic_raw(run: KernelRun, sec: np.ndarray, orbit: _Orbit) -> RawRun:
@@ -340,5 +417,5 @@ def _periodic_raw(run: KernelRun, sec: np.ndarray, orbit: _Orbit) -> RawRun:
                                                      for g in cache.values()),
                      "final_state": final, "final_mode": int(end.cur[5]) if end else orbit.mode,
                      "shortcut_time": t_s, "shortcut_period": orbit.pp},
-        shortcut_time=t_s, shortcut_period=orbit.pp,
+        shortcut_time=t_s, shortcut_period=orbit.pp, impact_tally=run.tally,
     )

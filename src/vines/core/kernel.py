@@ -65,6 +65,7 @@ of that segment in ``sec``; resuming gives the numbers of an uninterrupted run, 
 from __future__ import annotations
 
 import math
+from collections import namedtuple
 
 import numpy as np
 from numba import njit
@@ -116,6 +117,21 @@ EV_STOP, EV_IMPACT, EV_RELEASE, EV_STICK, EV_STALLED, EV_PAUSE = range(1, 7)
 CONTACT_PRESSED = 2
 # Slots of the state vector ``cur`` of run_kernel.
 CUR_T, CUR_ZM, CUR_VM, CUR_ZB, CUR_VB, CUR_MODE, CUR_RELEASED = range(7)
+
+#: The scalars of one kernel run, packed once (numba passes a named tuple by value, at no
+#: cost): the oscillators of the free LO and of the stuck body (``flow.make_osc``), mass
+#: ratio eta, restitution r, forcing frequency ratio omega and phase phi (forcing phase
+#: omega t + phi), end of the run t_end and of the transient t_tr (the window is
+#: [t_tr, t_end]), sticking speed v_stick, contact tolerance root_tol, the limit
+#: max_impacts on impacts (whole run), and record_from: impacts and segments are recorded
+#: from this time on. Build it with ``exact.kernel_params`` (floats and an int).
+KernelParams = namedtuple("KernelParams", "osc_f osc_s eta r omega phi t_end t_tr v_stick "
+                                          "root_tol max_impacts record_from")
+#: One segment of the trajectory as the kernel steps it: mode (MODE_FREE or the wall it is
+#: stuck on), released (a free flight that starts at a release from sticking), in_window
+#: (t0 >= t_tr), start time t0, state (z_m, z_m', z_b, z_b') there, and sin, cos of the
+#: forcing phase there.
+Segment = namedtuple("Segment", "mode released in_window t0 zm0 vm0 zb0 vb0 sth0 cth0")
 
 MAX_STEPS_PER_SEGMENT = 200_000
 # evaluations of the step rule per step (``free_step_local``; odd: ends on a safe step)
@@ -176,11 +192,15 @@ MIN_BISECT = 1e-9
 
 
 @njit(cache=True, nogil=True)
-def _extremum(osc, x0, v0, sth0, cth0, sa, va, sb, vb, s):
+def _extremum(osc, start, pa, pb, s):
     """|z| at the zero of z' inside [sa, sb] (z'(sa) z'(sb) < 0), from the first guess s:
     safeguarded Halley iteration on z' (cubic: from the Hermite guess one step usually
     suffices), stopped once the next correction ds = -z'/z'' is below EXTREMUM_DS / rate,
-    with z + z' ds / 2 as the value there."""
+    with z + z' ds / 2 as the value there. start = (x0, v0, sth0, cth0) of the closed form,
+    pa = (sa, z, z') and pb = (sb, z, z') the interval's ends."""
+    x0, v0, sth0, cth0 = start
+    sa, _, va = pa
+    sb, _, vb = pb
     lo, hi = sa, sb
     vlo = va
     if not (lo < s < hi):
@@ -243,16 +263,20 @@ def _may_exceed(za, va, zb, vb, h, B2, B4, m):
 
 
 @njit(cache=True, nogil=True)
-def _interval_max(osc, x0, v0, sth0, cth0, sa, za, va, sb, zb, vb, B2, B4, m):
+def _interval_max(osc, start, pa, pb, B2, B4, m):
     """Running maximum m updated with max |z| over [sa, sb] (|z''| <= B2, |z''''| <= B4
     there): nothing more is computed where the bounds of ``_may_exceed`` stay <= m; a
-    sign change of z' is refined by ``_extremum``, else the interval is bisected."""
+    sign change of z' is refined by ``_extremum``, else the interval is bisected.
+    start = (x0, v0, sth0, cth0) of the closed form, pa = (sa, z, z'), pb = (sb, z, z')."""
+    x0, v0, sth0, cth0 = start
+    sa, za, va = pa
+    sb, zb, vb = pb
     m = max(m, abs(za), abs(zb))
     exceed, t = _may_exceed(za, va, zb, vb, sb - sa, B2, B4, m)
     if not exceed:
         return m
     if va * vb < 0.0:
-        return max(m, _extremum(osc, x0, v0, sth0, cth0, sa, va, sb, vb, sa + t))
+        return max(m, _extremum(osc, start, pa, pb, sa + t))
     stack = np.empty((MAX_BISECT, 6))         # intervals (a, z, z', b, z, z') to examine
     stack[0, 0], stack[0, 1], stack[0, 2], stack[0, 3], stack[0, 4], stack[0, 5] = \
         sa, za, va, sb, zb, vb
@@ -265,7 +289,7 @@ def _interval_max(osc, x0, v0, sth0, cth0, sa, za, va, sb, zb, vb, B2, B4, m):
         if not exceed:
             continue
         if va1 * vb1 < 0.0:
-            m = max(m, _extremum(osc, x0, v0, sth0, cth0, a_, va1, b_, vb1, a_ + t))
+            m = max(m, _extremum(osc, start, (a_, za1, va1), (b_, zb1, vb1), a_ + t))
             continue
         if n + 2 > MAX_BISECT or b_ - a_ <= MIN_BISECT:
             continue
@@ -281,19 +305,25 @@ def _interval_max(osc, x0, v0, sth0, cth0, sa, za, va, sb, zb, vb, B2, B4, m):
 
 
 @njit(cache=True, nogil=True)
-def free_step(s, z, v, a, j, zb0, vb0, BL, BR, B3, B4, tol_z, floor_v, floor_a, released):
+def free_step(pt, ball, bounds, floors, released):
     """Step that provably reaches neither wall in free flight (module docstring).
 
-    The gap to wall L (R) stays above g - c h - BL h^2/2 (BR) over the step
-    (``_wall_bounds``); B3 and B4 bound |z_m'''| and |z_m''''| over [s, s + h_cap];
-    tol_z is the contact tolerance on the gap, floor_v and floor_a the resolution of the
-    computed relative velocity and acceleration (``_floor``).
+    pt = (s, z, z', z'', z''', b1): the LO's closed form at local time s (``flow``);
+    ball = (zb0, vb0): the ball's free flight zb0 + vb0 s. bounds = (BL, BR, B3, B4): the
+    gap to wall L (R) stays above g - c h - BL h^2/2 (BR) over the step
+    (``_wall_bounds``); B3 and B4 bound |z_m'''| and |z_m''''| over [s, s + h_cap].
+    floors = (tol_z, floor_v, floor_a): the contact tolerance on the gap, and the resolution
+    of the computed relative velocity and acceleration (``_floor``).
 
     Returns (h, pressed): pressed = +1/-1 when the ball rests on that wall with no relative
     velocity while the relative acceleration presses it on (sticking), else 0.
     ``released`` is True at the first step after a release from sticking, where the
     acceleration is zero by construction and only the sign of the jerk decides.
     """
+    s, z, v, a, j, _ = pt
+    zb0, vb0 = ball
+    BL, BR, B3, B4 = bounds
+    tol_z, floor_v, floor_a = floors
     w = z - (zb0 + vb0 * s)
     wd = v - vb0
     gL = 1.0 - w
@@ -341,7 +371,7 @@ def _wall_bounds(a, j, H, B2g, B4, floor_a, floor_j):
 
 
 @njit(cache=True, nogil=True)
-def free_step_local(osc, s, z, v, a, j, b1, zb0, vb0, h_cap, root_tol, released):
+def free_step_local(osc, pt, ball, h_cap, root_tol, released):
     """``free_step`` with bounds for the step length H itself (``_wall_bounds``).
 
     The bounds over [s, s + H] shrink with H, so the step phi(H) they allow grows as H
@@ -350,18 +380,20 @@ def free_step_local(osc, s, z, v, a, j, b1, zb0, vb0, h_cap, root_tol, released)
     (N_STEP_ITER evaluations). Returns (h, pressed, B2, B4) with B2 bounding |w''| on
     [s, s + h] and B4 (bound of |z''''|) valid on [s, s + h_cap].
     """
+    s, z, v, a, j, b1 = pt
+    zb0, vb0 = ball
     P0, P1, P2, P3, B2g, B3, B4 = _step_bounds(osc, z, v, b1, s, h_cap)
     zb = zb0 + vb0 * s
     tol_z = max(root_tol, _floor(P0, s, abs(z) + abs(zb), v - vb0))
     floor_v = _floor(P1, s, abs(v) + abs(vb0), a)
     floor_a = _floor(P2, s, a, j)
     floor_j = _floor(P3, s, j, B4)
+    floors = (tol_z, floor_v, floor_a)
     H = h_cap
     BL, BR, B = _wall_bounds(a, j, H, B2g, B4, floor_a, floor_j)
     h_best, B_best = H, B
     for it in range(N_STEP_ITER):
-        h, pressed = free_step(s, z, v, a, j, zb0, vb0, BL, BR, B3, B4, tol_z, floor_v,
-                               floor_a, released)
+        h, pressed = free_step(pt, ball, (BL, BR, B3, B4), floors, released)
         if pressed != 0:
             return 0.0, pressed, B2g, B4
         if it % 2 == 0:
@@ -375,8 +407,12 @@ def free_step_local(osc, s, z, v, a, j, b1, zb0, vb0, h_cap, root_tol, released)
 
 
 @njit(cache=True, nogil=True)
-def free_contact(osc, s, z, v, b1, zb, vb, B2, root_tol):
-    """(wall, gap, closing speed) when contact is accepted at local time s, else wall = 0."""
+def free_contact(osc, pt, ball, B2, root_tol):
+    """(wall, gap, closing speed) when contact is accepted at the point pt = (s, z, z',
+    z'', z''', b1) of the LO's closed form, the ball at ball = (z_b, z_b') there; else
+    wall = 0."""
+    s, z, v, _, _, b1 = pt
+    zb, vb = ball
     w = z - zb
     wd = v - vb
     if wd > 0.0:
@@ -397,19 +433,23 @@ def free_contact(osc, s, z, v, b1, zb, vb, B2, root_tol):
 
 
 @njit(cache=True, nogil=True)
-def first_contact(osc, zm0, vm0, zb0, vb0, sth0, cth0, s_max, root_tol):
+def first_contact(osc, x0, phase0, s_max, root_tol):
     """First wall contact of a free flight within local time [0, s_max].
 
+    x0 = (z_m, z_m', z_b, z_b') at s = 0, phase0 = (sin, cos) of the forcing phase there.
     Same rule as the trajectory kernel. Returns (wall, s, z_m, z_m'): wall = WALL_L (+1) or
     WALL_R (-1) for an impact, 0 when no contact happens before s_max (then s = s_max), and
     CONTACT_PRESSED * wall (+2/-2) when the ball starts pressed on that wall with zero
     relative velocity.
     """
+    zm0, vm0, zb0, vb0 = x0
+    sth0, cth0 = phase0
+    ball = (zb0, vb0)
     h_cap = 1.0 / osc[I_RATE]
     s = 0.0
     z, v, a, j, b1 = flow(osc, zm0, vm0, sth0, cth0, 0.0)
     for _ in range(MAX_STEPS_PER_SEGMENT):
-        h, pressed, B2, _ = free_step_local(osc, s, z, v, a, j, b1, zb0, vb0, h_cap,
+        h, pressed, B2, _ = free_step_local(osc, (s, z, v, a, j, b1), ball, h_cap,
                                             root_tol, False)
         if pressed != 0:
             return CONTACT_PRESSED * pressed, s, z, v
@@ -421,7 +461,8 @@ def first_contact(osc, zm0, vm0, zb0, vb0, sth0, cth0, s_max, root_tol):
             break
         s = s + h
         z, v, a, j, b1 = flow(osc, zm0, vm0, sth0, cth0, s)
-        wall, gap, closing = free_contact(osc, s, z, v, b1, zb0 + vb0 * s, vb0, B2, root_tol)
+        wall, gap, closing = free_contact(osc, (s, z, v, a, j, b1), (zb0 + vb0 * s, vb0), B2,
+                                          root_tol)
         if wall != 0:
             s = s + gap / closing
             z, v, a, j, b1 = flow(osc, zm0, vm0, sth0, cth0, s)
@@ -434,9 +475,11 @@ def first_contact(osc, zm0, vm0, zb0, vb0, sth0, cth0, s_max, root_tol):
 # calls they made the kernel ~3% slower in instructions (~10% in time), inlined ~0.7%.
 
 @njit(cache=True, nogil=True, inline="always")
-def _record_row(buf, cnt, slot, t, zm, vm, zb, vb, last):
-    """Append (t, z_m, z_m', z_b, z_b', last) to ``buf`` at row cnt[slot]; cnt[slot] += 1."""
+def _record_row(buf, cnt, slot, row):
+    """Append row = (t, z_m, z_m', z_b, z_b', last) to ``buf`` at row cnt[slot];
+    cnt[slot] += 1."""
     k = cnt[slot]
+    t, zm, vm, zb, vb, last = row
     buf[k, 0], buf[k, 1], buf[k, 2], buf[k, 3], buf[k, 4], buf[k, 5] = t, zm, vm, zb, vb, last
     cnt[slot] = k + 1
 
@@ -465,16 +508,23 @@ def _clamp_step(s, h, h_cap, s_stop):
 
 
 @njit(cache=True, nogil=True, inline="always")
-def _advance_segment(osc, mode, zm0, vm0, zb0, vb0, sth0, cth0, s_stop, released, root_tol,
-                     in_window, acc, step0, s_pause):
-    """Step one segment (closed form from (zm0, vm0) at phases sth0, cth0) to its first event.
+def _start(sg):
+    """(z_m, z_m', sin, cos of the forcing phase) at the start of segment ``sg``: the
+    initial values of its closed form (``flow``)."""
+    return sg.zm0, sg.vm0, sg.sth0, sg.cth0
+
+
+@njit(cache=True, nogil=True, inline="always")
+def _advance_segment(osc, sg, s_stop, root_tol, acc, step0, s_pause):
+    """Step segment ``sg`` (``Segment``; closed form of ``osc``) to its first event.
 
     Free flight: ``free_step_local`` steps, ``free_contact`` tests. Stuck (mode = wall):
     the contact force ~ mode z'' of the stuck body (mass 1 + eta) is the gap, -mode z''' its
-    closing speed, with the same step and test rules (|z''''| <= B4). ``released``: the
+    closing speed, with the same step and test rules (|z''''| <= B4). ``sg.released``: the
     segment starts at a release from sticking (first step only). Updates the |z_m| maxima
-    and the step count in ``acc``. Returns (event, wall, s, z, v, a, j, b1, gap, closing) at
-    the local time s of the event: EV_STICK (pressed on ``wall``), EV_IMPACT (at ``wall``),
+    and the step count in ``acc``. Returns (event, wall, pt, gap, closing, step) with
+    pt = (s, z, z', z'', z''', b1) the closed form at the local time s of the event:
+    EV_STICK (pressed on ``wall``), EV_IMPACT (at ``wall``),
     EV_RELEASE (gap, closing: for the final Newton step), EV_STOP (s = s_stop), EV_STALLED,
     and the index of the step that would come next (last item).
     Pauses: before a step from s >= s_pause it returns EV_PAUSE; the caller stores s and
@@ -484,6 +534,10 @@ def _advance_segment(osc, mode, zm0, vm0, zb0, vb0, sth0, cth0, s_stop, released
     The step loop stays in one function on purpose (hot path): per-step helpers taking
     arrays cost ~1% more instructions even inlined (reference counting), 3% as calls.
     """
+    mode, in_window = sg.mode, sg.in_window
+    zm0, vm0, sth0, cth0 = _start(sg)
+    start = (zm0, vm0, sth0, cth0)
+    ball = (sg.zb0, sg.vb0)
     h_cap = 1.0 / osc[I_RATE]
     if step0 > 1:
         s, z, v, a, j, b1 = acc[A_SEG_S], acc[A_SEG_Z], acc[A_SEG_V], acc[A_SEG_A], \
@@ -496,12 +550,12 @@ def _advance_segment(osc, mode, zm0, vm0, zb0, vb0, sth0, cth0, s_stop, released
     closing = 0.0
     for steps in range(step0, MAX_STEPS_PER_SEGMENT + 1):
         if s >= s_pause:
-            return EV_PAUSE, 0, s, z, v, a, j, b1, gap, closing, steps
+            return EV_PAUSE, 0, (s, z, v, a, j, b1), gap, closing, steps
         if mode == MODE_FREE:
-            h, pressed, B2, B4 = free_step_local(osc, s, z, v, a, j, b1, zb0, vb0, h_cap,
-                                                 root_tol, released and steps == 1)
+            h, pressed, B2, B4 = free_step_local(osc, (s, z, v, a, j, b1), ball, h_cap,
+                                                 root_tol, sg.released and steps == 1)
             if pressed != 0:
-                return EV_STICK, pressed, s, z, v, a, j, b1, gap, closing, steps
+                return EV_STICK, pressed, (s, z, v, a, j, b1), gap, closing, steps
         else:
             _, _, _, _, B2, _, B4 = _step_bounds(osc, z, v, b1, s, h_cap)
             gap = mode * a                    # contact force, > 0 while stuck
@@ -512,62 +566,67 @@ def _advance_segment(osc, mode, zm0, vm0, zb0, vb0, sth0, cth0, s_stop, released
             break
         z1, v1, a1, j1, b11 = flow(osc, zm0, vm0, sth0, cth0, s_new)
         if in_window:
-            m = _interval_max(osc, zm0, vm0, sth0, cth0, s, z, v, s_new, z1, v1, B2, B4,
+            m = _interval_max(osc, start, (s, z, v), (s_new, z1, v1), B2, B4,
                               acc[A_XMAX_WIN])
             acc[A_XMAX_WIN] = m
             if m > acc[A_XMAX_ALL]:
                 acc[A_XMAX_ALL] = m
         else:
-            acc[A_XMAX_ALL] = _interval_max(osc, zm0, vm0, sth0, cth0, s, z, v, s_new, z1,
-                                            v1, B2, B4, acc[A_XMAX_ALL])
+            acc[A_XMAX_ALL] = _interval_max(osc, start, (s, z, v), (s_new, z1, v1), B2, B4,
+                                            acc[A_XMAX_ALL])
         s, z, v, a, j, b1 = s_new, z1, v1, a1, j1, b11
         acc[A_NEVAL] += 1.0
         if mode == MODE_FREE:
-            wall, gap, closing = free_contact(osc, s, z, v, b1, zb0 + vb0 * s, vb0, B2,
-                                              root_tol)
+            wall, gap, closing = free_contact(osc, (s, z, v, a, j, b1),
+                                              (sg.zb0 + sg.vb0 * s, sg.vb0), B2, root_tol)
             if wall != 0:
-                return EV_IMPACT, wall, s, z, v, a, j, b1, gap, closing, steps
+                return EV_IMPACT, wall, (s, z, v, a, j, b1), gap, closing, steps
         else:                                 # release test on the contact force
             gap = mode * a
             closing = -mode * j
             floor = _floor(part_bounds(osc, b1, s)[2], s, a, closing)
             if closing > 0.0 and gap <= max(root_tol, floor) and (
                     gap <= floor or closing * closing >= 2.0 * B4 * gap):
-                return EV_RELEASE, 0, s, z, v, a, j, b1, max(gap, 0.0), closing, steps
+                return EV_RELEASE, 0, (s, z, v, a, j, b1), max(gap, 0.0), closing, steps
         if forced:
-            return EV_STOP, 0, s, z, v, a, j, b1, gap, closing, steps
-    return EV_STALLED, 0, s, z, v, a, j, b1, gap, closing, MAX_STEPS_PER_SEGMENT + 1
+            return EV_STOP, 0, (s, z, v, a, j, b1), gap, closing, steps
+    return EV_STALLED, 0, (s, z, v, a, j, b1), gap, closing, MAX_STEPS_PER_SEGMENT + 1
 
 
 @njit(cache=True, nogil=True, inline="always")
-def _land_on_event(osc, zm0, vm0, sth0, cth0, t0, t_end, s, z, v, a, j, b1, gap, closing,
-                   in_window, acc):
+def _land_on_event(osc, sg, s_end, pt, gap, closing, acc):
     """One Newton step s += gap/closing onto the event surface (error ~ gap^2), never past
-    t_end; the maxima in ``acc`` see the new point. Returns (s, z, v, a, j, b1)."""
+    the local time s_end of t_end; the maxima in ``acc`` see the new point. Returns the
+    point pt = (s, z, z', z'', z''', b1) there."""
+    s = pt[0]
     ds = gap / closing
-    if s + ds > t_end - t0:
-        ds = max(t_end - t0 - s, 0.0)
+    if s + ds > s_end:
+        ds = max(s_end - s, 0.0)
     if ds > 0.0:
         s_new = s + ds
+        zm0, vm0, sth0, cth0 = _start(sg)
         z1, v1, a1, j1, b11 = flow(osc, zm0, vm0, sth0, cth0, s_new)
-        m_ref = acc[A_XMAX_WIN] if in_window else acc[A_XMAX_ALL]
+        m_ref = acc[A_XMAX_WIN] if sg.in_window else acc[A_XMAX_ALL]
         if abs(z1) > m_ref:
-            if in_window:
+            if sg.in_window:
                 acc[A_XMAX_WIN] = abs(z1)
             if abs(z1) > acc[A_XMAX_ALL]:
                 acc[A_XMAX_ALL] = abs(z1)
-        s, z, v, a, j, b1 = s_new, z1, v1, a1, j1, b11
-    return s, z, v, a, j, b1
+        return s_new, z1, v1, a1, j1, b11
+    return pt
 
 
 @njit(cache=True, nogil=True, inline="always")
-def _clear_of_contact(osc, mode, zm0, vm0, sth0, cth0, t0, t_end, s, z, v, a, j, b1):
+def _clear_of_contact(osc, sg, s_end, pt):
     """Move a release forward (doubling round-off steps) until the contact force mode z'' is
     zero or pulling away, else the free flight would find the ball pressed again (a
-    stick-release loop). Returns (s, z, v, a, j, b1)."""
-    delta = ROUNDOFF * (1.0 + t0 + s)
+    stick-release loop); never past the local time s_end of t_end. Returns the point
+    pt = (s, z, z', z'', z''', b1) reached."""
+    s, z, v, a, j, b1 = pt
+    zm0, vm0, sth0, cth0 = _start(sg)
+    delta = ROUNDOFF * (1.0 + sg.t0 + s)
     for _ in range(64):
-        if mode * a <= 0.0 or s + delta > t_end - t0:
+        if sg.mode * a <= 0.0 or s + delta > s_end:
             break
         s = s + delta
         z, v, a, j, b1 = flow(osc, zm0, vm0, sth0, cth0, s)
@@ -576,22 +635,24 @@ def _clear_of_contact(osc, mode, zm0, vm0, sth0, cth0, t0, t_end, s, z, v, a, j,
 
 
 @njit(cache=True, nogil=True, inline="always")
-def _close_segment(osc, mode, zm0, vm0, zb0, vb0, sth0, cth0, t0, s, z, v, in_window, acc,
-                   cnt):
-    """Window integrals and time stuck over the segment [t0, t0 + s]; guard against
-    segments that do not advance the absolute time (C_NZERO). Returns (t_new, z_b, z_b')
-    at its end."""
+def _close_segment(osc, sg, pt, acc, cnt):
+    """Window integrals and time stuck over the segment ``sg`` up to the point pt = (s, z,
+    z', ...); guard against segments that do not advance the absolute time (C_NZERO).
+    Returns (t_new, z_b, z_b') at its end."""
+    s, z, v = pt[0], pt[1], pt[2]
+    mode, t0 = sg.mode, sg.t0
     if mode == MODE_FREE:
-        vb_end = vb0
-        zb_end = zb0 + vb0 * s
+        vb_end = sg.vb0
+        zb_end = sg.zb0 + sg.vb0 * s
     else:
         vb_end = v
         zb_end = z - mode
-    if in_window:
+    if sg.in_window:
+        zm0, vm0, sth0, cth0 = _start(sg)
         iv = v2_integral(osc, zm0, vm0, sth0, cth0, s)
         acc[A_INT_VM2] += iv
         if mode == MODE_FREE:
-            acc[A_INT_VB2] += vb0 * vb0 * s
+            acc[A_INT_VB2] += sg.vb0 * sg.vb0 * s
         else:
             acc[A_INT_VB2] += iv
             acc[A_TSTUCK_WIN] += s
@@ -617,25 +678,28 @@ def _stick_speed_floor(osc_f, g, z, zb, b1, dvm):
 
 
 @njit(cache=True, nogil=True, inline="always")
-def _impact(cur, acc, cnt, imp, osc_f, eta, r, v_stick, record_from, sth0, cth0, s, t_new,
-            z, v, vb, b1, wall):
-    """Impact at ``wall`` at t_new = t0 + s (local s, phases sth0, cth0 of the segment).
+def _impact(cur, acc, cnt, imp, osc_f, law, sg, hit):
+    """Impact hit = (s, t_new, z_m, z_m', z_b', b1, wall) at local time s of segment ``sg``
+    (z_m, z_m', b1 from the closed form there, z_b' the ball's velocity), with
+    law = (eta, r, v_stick, record_from).
 
     Records it (pre-impact state, ball placed exactly on the wall) from record_from on,
     applies the impact law and sets ``cur`` to the next segment: stuck on ``wall`` when
     the rebound is below max(v_stick, ``_stick_speed_floor``) and the free LO acceleration
     presses the ball on the wall, else free flight.
     """
+    eta, r, v_stick, record_from = law
+    s, t_new, z, v, vb, b1, wall = hit
     zb_imp = z - wall
     if t_new >= record_from:
-        _record_row(imp, cnt, C_NIMP_REC, t_new, z, v, zb_imp, vb, wall)
+        _record_row(imp, cnt, C_NIMP_REC, (t_new, z, v, zb_imp, vb, wall))
     cnt[C_NIMP_TOTAL] += 1
     if wall == WALL_L:
         cnt[C_NIMP_L] += 1
     vm_p, vb_p = impact_velocities(eta, r, v, vb)      # Newton's law, restitution r
     mode_new = MODE_FREE
     vc = _common_velocity(eta, v, vb)
-    g = forcing(osc_f, sth0, cth0, s) - osc_f[I_D] * vc - z    # free LO acceleration
+    g = forcing(osc_f, sg.sth0, sg.cth0, s) - osc_f[I_D] * vc - z    # free LO acceleration
     v_floor = _stick_speed_floor(osc_f, g, z, zb_imp, b1, abs(vm_p - v))
     if abs(vm_p - vb_p) <= max(v_stick, v_floor) and wall * g > 0.0:
         mode_new = wall
@@ -676,13 +740,35 @@ def _snapshot(sec, cur, acc, cnt, t_reached):
     sec[S_NIMP_REC], sec[S_NSEG_REC] = cnt[C_NIMP_REC], cnt[C_NSEG_REC]
 
 
+@njit(cache=True, nogil=True, inline="always")
+def _next_segment(cur, cnt, seg, times):
+    """The ``Segment`` starting at ``cur`` (recorded in ``seg`` from record_from on, unless
+    it resumes after a pause) and the step it starts from (> 1: resumed);
+    times = (omega, phi, t_tr, record_from)."""
+    omega, phi, t_tr, record_from = times
+    t0 = cur[CUR_T]
+    zm0, vm0, zb0, vb0 = cur[CUR_ZM], cur[CUR_VM], cur[CUR_ZB], cur[CUR_VB]
+    mode = int(cur[CUR_MODE])
+    released = cur[CUR_RELEASED] != 0.0   # this free segment starts at a release
+    cur[CUR_RELEASED] = 0.0
+    step0 = cnt[C_SEG_STEP]               # > 0: resume a segment interrupted by a pause
+    if step0 == 0:
+        step0 = 1
+        if t0 >= record_from:
+            _record_row(seg, cnt, C_NSEG_REC, (t0, zm0, vm0, zb0, vb0, mode))
+    cnt[C_SEG_STEP] = 0
+    th0 = omega * t0 + phi
+    sg = Segment(mode, released, t0 >= t_tr, t0, zm0, vm0, zb0, vb0, math.sin(th0),
+                 math.cos(th0))
+    return sg, step0
+
+
 @njit(cache=True, nogil=True)
-def run_kernel(osc_f, osc_s, eta, r, omega, phi, t_end, t_tr, v_stick, root_tol, max_impacts,
-               record_from, cur, acc, cnt, imp, seg):
+def run_kernel(kp, ks, imp, seg):
     """Advance the trajectory in ``cur`` = [t, z_m, z_m', z_b, z_b', mode, released] to t_end.
 
-    osc_f, osc_s   packed oscillators (``flow.make_osc``) of the free LO and the stuck body
-    omega, phi     forcing frequency ratio and phase (forcing phase omega t + phi)
+    kp             the run's ``KernelParams`` (oscillators, model, window, tolerances)
+    ks             (cur, acc, cnt): the kernel state (slots CUR_*, A_*, C_*)
     imp            (cap, 6) buffer of impacts: t, z_m, z_m', z_b, z_b' (pre-impact), wall
     seg            (cap, 6) buffer of segment starts: t0, z_m, z_m', z_b, z_b', mode
     Impacts and segments are recorded only from t >= record_from. ``cur``, ``acc`` and
@@ -690,13 +776,11 @@ def run_kernel(osc_f, osc_s, eta, r, omega, phi, t_end, t_tr, v_stick, root_tol,
     larger buffers. Returns one of RC_DONE, RC_BUFFER_FULL, RC_MAX_IMPACTS, RC_STALLED.
     """
     sec = np.empty(N_SEC)
-    return run_kernel_until(osc_f, osc_s, eta, r, omega, phi, t_end, t_tr, v_stick, root_tol,
-                            max_impacts, record_from, cur, acc, cnt, imp, seg, math.inf, sec)
+    return run_kernel_until(kp, ks, imp, seg, math.inf, sec)
 
 
 @njit(cache=True, nogil=True)
-def run_kernel_until(osc_f, osc_s, eta, r, omega, phi, t_end, t_tr, v_stick, root_tol,
-                     max_impacts, record_from, cur, acc, cnt, imp, seg, t_pause, sec):
+def run_kernel_until(kp, ks, imp, seg, t_pause, sec):
     """``run_kernel`` that also returns RC_PAUSED once the trajectory reaches t_pause.
 
     The pause comes either inside a segment, before the first step from a time >= t_pause,
@@ -705,6 +789,11 @@ def run_kernel_until(osc_f, osc_s, eta, r, omega, phi, t_end, t_tr, v_stick, roo
     follows from the closed form. Calling again (with a later t_pause, or inf) continues
     with exactly the numbers of an uninterrupted run: pausing never changes the trajectory.
     """
+    cur, acc, cnt = ks
+    osc_f, osc_s = kp.osc_f, kp.osc_s
+    eta, r, omega, phi, t_end, t_tr, v_stick, root_tol, max_impacts, record_from = kp[2:]
+    law = (eta, r, v_stick, record_from)
+    times = (omega, phi, t_tr, record_from)
     while True:
         t0 = cur[CUR_T]
         if cnt[C_NZERO] > 1000:
@@ -713,60 +802,44 @@ def run_kernel_until(osc_f, osc_s, eta, r, omega, phi, t_end, t_tr, v_stick, roo
             return RC_DONE
         if cnt[C_NSEG_REC] >= seg.shape[0] or cnt[C_NIMP_REC] >= imp.shape[0]:
             return RC_BUFFER_FULL
-        zm0, vm0, zb0, vb0 = cur[CUR_ZM], cur[CUR_VM], cur[CUR_ZB], cur[CUR_VB]
-        mode = int(cur[CUR_MODE])
-        released = cur[CUR_RELEASED] != 0.0   # this free segment starts at a release
-        cur[CUR_RELEASED] = 0.0
-        step0 = cnt[C_SEG_STEP]               # > 0: resume a segment interrupted by a pause
-        if step0 == 0:
-            step0 = 1
-            if t0 >= record_from:
-                _record_row(seg, cnt, C_NSEG_REC, t0, zm0, vm0, zb0, vb0, mode)
-        cnt[C_SEG_STEP] = 0
-        in_window = t0 >= t_tr
-        osc = osc_f if mode == MODE_FREE else osc_s
-        th0 = omega * t0 + phi
-        sth0 = math.sin(th0)
-        cth0 = math.cos(th0)
+        sg, step0 = _next_segment(cur, cnt, seg, times)
+        osc = osc_f if sg.mode == MODE_FREE else osc_s
         s_stop = t_end - t0
         if t0 < t_tr:
             s_stop = min(s_stop, t_tr - t0)
-        event, wall, s, z, v, a, j, b1, gap, closing, steps = _advance_segment(
-            osc, mode, zm0, vm0, zb0, vb0, sth0, cth0, s_stop, released, root_tol, in_window,
-            acc, step0, t_pause - t0)
+        event, wall, pt, gap, closing, steps = _advance_segment(
+            osc, sg, s_stop, root_tol, acc, step0, t_pause - t0)
         if event == EV_PAUSE:
-            _snapshot(sec, cur, acc, cnt, t0 + s)
+            _snapshot(sec, cur, acc, cnt, t0 + pt[0])
             acc[A_SEG_S], acc[A_SEG_Z], acc[A_SEG_V], acc[A_SEG_A], acc[A_SEG_J], \
-                acc[A_SEG_B1] = s, z, v, a, j, b1
+                acc[A_SEG_B1] = pt
             cnt[C_SEG_STEP] = steps
-            cur[CUR_RELEASED] = 1.0 if released else 0.0
+            cur[CUR_RELEASED] = 1.0 if sg.released else 0.0
             return RC_PAUSED
         if event == EV_STALLED:
             cur[CUR_T] = t0
             return RC_STALLED
         if event == EV_IMPACT or event == EV_RELEASE:  # noqa: SIM109 (numba: no tuple search)
-            s, z, v, a, j, b1 = _land_on_event(osc, zm0, vm0, sth0, cth0, t0, t_end, s, z, v,
-                                               a, j, b1, gap, closing, in_window, acc)
+            pt = _land_on_event(osc, sg, t_end - t0, pt, gap, closing, acc)
         if event == EV_RELEASE:
-            s, z, v, a, j, b1 = _clear_of_contact(osc, mode, zm0, vm0, sth0, cth0, t0, t_end,
-                                                  s, z, v, a, j, b1)
-        paused = t0 + s >= t_pause
+            pt = _clear_of_contact(osc, sg, t_end - t0, pt)
+        paused = t0 + pt[0] >= t_pause
         if paused:
-            _snapshot(sec, cur, acc, cnt, t0 + s)
-        t_new, zb_end, vb_end = _close_segment(osc, mode, zm0, vm0, zb0, vb0, sth0, cth0, t0,
-                                               s, z, v, in_window, acc, cnt)
+            _snapshot(sec, cur, acc, cnt, t0 + pt[0])
+        end = _close_segment(osc, sg, pt, acc, cnt)
+        t_new, zb_end, vb_end = end
         if event == EV_STOP:
-            _set_state(cur, t_new, z, v, zb_end, vb_end, mode)
+            _set_state(cur, t_new, pt[1], pt[2], zb_end, vb_end, sg.mode)
             if t_new >= t_end:
                 cur[CUR_T] = t_end
                 return RC_DONE
         elif event == EV_RELEASE:
-            _start_release(cur, t_new, z, v, mode)
+            _start_release(cur, t_new, pt[1], pt[2], sg.mode)
         elif event == EV_STICK:
-            _start_sticking(cur, acc, eta, t_new, z, v, vb_end, wall)
+            _start_sticking(cur, acc, eta, t_new, pt[1], pt[2], vb_end, wall)
         else:
-            _impact(cur, acc, cnt, imp, osc_f, eta, r, v_stick, record_from, sth0, cth0, s,
-                    t_new, z, v, vb_end, b1, wall)
+            _impact(cur, acc, cnt, imp, osc_f, law, sg,
+                    (pt[0], t_new, pt[1], pt[2], vb_end, pt[5], wall))
             if cnt[C_NIMP_TOTAL] >= max_impacts:
                 return RC_MAX_IMPACTS
         if paused:

@@ -15,6 +15,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from .tally import ImpactTally
+
 CHATTER_RUN = 4
 MAX_PERIOD = 16
 PERIOD_TOL = 1e-4
@@ -50,25 +52,30 @@ def longest_same_wall_run(walls: np.ndarray) -> int:
 
 def classify(walls_window: np.ndarray, t_impacts_window: np.ndarray, strobe: np.ndarray,
              strobe_t: np.ndarray, t_stuck_window: float, period: float) -> tuple[str, int]:
-    """Regime label and detected period p (0 when not periodic)."""
+    """Regime label and detected period p (0 when not periodic) from the impacts of the
+    window (``classify_tally``)."""
+    tally = ImpactTally.for_window(-np.inf, strobe_t)
+    tally.add(np.asarray(t_impacts_window), np.asarray(walls_window))
+    return classify_tally(tally, strobe, strobe_t, t_stuck_window)
+
+
+def classify_tally(tally: ImpactTally, strobe: np.ndarray, strobe_t: np.ndarray,
+                   t_stuck_window: float) -> tuple[str, int]:
+    """Regime label and detected period p (0 when not periodic) from the window's impact
+    counts (``tally.ImpactTally`` over the stroboscopic span of strobe_t)."""
     p = detect_period(strobe)
-    if t_stuck_window > 0.0 or longest_same_wall_run(walls_window) >= CHATTER_RUN:
+    if t_stuck_window > 0.0 or tally.longest_run >= CHATTER_RUN:
         return "chatter", p
-    if walls_window.size == 0:
+    if tally.n_window == 0:
         return "no-impact", p
     if p == 0:
         return "irregular", 0
     if p > 1:
         return f"period-{p}", p
     # impacts per period on each wall over the stroboscopic span
-    if strobe_t.size >= 2:
-        sel = (t_impacts_window >= strobe_t[0]) & (t_impacts_window < strobe_t[-1])
-        n_per = strobe_t.size - 1
-    else:
-        sel = np.ones(walls_window.shape, bool)
-        n_per = 1
-    nL = np.count_nonzero(walls_window[sel] > 0) / n_per
-    nR = np.count_nonzero(walls_window[sel] < 0) / n_per
+    n_per = strobe_t.size - 1 if strobe_t.size >= 2 else 1
+    nL = tally.n_span_L / n_per
+    nR = tally.n_span_R / n_per
     if abs(nL - round(nL)) > 1e-9 or abs(nR - round(nR)) > 1e-9:
         return "irregular", 0
     a, b = int(round(max(nL, nR))), int(round(min(nL, nR)))

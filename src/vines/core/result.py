@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .params import L_HALF_M, ModelParams, SolverSettings
+from .tally import ImpactTally
 from .walls import WALL_L, WALL_R  # noqa: F401  (re-exported)
 
 IMPACT_DTYPE = np.dtype([("t", "f8"), ("z_m", "f8"), ("v_m", "f8"),
@@ -33,6 +34,8 @@ class RawRun:
     shortcut_time      time t_s from which the run was completed from one period of a
                        settled periodic orbit (``vines.core.shortcut``); NaN: integrated
                        to the end. shortcut_period: that period in forcing periods (0: none)
+    impact_tally       the window's impact counts when the impacts were not kept
+                       (``exact.run_exact(keep_records=False)``: ``impacts`` is then empty)
     """
 
     impacts: np.ndarray
@@ -50,6 +53,7 @@ class RawRun:
     solver_info: dict = field(default_factory=dict)
     shortcut_time: float = math.nan
     shortcut_period: int = 0
+    impact_tally: ImpactTally | None = None
 
 
 @dataclass

@@ -288,11 +288,14 @@ def at_rest(osc_f, omega, phi, sec, t_k, t_tr, xmax_so_far, err_tol):
 
 
 @njit(cache=True, nogil=True, inline="always")
-def _pending_sections(osc_f, osc_s, omega, phi, sec, hist, dr, ist, fst, x, counts,
-                      xmax_so_far):
+def _pending_sections(kp, sec, det, work, xmax_so_far):
     """Observe every section time the snapshot segment has reached; returns the period
     found (the section is then hist row (ist[0, I_K] - 1) % H), -1 when the ball rests out
-    of reach (``at_rest``), or 0. x, counts: work arrays of 4."""
+    of reach (``at_rest``), or 0. kp: the run's ``kernel.KernelParams``; det = (hist, dr,
+    ist, fst) (``new_detector``); work = (x, counts): work arrays of 4."""
+    hist, dr, ist, fst = det
+    x, counts = work
+    osc_f, osc_s, omega, phi = kp.osc_f, kp.osc_s, kp.omega, kp.phi
     while True:
         t_k = fst[0, F_TTR] + ist[0, I_J] * fst[0, F_T]
         if t_k > sec[S_TREACHED] or t_k > fst[0, F_TSTOP]:
@@ -329,25 +332,23 @@ def _pending_sections(osc_f, osc_s, omega, phi, sec, hist, dr, ist, fst, x, coun
 
 
 @njit(cache=True, nogil=True)
-def run_detect(osc_f, osc_s, eta, r, omega, phi, t_end, t_tr, v_stick, root_tol,
-               max_impacts, record_from, cur, acc, cnt, imp, seg, sec, hist, dr, ist, fst):
+def run_detect(kp, ks, imp, seg, sec, det):
     """Run the kernel section by section until a periodic orbit is detected (RC_PERIODIC,
     period in ist[0, I_FOUND], the kernel paused inside the segment ``sec``) or the kernel
     returns (RC_DONE, RC_BUFFER_FULL, ...); RC_AT_REST when the ball rests out of the LO's
-    reach (``at_rest``). Resumable: call again to continue."""
-    x = np.empty(4)
-    counts = np.empty(4)
+    reach (``at_rest``). Resumable: call again to continue. kp, ks, imp, seg as for
+    ``kernel.run_kernel``; det = (hist, dr, ist, fst) (``new_detector``)."""
+    ist, fst = det[2], det[3]
+    acc = ks[1]
+    work = (np.empty(4), np.empty(4))
     while True:
-        found = _pending_sections(osc_f, osc_s, omega, phi, sec, hist, dr, ist, fst, x,
-                                  counts, acc[A_XMAX_ALL])
+        found = _pending_sections(kp, sec, det, work, acc[A_XMAX_ALL])
         if found > 0:
             return RC_PERIODIC
         if found < 0:
             return RC_AT_REST
         t_next = fst[0, F_TTR] + ist[0, I_J] * fst[0, F_T]
         t_pause = t_next if t_next <= fst[0, F_TSTOP] else math.inf
-        rc = run_kernel_until(osc_f, osc_s, eta, r, omega, phi, t_end, t_tr, v_stick,
-                              root_tol, max_impacts, record_from, cur, acc, cnt, imp, seg,
-                              t_pause, sec)
+        rc = run_kernel_until(kp, ks, imp, seg, t_pause, sec)
         if rc != RC_PAUSED:
             return rc

@@ -29,8 +29,9 @@ from .params import (
     check_param,
     check_real,
 )
-from .regime import classify, strobe_times
+from .regime import classify_tally, strobe_times
 from .result import RawRun, SimulationResult
+from .tally import ImpactTally
 
 #: scipy methods of the RK reference solver (``vines.reference.rk``)
 RK_METHODS = ("DOP853", "RK45", "LSODA", "Radau")
@@ -63,15 +64,15 @@ def _measures(p: ModelParams, st: SolverSettings, raw: RawRun) -> dict:
     K_b = 0.5 * p.eta * raw.int_vb2 / t_win
     total = K_m + K_b
     ke_ratio = K_b / total if total > 0.0 else 0.0
-    imp = raw.impacts
-    in_win = imp["t"] >= st.t_transient
-    walls_w = imp["wall"][in_win]
-    n_win = int(walls_w.size)
+    ts = strobe_times(p.period, st.t_transient, st.t_end)
+    tally = raw.impact_tally
+    if tally is None:       # the run kept its impact list
+        tally = ImpactTally.for_window(st.t_transient, ts)
+        tally.add(raw.impacts["t"], raw.impacts["wall"])
+    n_win = tally.n_window
     if raw.status == "ok":
-        ts = strobe_times(p.period, st.t_transient, st.t_end)
         strobe = raw.state_at(ts) if ts.size else np.zeros((4, 0))
-        regime, period = classify(walls_w, imp["t"][in_win], strobe, ts, raw.t_stuck_window,
-                                  p.period)
+        regime, period = classify_tally(tally, strobe, ts, raw.t_stuck_window)
     else:
         regime, period = _UNFINISHED_REGIME.get(raw.status, "failed"), 0
     return dict(K_m=K_m, K_b=K_b, ke_ratio=ke_ratio, xmax=raw.xmax_window,
@@ -91,7 +92,7 @@ def simulate(eta, omega, F, r=R_DEFAULT, d=D_DEFAULT, phi=0.0, *, t_end=T_END_DE
              t_transient=T_TRANSIENT_DEFAULT, solver="exact", rtol=RTOL_DEFAULT, atol=None,
              method="DOP853", v_stick=V_STICK_DEFAULT, max_impacts=MAX_IMPACTS_DEFAULT,
              root_tol=ROOT_TOL_DEFAULT, state0=(0.0, 0.0, 0.0, 0.0),
-             periodic_shortcut=True) -> SimulationResult:
+             periodic_shortcut=True, keep_impacts=True) -> SimulationResult:
     """Simulate the VINES from ``state0`` at t = 0 to ``t_end`` (dimensionless time).
 
     solver="exact" uses the closed-form event-driven kernel (``root_tol``: contact is
@@ -100,7 +101,11 @@ def simulate(eta, omega, F, r=R_DEFAULT, d=D_DEFAULT, phi=0.0, *, t_end=T_END_DE
     Measures are exact time averages over [t_transient, t_end]. ``periodic_shortcut``
     (exact solver only): once the motion has settled on a periodic orbit, complete the run
     from one period of it (``vines.core.shortcut``; the result's ``shortcut_time`` says
-    when, NaN if never). Raises ParameterError for bad input.
+    when, NaN if never). ``keep_impacts`` (exact solver only): keep the impact list and
+    the whole trajectory; with False the measures are accumulated as the run goes and
+    memory does not grow with t_end or max_impacts: ``impacts`` is then empty and
+    ``state_at`` covers only the last stroboscopic periods of the window (``regime``).
+    Raises ParameterError for bad input.
     """
     p = ModelParams(eta=eta, omega=omega, F=F, r=r, d=d, phi=phi)
     st = _settings(t_end, t_transient, v_stick, max_impacts, root_tol, state0)
@@ -112,7 +117,8 @@ def simulate(eta, omega, F, r=R_DEFAULT, d=D_DEFAULT, phi=0.0, *, t_end=T_END_DE
         atol = check_real("atol", atol, lo=0.0, lo_open=True, hi=RTOL_MAX)
     if solver == "exact":
         periodic_shortcut = check_bool("periodic_shortcut", periodic_shortcut)
-        raw = SOLVERS[solver](p, st, periodic_shortcut=periodic_shortcut)
+        keep = check_bool("keep_impacts", keep_impacts)
+        raw = SOLVERS[solver](p, st, periodic_shortcut=periodic_shortcut, keep_records=keep)
         options = {"root_tol": st.root_tol, "periodic_shortcut": periodic_shortcut}
     else:
         if not isinstance(method, str) or method not in RK_METHODS:
@@ -127,12 +133,14 @@ def simulate(eta, omega, F, r=R_DEFAULT, d=D_DEFAULT, phi=0.0, *, t_end=T_END_DE
 
 
 def run_measured(p: ModelParams, st: SolverSettings, state0=None,
-                 periodic_shortcut: bool = True) -> tuple[RawRun, dict]:
+                 periodic_shortcut: bool = True, keep_records: bool = True
+                 ) -> tuple[RawRun, dict]:
     """One exact run from ``state0`` (default ``st.state0``) at t = 0 that records the
-    window only, and its measures (a dict holding every ``simulate_batch`` field). The
-    caller validates ``state0`` (``SolverSettings`` does)."""
+    window only (nothing with keep_records=False: ``run_exact``), and its measures (a dict
+    holding every ``simulate_batch`` field). The caller validates ``state0``
+    (``SolverSettings`` does)."""
     raw = run_exact(p, st, record_from=st.t_transient, state0=state0,
-                    periodic_shortcut=periodic_shortcut)
+                    periodic_shortcut=periodic_shortcut, keep_records=keep_records)
     m = _measures(p, st, raw)
     m["status"] = raw.status
     return raw, m
@@ -140,7 +148,7 @@ def run_measured(p: ModelParams, st: SolverSettings, state0=None,
 
 def _batch_point(eta, omega, F, r, d, phi, st: SolverSettings, shortcut: bool) -> tuple:
     p = ModelParams(eta=eta, omega=omega, F=F, r=r, d=d, phi=phi)
-    m = run_measured(p, st, periodic_shortcut=shortcut)[1]
+    m = run_measured(p, st, periodic_shortcut=shortcut, keep_records=False)[1]
     return tuple(m[k] for k in BATCH_FIELDS)
 
 

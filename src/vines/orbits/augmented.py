@@ -71,8 +71,9 @@ class Codim1System:
         p = self.par(z)
         k, wall = self.graze if self.graze is not None else (1, "arrival")
         G, Gg = sk.codim1(self.m.tape, sh.FAMILIES.index(self.family), self._cond,
-                          int(k), GRAZE_WALLS.index(wall), z[:self.nu], p["eta"],
-                          p["omega"], p["F"], float(z[self.nu]) if self.has_sg else 0.0)
+                          int(k), GRAZE_WALLS.index(wall), z[:self.nu],
+                          (p["eta"], p["omega"], p["F"]),
+                          float(z[self.nu]) if self.has_sg else 0.0)
         return G, Gg[:, self._columns()]
 
     @property

@@ -137,7 +137,7 @@ def map_kernel(osc, eta, r, omega, phi, x, from_wall, to_wall, s_guess, y, J):
         s = _newton_s(osc, zm0, vp, zb, vbp, sth, cth, to_wall, s_guess)
     else:
         s_max = 4.0 * 2.0 * math.pi / omega + 20.0 / osc[I_RATE]
-        wall, sc, _, _ = first_contact(osc, zm0, vp, zb, vbp, sth, cth, s_max, ROOT_TOL)
+        wall, sc, _, _ = first_contact(osc, (zm0, vp, zb, vbp), (sth, cth), s_max, ROOT_TOL)
         if wall == to_wall and sc > 0.0:
             s = _newton_s(osc, zm0, vp, zb, vbp, sth, cth, to_wall, sc)
         else:
@@ -201,7 +201,8 @@ def admissible_kernel(osc, eta, r, omega, phi, x, from_wall, to_wall, s):
     sth = math.sin(th0)
     cth = math.cos(th0)
     tol = ADMISSIBLE_TOL * (1.0 + s)
-    wall, sc, _, _ = first_contact(osc, zm0, vp, zb, vbp, sth, cth, s + 10.0 * tol, ROOT_TOL)
+    wall, sc, _, _ = first_contact(osc, (zm0, vp, zb, vbp), (sth, cth), s + 10.0 * tol,
+                                   ROOT_TOL)
     if wall != to_wall or abs(sc - s) > tol:
         return False
     _, wd, _ = _gap(osc, zm0, vp, zb, vbp, sth, cth, s, to_wall)

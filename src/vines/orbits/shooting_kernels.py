@@ -120,10 +120,11 @@ def run_tape(tp, inputs, size):
 
 
 @njit(**INLINE)
-def flight_local(tp, x, s, eta, omega, F, from_wall, size):
+def flight_local(tp, x, s, par, from_wall, size):
     """Rows (z_m', z_b', z_b, t at s, gap, w') of ``shooting.flight`` (recorded as the
     tape tp, ``shooting.Model.tape``) as jets of length size (N1 or N2) over the local
-    variables."""
+    variables; par = (eta, omega, F)."""
+    eta, omega, F = par
     inputs = np.array([x[0], x[1], x[2], x[3], s, eta, omega, F, float(from_wall)])
     return run_tape(tp, inputs, size)
 
@@ -170,9 +171,10 @@ def _inner(n_glob, cols, grads):
 
 
 @njit(**INLINE)
-def _flights(tp, fam, u, eta, omega, F, size):
-    """The flights of the orbit u: (Y1, inner1, Y2, inner2, n_glob); Y2 is Y1 for the
-    symmetric family (whose residual uses one flight)."""
+def _flights(tp, fam, u, par, size):
+    """The flights of the orbit u at par = (eta, omega, F): (Y1, inner1, Y2, inner2,
+    n_glob); Y2 is Y1 for the symmetric family (whose residual uses one flight)."""
+    omega = par[1]
     nu = 4 + fam
     n_glob = nu + 4
     ie, io, iF = nu, nu + 1, nu + 2
@@ -186,7 +188,7 @@ def _flights(tp, fam, u, eta, omega, F, size):
     else:
         s1 = u[4]
     inner1 = _inner(n_glob, cols, grads)
-    Y1 = flight_local(tp, u, s1, eta, omega, F, WALL_L, size)
+    Y1 = flight_local(tp, u, s1, par, WALL_L, size)
     if fam == 0:
         return Y1, inner1, Y1, inner1, n_glob
     y1, gy1 = _global(Y1, inner1)
@@ -196,7 +198,7 @@ def _flights(tp, fam, u, eta, omega, F, size):
     grads2[4, 4] = -1.0
     grads2[4, io] = -T / omega
     inner2 = _inner(n_glob, cols2, grads2)
-    Y2 = flight_local(tp, y1, T - u[4], eta, omega, F, WALL_R, size)
+    Y2 = flight_local(tp, y1, T - u[4], par, WALL_R, size)
     return Y1, inner1, Y2, inner2, n_glob
 
 
@@ -227,7 +229,7 @@ def _residual(fam, u, Y1, inner1, Y2, inner2, n_glob):
 
 def residual_jacobian(tp, fam, u, eta, omega, F):
     """(E, dE/d(u, eta, omega, F, s_g)) of the family's shooting system."""
-    return codim1(tp, fam, -1, 1, 0, u, eta, omega, F, 0.0)
+    return codim1(tp, fam, -1, 1, 0, u, (eta, omega, F), 0.0)
 
 
 @njit(**INLINE)
@@ -309,9 +311,11 @@ def _test_function(fam, cond, Y1, inner1, Y2, inner2):
 
 
 @njit(**INLINE)
-def _grazing(tp, k, wall, u, eta, omega, F, sg, Y1, inner1, Y2, inner2):
-    """The grazing conditions (``augmented.Codim1System._grazing``) and their gradients."""
-    Yk, innerk = (Y1, inner1) if k == 1 else (Y2, inner2)
+def _grazing(tp, k, wall, u, par, sg, flight1, flight2):
+    """The grazing conditions (``augmented.Codim1System._grazing``) and their gradients;
+    par = (eta, omega, F), flight1, flight2 = (Y, inner) of the orbit's flights."""
+    Y1, inner1 = flight1
+    Yk, innerk = flight1 if k == 1 else flight2
     w0 = float(WALL_L if k == 1 else WALL_R)
     if wall == 2:
         y, gy = _global(Yk, innerk)
@@ -326,24 +330,25 @@ def _grazing(tp, k, wall, u, eta, omega, F, sg, Y1, inner1, Y2, inner2):
     grads[:4] = gx
     cols = np.array([-1, -1, -1, -1, n_glob - 1, n_glob - 4, n_glob - 3, n_glob - 2])
     inner = _inner(n_glob, cols, grads)
-    y, gy = _global(flight_local(tp, x, sg, eta, omega, F, w0, N1), inner)
+    y, gy = _global(flight_local(tp, x, sg, par, w0, N1), inner)
     if wall == 0:
         y[4] -= 2.0 * w0
     return y[4:6].copy(), gy[4:6].copy()
 
 
 @njit(**KW)
-def codim1(tp, fam, cond, k, wall, u, eta, omega, F, sg):
-    """(G, dG/d(u, eta, omega, F, s_g)) of ``augmented.Codim1System`` (codes: module
-    docstring; k, wall and s_g used by grazing only); cond = -1: the shooting residual
-    alone (``residual_jacobian``). The one compiled entry point (compiling is the cost)."""
+def codim1(tp, fam, cond, k, wall, u, par, sg):
+    """(G, dG/d(u, eta, omega, F, s_g)) of ``augmented.Codim1System`` at par = (eta,
+    omega, F) (codes: module docstring; k, wall and s_g used by grazing only); cond = -1:
+    the shooting residual alone (``residual_jacobian``). The one compiled entry point
+    (compiling is the cost)."""
     size = N2 if 0 <= cond <= 2 else N1
-    Y1, inner1, Y2, inner2, n_glob = _flights(tp, fam, u, eta, omega, F, size)
+    Y1, inner1, Y2, inner2, n_glob = _flights(tp, fam, u, par, size)
     E, dE = _residual(fam, u, Y1, inner1, Y2, inner2, n_glob)
     if cond < 0:
         return E, dE
     if cond == 3:
-        g, dg = _grazing(tp, k, wall, u, eta, omega, F, sg, Y1, inner1, Y2, inner2)
+        g, dg = _grazing(tp, k, wall, u, par, sg, (Y1, inner1), (Y2, inner2))
     else:
         v, dv = _test_function(fam, cond, Y1, inner1, Y2, inner2)
         g, dg = np.array([v]), dv.reshape(1, n_glob)

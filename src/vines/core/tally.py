@@ -1,0 +1,54 @@
+"""Impact statistics of the measurement window, accumulated in blocks of impacts.
+
+The measures need from the impacts only counts: impacts in the window, the longest run of
+consecutive impacts on one wall, and the impacts on each wall over the stroboscopic span
+(``regime.classify``). ``ImpactTally`` adds them up block by block, in time order, so a
+long run need not keep its impact list (``exact.KernelRun.stream``): memory then does not
+grow with t_end or max_impacts. The numbers equal those computed from the whole list.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+
+class ImpactTally:
+    """Counts over the impacts with t >= t_transient, added in time order (``add``).
+
+    span = (lo, hi): the impacts per wall are counted over lo <= t < hi (the stroboscopic
+    span of ``regime.classify``; (-inf, inf) when it has fewer than two times).
+    """
+
+    def __init__(self, t_transient: float, span: tuple[float, float]):
+        self.t_transient = float(t_transient)
+        self.lo, self.hi = span
+        self.n_window = 0          # impacts in the window
+        self.longest_run = 0       # longest run of consecutive impacts on one wall
+        self._last_wall = 0        # wall of the last impact added, and its run so far
+        self._run = 0
+        self.n_span_L = 0          # impacts on wall L (+1) and R (-1) over the span
+        self.n_span_R = 0
+
+    @classmethod
+    def for_window(cls, t_transient: float, strobe_t: np.ndarray) -> ImpactTally:
+        """Tally for the window from t_transient with the stroboscopic times strobe_t."""
+        span = (strobe_t[0], strobe_t[-1]) if strobe_t.size >= 2 else (-math.inf, math.inf)
+        return cls(t_transient, span)
+
+    def add(self, t: np.ndarray, wall: np.ndarray) -> None:
+        """Add a block of impacts (times t, walls +-1), later than every block before."""
+        sel = t >= self.t_transient
+        t, wall = t[sel], wall[sel]
+        if wall.size == 0:
+            return
+        self.n_window += int(wall.size)
+        change = np.flatnonzero(np.diff(wall) != 0)
+        lengths = np.diff(np.concatenate(([-1], change, [wall.size - 1])))
+        if wall[0] == self._last_wall:
+            lengths[0] += self._run
+        self.longest_run = max(self.longest_run, int(lengths.max()))
+        self._last_wall, self._run = int(wall[-1]), int(lengths[-1])
+        in_span = (t >= self.lo) & (t < self.hi)
+        self.n_span_L += int(np.count_nonzero(wall[in_span] > 0))
+        self.n_span_R += int(np.count_nonzero(wall[in_span] < 0))
