@@ -1,5 +1,6 @@
 """Figure helpers: input checks (``checks``), drawing (``draw``), multi-panel layouts
-(``layouts``), the stable 1:1 region of a stability map on other maps (``stable_region``),
+(``layouts``), the one palette and the colour map (``palette``), impact directions
+(``impacts``), the stable 1:1 region of a stability map on other maps (``stable_region``),
 the regime of each point of a bifurcation sweep (``sweep_regimes``).
 Figure scripts use ``import vines.plotting as P``.
 
@@ -25,6 +26,7 @@ from .checks import (
                      sweep_points,
                      timehistory,
 )
+from . import palette
 from .draw import (
                      C_BALL,
                      C_BRANCH,
@@ -36,19 +38,23 @@ from .draw import (
                      branch_lines,
                      class_handles,
                      class_map,
+                     common_range,
                      contour_map,
                      eigenvalue_panel,
                      figure,
                      fmt,
+                     impact_handles,
                      impact_phase_panel,
                      metres,
+                     no_impact_handle,
                      panel_label,
-                     point_impacts,
                      save,
+                     shared_colorbar,
                      th_title,
                      time_history,
                      twin_measures,
 )
+from .impacts import impact_direction, point_impacts, pre_impact_velocities
 from .layouts import ZOOM_PAD, time_history_figure, zoom_figure, zoom_range
 from .stable_region import reaches_1to1, region_counts, stability_margin, stable_at
 from .sweep_regimes import (
@@ -67,9 +73,14 @@ __all__ = [
     "stability", "sweep", "sweep_fixed", "sweep_points", "timehistory",
     # draw
     "C_BALL", "C_BRANCH", "C_LO", "CLASSES", "LABELS", "SYMBOLS", "bifurcation_dots",
-    "branch_lines", "class_handles", "class_map", "contour_map", "eigenvalue_panel", "figure", "fmt",
-    "impact_phase_panel", "metres", "panel_label", "point_impacts", "save", "th_title",
+    "branch_lines", "class_handles", "class_map", "common_range", "contour_map",
+    "eigenvalue_panel", "figure", "fmt", "impact_handles", "impact_phase_panel", "metres",
+    "no_impact_handle", "panel_label", "save", "shared_colorbar", "th_title",
     "time_history", "twin_measures",
+    # impacts
+    "impact_direction", "point_impacts", "pre_impact_velocities",
+    # palette
+    "configure", "palette",
     # layouts
     "ZOOM_PAD", "time_history_figure", "zoom_figure", "zoom_range",
     # stable_region
@@ -77,3 +88,10 @@ __all__ = [
     # sweep_regimes
     "REGIME_ASYM", "REGIME_SYM", "REGIMES", "point_regime", "regime_grid", "sweep_regimes",
 ]
+
+
+def configure(sm) -> None:
+    """Settings of a figure job from its rule's params: the colour map of continuous
+    quantities (``figures.colormap``; the default when the rule gives none)."""
+    params = getattr(sm, "params", None)
+    palette.use_colormap(getattr(params, "colormap", None) or palette.DEFAULT_COLORMAP)

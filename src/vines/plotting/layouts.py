@@ -13,6 +13,7 @@ from .draw import (
     eigenvalue_panel,
     figure,
     fmt,
+    impact_handles,
     impact_phase_panel,
     panel_label,
     th_title,
@@ -25,7 +26,7 @@ ZOOM_PAD = 0.6
 
 def time_history_figure(ds: xr.Dataset):
     """Figs 4, 5, 9, 10: one row per point: time history of the last periods with the
-    impacts marked by phase (a, c), phase portraits over those periods (dark) and the whole
+    impacts marked by direction of motion and wall (a, c), phase portraits over those periods (dark) and the whole
     measurement window (light) (b, d), |w'_i| against the impact phase of every impact of
     the window (third column, titled after the row's time history)."""
     n = ds.sizes["point"]
@@ -40,8 +41,10 @@ def time_history_figure(ds: xr.Dataset):
                     if "window_t" in ds.variables else None)
         axes[i, 2].set_title(f"impacts of ({chr(ord('a') + 2 * i)}), {window}", loc="left",
                              fontsize=9)
-    axes[0, 0].legend(fontsize=7, loc="upper right", ncol=2)
-    axes[0, 1].legend(fontsize=7, loc="upper right")
+    lines = axes[0, 0].get_legend_handles_labels()[0]     # same colours in (b, d)
+    fig.legend(handles=lines + impact_handles(), loc="outside lower center", ncol=3,
+               fontsize=7.5, frameon=False, title="impacts: direction of motion just before "
+               "impact", title_fontsize=7.5)
     return fig
 
 
