@@ -62,3 +62,19 @@ def test_both_directions_occur_on_the_2to2_orbit():
     ds = _dataset(POINTS[1:2], 10)
     d = impact_direction(ds, 0)
     assert (d == SAME_WAY).any() and (d == TOWARDS).any()
+
+
+# ------------------------------------------------------------------ basin-fraction intervals
+
+def test_wilson_interval_matches_published_values():
+    from vines.plotting.uncertainty import wilson_interval, wilson_width
+    # Newcombe (1998), Stat. Med. 17, 857, Table I: 81/263 -> 0.2553 ... 0.3662 (95 %);
+    # 0/10 -> 0 ... 0.2775; 1/29 -> 0.0061 ... 0.1718
+    for k, n, lo, hi in ((81, 263, 0.2553, 0.3662), (0, 10, 0.0, 0.2775),
+                         (1, 29, 0.0061, 0.1718)):
+        a, b = wilson_interval(k / n, n)
+        assert abs(a - lo) < 5e-5 and abs(b - hi) < 5e-5, (k, n, a, b)
+    # symmetric about 1/2, widest there, and narrower with more states
+    w = wilson_width(np.array([0.0, 0.25, 0.5, 0.75, 1.0]), 32)
+    assert np.allclose(w, w[::-1]) and np.argmax(w) == 2
+    assert wilson_width(0.5, 128) < wilson_width(0.5, 32)

@@ -11,8 +11,9 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
+from matplotlib import patheffects  # noqa: E402
 from matplotlib.colors import BoundaryNorm, ListedColormap, LogNorm  # noqa: E402
-from matplotlib.lines import Line2D  # noqa: E402
+from matplotlib.lines import Line2D  # noqa: E402, F401  (re-exported for legends)
 from matplotlib.patches import Patch  # noqa: E402
 from matplotlib.ticker import MaxNLocator  # noqa: E402
 
@@ -290,6 +291,41 @@ def common_range(arrays, log=False):
     vals = np.concatenate([np.asarray(a, float).ravel() for a in arrays])
     vals = vals[np.isfinite(vals) & ((vals > 0) if log else True)]
     return float(vals.min()), float(vals.max())
+
+
+#: edge of the stable 1:1 region on colour maps: white over a thin black halo
+STABLE_EDGE = {"color": "white", "lw": 1.5}
+_EDGE_HALO = [patheffects.Stroke(linewidth=2.7, foreground="black"), patheffects.Normal()]
+
+
+def stable_edge(ax, smap: xr.Dataset):
+    """The |lambda_max| = 1 edge of the stable 1:1 region of the stability map ``smap``
+    (interpolated between map points, ``stable_region.stability_margin``)."""
+    from .stable_region import stability_margin
+    cs = ax.contour(smap["eta"].values, smap["omega"].values, stability_margin(smap),
+                    levels=[0.0], colors=STABLE_EDGE["color"], linewidths=STABLE_EDGE["lw"])
+    cs.set_path_effects(_EDGE_HALO)
+    return cs
+
+
+def stable_edge_handle(label=r"edge of the stable 1:1 region ($|\lambda_{\max}| = 1$, Fig. 16)"):
+    """Legend entry drawn as the edge is."""
+    return Line2D([], [], label=label, path_effects=_EDGE_HALO, **STABLE_EDGE)
+
+
+def hatch_cells(ax, x, y, mask, hatch="////", color="white"):
+    """Hatch the cells (one per grid point, edges half-way between points) where ``mask``
+    (len(y), len(x)) is True."""
+    from matplotlib.patches import Rectangle
+
+    def edges(v):
+        v = np.asarray(v, float)
+        mid = (v[1:] + v[:-1]) / 2
+        return np.concatenate([[2 * v[0] - mid[0]], mid, [2 * v[-1] - mid[-1]]])
+    ex, ey = edges(x), edges(y)
+    for j, i in zip(*np.nonzero(mask), strict=True):
+        ax.add_patch(Rectangle((ex[i], ey[j]), ex[i + 1] - ex[i], ey[j + 1] - ey[j],
+                               fill=False, hatch=hatch, edgecolor=color, lw=0))
 
 
 def no_impact_handle(what="no impact (the LO never reaches a wall)"):
