@@ -13,16 +13,22 @@ from matplotlib import patheffects
 from matplotlib.lines import Line2D
 
 from ..data.builders import ragged_rows
+from . import palette
 from .checks import FigureInputError, load, require
 from .draw import LABELS
 
-#: colour of the asymmetric 1:1 branches (the symmetric one is C_BRANCH, red)
-C_ASYMMETRIC = "tab:blue"
-#: colour and line style of each boundary curve type (drawn over a thin white halo, so
-#: they show on every class colour and colour map)
-CURVE_STYLES = {"fold": ("tab:blue", "-"), "flip": ("darkmagenta", "-"),
-                "neimark-sacker": ("green", "-"), "symmetry-breaking": ("red", "-"),
-                "grazing": ("saddlebrown", "--")}
+#: colour of the asymmetric 1:1 branches (the symmetric one is C_BRANCH)
+C_ASYMMETRIC = palette.C_ASYMMETRIC
+#: colour of each boundary curve type, line style of each family (drawn over a thin white
+#: halo, so they show on every class colour and colour map)
+CURVE_COLOURS = {"fold": palette.OKABE_ITO["blue"], "flip": palette.OKABE_ITO["reddish purple"],
+                 "neimark-sacker": palette.OKABE_ITO["bluish green"],
+                 "symmetry-breaking": palette.OKABE_ITO["vermillion"],
+                 "grazing": "#A6761D"}
+FAMILY_STYLES = {"symmetric": "-", "asymmetric": (0, (4, 1.6))}
+#: what a grazing curve is, for captions and legends
+GRAZING_NOTE = ("the orbit touches a wall with zero relative velocity;\nbeyond it the ball "
+                "would cross the wall:\nno admissible 1:1 orbit there")
 HALO = [patheffects.Stroke(linewidth=2.4, foreground="white"), patheffects.Normal()]
 
 
@@ -89,23 +95,38 @@ def boundaries(path) -> xr.Dataset:
     require(ds, variables=("curve_type", "family", "row_size"), finite=("eta", "omega"))
     if "F" not in ds.attrs:
         raise FigureInputError(f"{path}: global attribute 'F' is missing")
-    unknown = set(ds["curve_type"].values.tolist()) - set(CURVE_STYLES)
+    unknown = set(ds["curve_type"].values.tolist()) - set(CURVE_COLOURS)
     if unknown:
         raise FigureInputError(f"{path}: unknown curve types {sorted(unknown)}")
     return ds
 
 
 def draw_curves(ax, ds: xr.Dataset) -> set:
-    """Draw every curve of ``ds`` on ``ax`` (axis limits kept); returns the types drawn."""
+    """Draw every curve of ``ds`` on ``ax`` (axis limits kept): colour by curve type, line
+    style by family; returns the (type, family) pairs drawn."""
     xlim, ylim = ax.get_xlim(), ax.get_ylim()
     etas, omegas = ragged_rows(ds, "eta"), ragged_rows(ds, "omega")
-    types = ds["curve_type"].values.tolist()
-    for typ, e, w in zip(types, etas, omegas, strict=False):
-        colour, ls = CURVE_STYLES[typ]
-        ax.plot(e, w, ls, color=colour, lw=1.1, path_effects=HALO)
+    kinds = list(zip(ds["curve_type"].values.tolist(), ds["family"].values.tolist(),
+                     strict=True))
+    for (typ, fam), e, w in zip(kinds, etas, omegas, strict=False):
+        ax.plot(e, w, color=CURVE_COLOURS[typ], ls=FAMILY_STYLES.get(fam, ":"), lw=1.2,
+                path_effects=HALO)
     ax.set_xlim(xlim)
     ax.set_ylim(ylim)
-    return set(types)
+    return set(kinds)
+
+
+def curve_handles(drawn, note=True) -> list:
+    """Legend entries of the curve types drawn (colours) and of the families (line styles);
+    ``note``: the grazing entry says what grazing is."""
+    types = {t for t, _ in drawn}
+    fams = {f for _, f in drawn}
+    out = [Line2D([], [], color=CURVE_COLOURS[t], lw=1.6, label=t.replace("-", " ") + " curve"
+                  + (f" ({GRAZING_NOTE})" if t == "grazing" and note else ""))
+           for t in CURVE_COLOURS if t in types]
+    out += [Line2D([], [], color="0.2", ls=FAMILY_STYLES.get(f, ":"), lw=1.2,
+                   label=f"{f} 1:1 family") for f in FAMILY_STYLES if f in fams]
+    return out
 
 
 def draw_on_panels(fig, axes, F_values, paths, legend=True) -> list:
@@ -119,9 +140,7 @@ def draw_on_panels(fig, axes, F_values, paths, legend=True) -> list:
         if ds is None:
             raise FigureInputError(f"no boundary curves at F = {F} (curves at F = {sorted(by_F)})")
         drawn |= draw_curves(ax, ds)
-    handles = [Line2D([], [], color=CURVE_STYLES[t][0], ls=CURVE_STYLES[t][1], lw=1.4,
-                      label=t.replace("-", " ") + " curve")
-               for t in CURVE_STYLES if t in drawn]
+    handles = curve_handles(drawn)
     if handles and legend:
         fig.legend(handles=handles, loc="outside lower center", ncol=len(handles), fontsize=8,
                    frameon=False, title=f"boundaries in ({LABELS['eta'].split()[-1]}, "
