@@ -61,7 +61,7 @@ from .draw import (
     twin_measures,
 )
 from .impacts import impact_direction, point_impacts, pre_impact_velocities
-from .layouts import ZOOM_PAD, time_history_figure, zoom_figure, zoom_range
+from .layouts import ZOOM_PAD, time_history_figure, zoom_figure, zoom_legend, zoom_range
 from .stable_region import reaches_1to1, region_counts, stability_margin, stable_at
 from .sweep_regimes import (
     REGIME_ASYM,
@@ -88,7 +88,7 @@ __all__ = [
     # palette
     "Line2D", "Patch", "configure", "palette",
     # layouts
-    "ZOOM_PAD", "time_history_figure", "zoom_figure", "zoom_range",
+    "ZOOM_PAD", "time_history_figure", "zoom_figure", "zoom_legend", "zoom_range",
     # stable_region
     "reaches_1to1", "region_counts", "stability_margin", "stable_at",
     # sweep_regimes

@@ -63,10 +63,12 @@ def _branch_curves(ax, sub: xr.Dataset, label: bool):
                     lw=1.4, label=lab if (label and k == 0) else None)
 
 
-def draw_switched(fig, branches):
+def draw_switched(fig, branches, sweep=None, outer_dim=None):
     """Add the asymmetric branches of each branch dataset to a zoom figure (row i of
     ``fig``: bifurcation panel, |lambda| panel): impact velocities (solid stable, dotted
-    unstable) and lambda_max. Axis limits are kept."""
+    unstable) and lambda_max. Axis limits are kept. Where the asymmetric branches span less
+    than ``INSET_BELOW`` of the panel's eta range, an inset zooms on them (with the swept
+    points of ``sweep`` at the row's ``outer_dim`` value when given)."""
     axes = fig.axes
     for i, br in enumerate(branches):
         ax, axl = axes[2 * i], axes[2 * i + 1]
@@ -76,15 +78,75 @@ def draw_switched(fig, branches):
             _branch_curves(ax, sub, label=j == 0)
             adm = sub["admissible"].values.astype(bool)
             axl.plot(sub["eta"].values, np.where(adm, sub["lambda_max"].values, np.nan), "-",
-                     color=C_ASYMMETRIC, lw=1.0,
+                     color=C_ASYMMETRIC, lw=1.2,
                      label=r"$|\lambda_{\max}|$ asymmetric" if j == 0 else None)
         ax.set_xlim(lims[0])
         ax.set_ylim(lims[1])
         axl.set_xlim(lims[2])
         axl.set_ylim(lims[3])
         if subs:
-            ax.legend(fontsize=7, loc="best", markerscale=4)
-            axl.legend(fontsize=7, loc="best", ncol=2)
+            _inset(ax, br, subs, sweep, outer_dim)
+
+
+#: an inset zooms on the asymmetric branches when they span less than this fraction of the
+#: panel's eta range
+INSET_BELOW = 0.15
+
+
+#: candidate inset boxes (axes fraction: x0, y0, width, height), first the upper right
+INSET_BOXES = ([0.58, 0.56, 0.4, 0.4], [0.06, 0.56, 0.4, 0.4], [0.58, 0.06, 0.4, 0.4],
+               [0.06, 0.06, 0.4, 0.4])
+
+
+def _emptiest_corner(ax):
+    """The box of ``INSET_BOXES`` that covers the fewest drawn points of ``ax``."""
+    pts = [ln.get_xydata() for ln in ax.lines] + [c.get_offsets() for c in ax.collections]
+    xy = np.concatenate([np.asarray(p, float).reshape(-1, 2) for p in pts] or [np.empty((0, 2))])
+    xy = xy[np.all(np.isfinite(xy), axis=1)]
+    frac = ax.transAxes.inverted().transform(ax.transData.transform(xy)) if xy.size else xy
+
+    def covered(b):
+        return int(np.sum((frac[:, 0] >= b[0] - 0.03) & (frac[:, 0] <= b[0] + b[2] + 0.03)
+                          & (frac[:, 1] >= b[1] - 0.03) & (frac[:, 1] <= b[1] + b[3] + 0.03)))
+    return min(INSET_BOXES, key=covered)
+
+
+def _inset(ax, br, subs, sweep, outer_dim):
+    """Inset on the admissible part of the asymmetric branches ``subs`` of ``br``."""
+    eta = np.concatenate([s["eta"].values[s["admissible"].values.astype(bool)] for s in subs])
+    if eta.size == 0:
+        return
+    lo, hi = ax.get_xlim()
+    a, b = float(eta.min()), float(eta.max())
+    if b - a >= INSET_BELOW * (hi - lo):
+        return
+    pad = max(0.5 * (b - a), 1e-3 * (hi - lo))
+    a, b = a - pad, b + pad
+    ins = ax.inset_axes(_emptiest_corner(ax))
+    ys = []
+    if sweep is not None:
+        from .checks import sweep_points
+        x, y = sweep_points(sweep, float(br[outer_dim].values[0]))
+        m = (x >= a) & (x <= b)
+        ins.scatter(x[m], y[m], s=2.0, color="black", linewidths=0, rasterized=True)
+        ys.append(y[m])
+    for sub in [br.isel(point=_rows(br)[0])] + subs:
+        adm = sub["admissible"].values.astype(bool)
+        m = adm & (sub["eta"].values >= a) & (sub["eta"].values <= b)
+        ys += [sub[k].values[m] for k in ("dw_L", "dw_R")]
+    from .draw import branch_lines
+    branch_lines(ins, br.isel(point=_rows(br)[0]), label=False)
+    for sub in subs:
+        _branch_curves(ins, sub, label=False)
+    ins.set_xlim(a, b)
+    y = np.concatenate(ys) if ys else np.array([])
+    y = y[np.isfinite(y)]
+    if y.size:
+        top = float(np.max(np.abs(y)))
+        ins.set_ylim(-1.1 * top, 1.1 * top)
+    ins.tick_params(labelsize=6)
+    ins.set_title("asymmetric branches (zoom)", fontsize=6.5)
+    ax.indicate_inset_zoom(ins, edgecolor="0.3")
 
 
 # ------------------------------------------------------------------ boundary curves (Figs 12, 16)

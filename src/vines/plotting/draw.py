@@ -167,7 +167,7 @@ def bifurcation_dots(ax, x, y, **kw):
     ax.scatter(x, y, **kw)
 
 
-def branch_lines(ax, br: xr.Dataset):
+def branch_lines(ax, br: xr.Dataset, label=True):
     """Analytic 1:1 branch (admissible points): solid stable, dotted unstable, both walls."""
     eta = br["eta"].values
     adm = br["admissible"].values.astype(bool)
@@ -175,10 +175,10 @@ def branch_lines(ax, br: xr.Dataset):
     un = (~br["stable"].values.astype(bool)) & adm
     for k, key in enumerate(("dw_L", "dw_R")):
         y = br[key].values
-        for mask, ls, lab in ((st, "-", "analytic 1:1, stable"),
-                              (un, ":", "analytic 1:1, unstable")):
+        for mask, ls, lab in ((st, "-", "analytic symmetric 1:1, stable"),
+                              (un, ":", "analytic symmetric 1:1, unstable")):
             ax.plot(eta, np.where(mask, y, np.nan), ls, color=C_BRANCH, lw=1.6,
-                    label=lab if k == 0 else None)
+                    label=lab if (k == 0 and label) else None)
 
 
 #: markers and greys of the four |lambda| (colours are kept for the branches)
