@@ -59,7 +59,8 @@ def _timehistories(tmp_path, n_points=2, n_samples=50, bad=False, name="th.nc"):
          "impact_phase": (("impact",), np.tile([1.0, 4.0], n_points)),
          "impact_wall": (("impact",), np.tile(np.array([1, -1], "i1"), n_points)),
          "eta": (("point",), np.linspace(0.05, 0.1, n_points)),
-         "omega": (("point",), np.ones(n_points)), "F": (("point",), np.full(n_points, 0.05))})
+         "omega": (("point",), np.ones(n_points)), "F": (("point",), np.full(n_points, 0.05))},
+        attrs={"solver_r": 0.65})
     path = tmp_path / name
     ds.to_netcdf(path)
     return path
@@ -170,6 +171,21 @@ def test_time_history_script_draws_one_row_per_point(tmp_path):
     assert len(fig.axes) == 9 and fig.axes[0].get_title(loc="left").startswith("(a) $\\eta$")
 
 
+def test_same_data_render_to_identical_bytes(tmp_path):
+    # no creation date (or other run-dependent metadata) in the PDF and PNG files
+    th = [str(_timehistories(tmp_path, n_points=2))]
+    files = []
+    for k in range(2):
+        run = tmp_path / f"render{k}"
+        run.mkdir()
+        _run_script("timehistory", run, th=th)
+        files.append([(run / "figures" / f"fig4.{ext}").read_bytes() for ext in ("pdf", "png")])
+    assert files[0] == files[1]
+    pdf, png = files[0]
+    assert b"/CreationDate" not in pdf and b"/ModDate" not in pdf
+    assert b"tIME" not in png and b"Creation Time" not in png
+
+
 def test_bad_input_fails_with_one_line_in_log_and_console(tmp_path, capfd):
     with pytest.raises(SystemExit) as ei:
         _run_script("timehistory", tmp_path, th=[str(_timehistories(tmp_path, bad=True))])
@@ -187,6 +203,7 @@ def test_figure_scripts_share_one_preamble():
         text = script.read_text()
         assert "sys.path" not in text, script.name
         assert "import vines.plotting as P\n" in text, script.name
+        assert "    P.configure(sm)\n" in text, script.name      # colour map from the rule
         assert text.rstrip().splitlines()[-1].startswith(
             "run_job(snakemake, lambda: main(snakemake))"), script.name
     for fig in TH_FIGURES:
@@ -229,6 +246,10 @@ def test_editing_a_figure_script_reruns_only_its_figures(tmp_path):
         f.write_text(text)
         os.utime(f, ns=(st.st_atime_ns, st.st_mtime_ns))   # as before the edit
     assert _planned(_smk(tmp_path, "-n", *figs, *smoke)) == {}
+    # another colour map (a figure-rule param) reruns the figures and nothing else
+    cfg = tmp_path / "config" / "smoke.yaml"
+    cfg.write_text(cfg.read_text().replace("colormap: viridis", "colormap: jet"))
+    assert _planned(_smk(tmp_path, "-n", *figs, *smoke)) == dict.fromkeys(names, 1)
 
 
 @needs_snakemake

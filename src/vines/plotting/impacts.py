@@ -51,10 +51,11 @@ def pre_impact_velocities(ds: xr.Dataset, i: int) -> tuple[np.ndarray, np.ndarra
     k = np.searchsorted(ts, t_imp, side="left") - 1           # last sample before impact
     ok = (k >= 0) & (ts[np.maximum(k, 0)] > prev)
     vb[ok] = vs[k[ok]]
-    jump = (1.0 + float(ds.attrs["solver_r"])) * dw / (1.0 + float(ds["eta"].values[i]))
-    for j in range(1, n):                                      # forwards over impacts
-        if np.isnan(vb[j]) and not np.isnan(vb[j - 1]):
-            vb[j] = vb[j - 1] + jump[j - 1]
+    if np.isnan(vb[1:]).any():                                 # carried over impacts
+        jump = (1.0 + float(ds.attrs["solver_r"])) * dw / (1.0 + float(ds["eta"].values[i]))
+        for j in range(1, n):
+            if np.isnan(vb[j]) and not np.isnan(vb[j - 1]):
+                vb[j] = vb[j - 1] + jump[j - 1]
     return vb + dw, vb
 
 

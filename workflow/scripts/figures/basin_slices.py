@@ -56,6 +56,7 @@ def draw(ax, ds):
 
 
 def main(sm):
+    P.configure(sm)
     slices = [P.basin_slice(p) for p in sm.input.slices]
     fig, axes = P.figure(1, len(slices), width=4.8 * len(slices), height=6.4)
     for j, ds in enumerate(slices):

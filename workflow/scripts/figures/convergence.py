@@ -183,6 +183,7 @@ def grid_panels(fig, ax_e, ax_f, ax_leg, g):
 
 
 def main(sm):
+    P.configure(sm)
     w = P.require(P.load(sm.input.window), coords=("t_end",),
                   variables=("window_rule", "window_length", "window_fraction",
                              "regime_same", "t_transient", "reference_t_transient"),

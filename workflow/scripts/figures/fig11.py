@@ -68,6 +68,7 @@ def damping(ds, path) -> float:
 
 
 def main(sm):
+    P.configure(sm)
     ds = P.measures(sm.input.measures[0], axes=("omega",), fixed=("F",), min_size=3)
     P.require(ds, coords=("eta",), finite=("xmax_stuck_linear_m",))
     th = P.timehistory(sm.input.th[0])

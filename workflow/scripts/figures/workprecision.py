@@ -43,6 +43,7 @@ def _summary(ds):
 
 
 def main(sm):
+    P.configure(sm)
     cases = [P.load(p) for p in sm.input.cases]
     for ds in cases:
         P.require(ds, variables=VARS, finite=("seconds",))
