@@ -7,9 +7,9 @@ from matplotlib.colors import BoundaryNorm, ListedColormap
 import vines.plotting as P
 from vines.pipeline.jobs import run_job
 
-#: attractor colours in table order (largest basin first); grey: run stopped early
-COLOURS = ["tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown",
-           "tab:pink", "tab:olive", "tab:cyan", "gold"]
+#: attractor colours in table order (largest basin first; the palette's categorical
+#: colours, black kept for "other"); grey: run stopped early
+COLOURS = [c for c in P.palette.CATEGORICAL if c != P.palette.OKABE_ITO["black"]]
 UNSETTLED = "0.5"
 
 
