@@ -6,6 +6,7 @@ of the workflow in tmp_path with a copy of the smoke run's datasets (results/smo
 `snakemake -c2 --configfile config/smoke.yaml`, or the directory named by VINES_SMOKE); they
 never touch results/.
 """
+import importlib.util
 import os
 import runpy
 import shutil
@@ -280,3 +281,18 @@ def test_every_figure_has_a_caption_stating_start_and_window():
         text = (report / f"{name}.rst").read_text()
         assert "from rest" in text or "no initial condition" in text, name
         assert any(w in text for w in ("window", "periods recorded", "forcing periods")), name
+
+
+@pytest.mark.skipif(not (SMOKE / "measures").is_dir(), reason="no smoke datasets")
+def test_docs_numbers_are_generated_from_the_datasets():
+    # docs/figure_numbers.py measures every section on a run's datasets (here the smoke run)
+    spec = importlib.util.spec_from_file_location("figure_numbers",
+                                                  ROOT / "docs" / "figure_numbers.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    text = mod.numbers(SMOKE)
+    assert text.startswith(mod.BEGIN) and text.endswith(mod.END)
+    assert "not available" not in text
+    for title, _ in mod.SECTIONS:
+        assert f"**{title}**" in text
+    assert mod.main([str(SMOKE), "--check"]) in (0, 1)        # --check never writes
