@@ -296,3 +296,22 @@ def test_docs_numbers_are_generated_from_the_datasets():
     for title, _ in mod.SECTIONS:
         assert f"**{title}**" in text
     assert mod.main([str(SMOKE), "--check"]) in (0, 1)        # --check never writes
+
+
+def test_colormap_choices_are_one_list():
+    # figures.colormap: the schema's choices are the palette's, the default not jet
+    from vines.pipeline.config import load_schema
+    key = load_schema()["properties"]["figures"]["properties"]["colormap"]
+    assert tuple(key["enum"]) == P.palette.COLORMAPS
+    assert key["default"] == P.palette.DEFAULT_COLORMAP != "jet"
+    with pytest.raises(ValueError, match="figures.colormap"):
+        P.palette.use_colormap("rainbow")
+    P.configure(SimpleNamespace(params=SimpleNamespace(colormap="jet")))
+    assert P.palette.colormap().name == "jet"
+    P.configure(SimpleNamespace())
+    assert P.palette.colormap_name() == P.palette.DEFAULT_COLORMAP
+    # no colour map named in the figure code outside the palette
+    for f in list(SCRIPTS.glob("*.py")) + list((ROOT / "src" / "vines" / "plotting").glob("*.py")):
+        if f.name != "palette.py":
+            assert not any(f'"{c}"' in f.read_text() for c in ("jet", "viridis", "Greys",
+                                                               "plasma", "tab10", "tab20")), f
