@@ -100,10 +100,16 @@ INSET_BOXES = ([0.58, 0.56, 0.4, 0.4], [0.06, 0.56, 0.4, 0.4], [0.58, 0.06, 0.4,
 
 def _emptiest_corner(ax):
     """The box of ``INSET_BOXES`` that covers the fewest drawn points of ``ax``."""
-    pts = [ln.get_xydata() for ln in ax.lines] + [c.get_offsets() for c in ax.collections]
-    xy = np.concatenate([np.asarray(p, float).reshape(-1, 2) for p in pts] or [np.empty((0, 2))])
+    pts = [np.asarray(c.get_offsets(), float).reshape(-1, 2) for c in ax.collections]
+    for ln in ax.lines:          # lines sampled along their segments, not only at vertices
+        xy = np.asarray(ln.get_xydata(), float).reshape(-1, 2)
+        if len(xy) > 1:
+            t = np.linspace(0.0, 1.0, 20)[:, None, None]
+            xy = (xy[:-1] + t * (xy[1:] - xy[:-1])).reshape(-1, 2)
+        pts.append(xy)
+    xy = np.concatenate(pts or [np.empty((0, 2))])
     xy = xy[np.all(np.isfinite(xy), axis=1)]
-    frac = ax.transAxes.inverted().transform(ax.transData.transform(xy)) if xy.size else xy
+    frac = (ax.transData + ax.transAxes.inverted()).transform(xy) if xy.size else xy
 
     def covered(b):
         return int(np.sum((frac[:, 0] >= b[0] - 0.03) & (frac[:, 0] <= b[0] + b[2] + 0.03)
