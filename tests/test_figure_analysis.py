@@ -154,13 +154,19 @@ def test_time_histories_sample_the_whole_window_and_keep_its_impacts():
 
 
 def test_impact_phase_panel_counts_the_window(tmp_path):
+    # ball velocity sampled between impacts; v_m- = v_b- + w': point 0: (L) 0.5 + 1 same
+    # way, (R) 0.5 - 1 towards, (L) -0.3 + 1 towards; point 1: (L) 0.2 + 0.5, (R) -0.1 - 0.5
+    # both the same way
     ds = xr.Dataset({"row_size": ("point", np.array([3, 2], "i4")),
+                     "t": (("point", "sample"), [[0.5, 1.5, 2.5], [1.0, 2.0, 3.0]]),
+                     "v_b": (("point", "sample"), [[0.5, 0.5, -0.3], [0.2, -0.1, 0.0]]),
                      "impact_t": ("impact", [1.0, 2.0, 3.0, 1.5, 2.5]),
                      "impact_dw": ("impact", [1.0, -1.0, 1.0, 0.5, -0.5]),
                      "impact_phase": ("impact", [0.5, 4.0, 6.0, 1.0, 2.0]),
-                     "impact_wall": ("impact", np.array([1, -1, 1, 1, -1], "i1"))})
+                     "impact_wall": ("impact", np.array([1, -1, 1, 1, -1], "i1"))},
+                    attrs={"solver_r": 0.65})
     assert P.point_impacts(ds, 1)["phase"].tolist() == [1.0, 2.0]
     fig, axes = P.figure(1, 2)
-    # wall +1 is the left end (w = +1), -1 the right end
+    # wall +1 is the left end (w = +1), -1 the right end; (impacts, of them the same way)
     assert P.impact_phase_panel(axes[0, 0], ds, 0) == {"right end": (1, 0), "left end": (2, 1)}
     assert P.impact_phase_panel(axes[0, 1], ds, 1) == {"right end": (1, 1), "left end": (1, 1)}

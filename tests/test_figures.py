@@ -6,6 +6,7 @@ of the workflow in tmp_path with a copy of the smoke run's datasets (results/smo
 `snakemake -c2 --configfile config/smoke.yaml`, or the directory named by VINES_SMOKE); they
 never touch results/.
 """
+import importlib.util
 import os
 import runpy
 import shutil
@@ -59,7 +60,8 @@ def _timehistories(tmp_path, n_points=2, n_samples=50, bad=False, name="th.nc"):
          "impact_phase": (("impact",), np.tile([1.0, 4.0], n_points)),
          "impact_wall": (("impact",), np.tile(np.array([1, -1], "i1"), n_points)),
          "eta": (("point",), np.linspace(0.05, 0.1, n_points)),
-         "omega": (("point",), np.ones(n_points)), "F": (("point",), np.full(n_points, 0.05))})
+         "omega": (("point",), np.ones(n_points)), "F": (("point",), np.full(n_points, 0.05))},
+        attrs={"solver_r": 0.65})
     path = tmp_path / name
     ds.to_netcdf(path)
     return path
@@ -170,6 +172,21 @@ def test_time_history_script_draws_one_row_per_point(tmp_path):
     assert len(fig.axes) == 9 and fig.axes[0].get_title(loc="left").startswith("(a) $\\eta$")
 
 
+def test_same_data_render_to_identical_bytes(tmp_path):
+    # no creation date (or other run-dependent metadata) in the PDF and PNG files
+    th = [str(_timehistories(tmp_path, n_points=2))]
+    files = []
+    for k in range(2):
+        run = tmp_path / f"render{k}"
+        run.mkdir()
+        _run_script("timehistory", run, th=th)
+        files.append([(run / "figures" / f"fig4.{ext}").read_bytes() for ext in ("pdf", "png")])
+    assert files[0] == files[1]
+    pdf, png = files[0]
+    assert b"/CreationDate" not in pdf and b"/ModDate" not in pdf
+    assert b"tIME" not in png and b"Creation Time" not in png
+
+
 def test_bad_input_fails_with_one_line_in_log_and_console(tmp_path, capfd):
     with pytest.raises(SystemExit) as ei:
         _run_script("timehistory", tmp_path, th=[str(_timehistories(tmp_path, bad=True))])
@@ -187,6 +204,7 @@ def test_figure_scripts_share_one_preamble():
         text = script.read_text()
         assert "sys.path" not in text, script.name
         assert "import vines.plotting as P\n" in text, script.name
+        assert "    P.configure(sm)\n" in text, script.name      # colour map from the rule
         assert text.rstrip().splitlines()[-1].startswith(
             "run_job(snakemake, lambda: main(snakemake))"), script.name
     for fig in TH_FIGURES:
@@ -229,6 +247,10 @@ def test_editing_a_figure_script_reruns_only_its_figures(tmp_path):
         f.write_text(text)
         os.utime(f, ns=(st.st_atime_ns, st.st_mtime_ns))   # as before the edit
     assert _planned(_smk(tmp_path, "-n", *figs, *smoke)) == {}
+    # another colour map (a figure-rule param) reruns the figures and nothing else
+    cfg = tmp_path / "config" / "smoke.yaml"
+    cfg.write_text(cfg.read_text().replace("colormap: viridis", "colormap: jet"))
+    assert _planned(_smk(tmp_path, "-n", *figs, *smoke)) == dict.fromkeys(names, 1)
 
 
 @needs_snakemake
@@ -259,3 +281,37 @@ def test_every_figure_has_a_caption_stating_start_and_window():
         text = (report / f"{name}.rst").read_text()
         assert "from rest" in text or "no initial condition" in text, name
         assert any(w in text for w in ("window", "periods recorded", "forcing periods")), name
+
+
+@pytest.mark.skipif(not (SMOKE / "measures").is_dir(), reason="no smoke datasets")
+def test_docs_numbers_are_generated_from_the_datasets():
+    # docs/figure_numbers.py measures every section on a run's datasets (here the smoke run)
+    spec = importlib.util.spec_from_file_location("figure_numbers",
+                                                  ROOT / "docs" / "figure_numbers.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    text = mod.numbers(SMOKE)
+    assert text.startswith(mod.BEGIN) and text.endswith(mod.END)
+    assert "not available" not in text
+    for title, _ in mod.SECTIONS:
+        assert f"**{title}**" in text
+    assert mod.main([str(SMOKE), "--check"]) in (0, 1)        # --check never writes
+
+
+def test_colormap_choices_are_one_list():
+    # figures.colormap: the schema's choices are the palette's, the default not jet
+    from vines.pipeline.config import load_schema
+    key = load_schema()["properties"]["figures"]["properties"]["colormap"]
+    assert tuple(key["enum"]) == P.palette.COLORMAPS
+    assert key["default"] == P.palette.DEFAULT_COLORMAP != "jet"
+    with pytest.raises(ValueError, match="figures.colormap"):
+        P.palette.use_colormap("rainbow")
+    P.configure(SimpleNamespace(params=SimpleNamespace(colormap="jet")))
+    assert P.palette.colormap().name == "jet"
+    P.configure(SimpleNamespace())
+    assert P.palette.colormap_name() == P.palette.DEFAULT_COLORMAP
+    # no colour map named in the figure code outside the palette
+    for f in list(SCRIPTS.glob("*.py")) + list((ROOT / "src" / "vines" / "plotting").glob("*.py")):
+        if f.name != "palette.py":
+            assert not any(f'"{c}"' in f.read_text() for c in ("jet", "viridis", "Greys",
+                                                               "plasma", "tab10", "tab20")), f

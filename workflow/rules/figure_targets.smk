@@ -148,5 +148,6 @@ def figure_rule_for(fig):
             "../../environment.yml"
         params:
             code=CODE_FIGURES,
+            colormap=config["figures"]["colormap"],
         script:
             f"../scripts/figures/{figure_script(fig)}.py"

@@ -1,63 +1,75 @@
 """Figure helpers: input checks (``checks``), drawing (``draw``), multi-panel layouts
-(``layouts``), the stable 1:1 region of a stability map on other maps (``stable_region``),
+(``layouts``), the one palette and the colour map (``palette``), impact directions
+(``impacts``), the stable 1:1 region of a stability map on other maps (``stable_region``),
 the regime of each point of a bifurcation sweep (``sweep_regimes``).
 Figure scripts use ``import vines.plotting as P``.
 
 Figures only *read* the pipeline's datasets (``results/<run>/...``); restyling a figure
 never reruns a computation.
 """
+from matplotlib.lines import Line2D
+from matplotlib.patches import Patch
+
+from . import palette
 from .checks import (
-                     CLASS_VALUES,
-                     FigureInputError,
-                     basin_slice,
-                     branch,
-                     fixed_value,
-                     grid2d,
-                     load,
-                     marked_sections,
-                     measures,
-                     require,
-                     robust_map,
-                     sorted_by_fixed,
-                     stability,
-                     sweep,
-                     sweep_fixed,
-                     sweep_points,
-                     timehistory,
+    CLASS_VALUES,
+    FigureInputError,
+    basin_slice,
+    branch,
+    fixed_value,
+    grid2d,
+    load,
+    marked_sections,
+    measures,
+    require,
+    robust_map,
+    sorted_by_fixed,
+    stability,
+    sweep,
+    sweep_fixed,
+    sweep_points,
+    timehistory,
 )
 from .draw import (
-                     C_BALL,
-                     C_BRANCH,
-                     C_LO,
-                     CLASSES,
-                     LABELS,
-                     SYMBOLS,
-                     bifurcation_dots,
-                     branch_lines,
-                     class_handles,
-                     class_map,
-                     contour_map,
-                     eigenvalue_panel,
-                     figure,
-                     fmt,
-                     impact_phase_panel,
-                     metres,
-                     panel_label,
-                     point_impacts,
-                     save,
-                     th_title,
-                     time_history,
-                     twin_measures,
+    C_BALL,
+    C_BRANCH,
+    C_LO,
+    CLASSES,
+    LABELS,
+    SYMBOLS,
+    bifurcation_dots,
+    branch_lines,
+    class_handles,
+    class_map,
+    common_range,
+    contour_map,
+    eigenvalue_panel,
+    figure,
+    fmt,
+    hatch_cells,
+    impact_handles,
+    impact_phase_panel,
+    metres,
+    no_impact_handle,
+    panel_label,
+    save,
+    shared_colorbar,
+    stable_edge,
+    stable_edge_handle,
+    th_title,
+    time_history,
+    twin_measures,
 )
-from .layouts import ZOOM_PAD, time_history_figure, zoom_figure, zoom_range
+from .impacts import impact_direction, point_impacts, pre_impact_velocities
+from .layouts import ZOOM_PAD, time_history_figure, zoom_figure, zoom_legend, zoom_range
 from .stable_region import reaches_1to1, region_counts, stability_margin, stable_at
 from .sweep_regimes import (
-                     REGIME_ASYM,
-                     REGIME_SYM,
-                     REGIMES,
-                     point_regime,
-                     regime_grid,
-                     sweep_regimes,
+    REGIME_ASYM,
+    REGIME_SYM,
+    REGIMES,
+    point_regime,
+    regime_grid,
+    sweep_regimes,
 )
 
 __all__ = [
@@ -67,13 +79,25 @@ __all__ = [
     "stability", "sweep", "sweep_fixed", "sweep_points", "timehistory",
     # draw
     "C_BALL", "C_BRANCH", "C_LO", "CLASSES", "LABELS", "SYMBOLS", "bifurcation_dots",
-    "branch_lines", "class_handles", "class_map", "contour_map", "eigenvalue_panel", "figure", "fmt",
-    "impact_phase_panel", "metres", "panel_label", "point_impacts", "save", "th_title",
+    "branch_lines", "class_handles", "class_map", "common_range", "contour_map",
+    "eigenvalue_panel", "figure", "fmt", "impact_handles", "impact_phase_panel", "metres",
+    "no_impact_handle", "panel_label", "save", "shared_colorbar", "stable_edge", "stable_edge_handle", "hatch_cells", "th_title",
     "time_history", "twin_measures",
+    # impacts
+    "impact_direction", "point_impacts", "pre_impact_velocities",
+    # palette
+    "Line2D", "Patch", "configure", "palette",
     # layouts
-    "ZOOM_PAD", "time_history_figure", "zoom_figure", "zoom_range",
+    "ZOOM_PAD", "time_history_figure", "zoom_figure", "zoom_legend", "zoom_range",
     # stable_region
     "reaches_1to1", "region_counts", "stability_margin", "stable_at",
     # sweep_regimes
     "REGIME_ASYM", "REGIME_SYM", "REGIMES", "point_regime", "regime_grid", "sweep_regimes",
 ]
+
+
+def configure(sm) -> None:
+    """Settings of a figure job from its rule's params: the colour map of continuous
+    quantities (``figures.colormap``; the default when the rule gives none)."""
+    params = getattr(sm, "params", None)
+    palette.use_colormap(getattr(params, "colormap", None) or palette.DEFAULT_COLORMAP)

@@ -13,16 +13,22 @@ from matplotlib import patheffects
 from matplotlib.lines import Line2D
 
 from ..data.builders import ragged_rows
+from . import palette
 from .checks import FigureInputError, load, require
 from .draw import LABELS
 
-#: colour of the asymmetric 1:1 branches (the symmetric one is C_BRANCH, red)
-C_ASYMMETRIC = "tab:blue"
-#: colour and line style of each boundary curve type (drawn over a thin white halo, so
-#: they show on every class colour and colour map)
-CURVE_STYLES = {"fold": ("tab:blue", "-"), "flip": ("darkmagenta", "-"),
-                "neimark-sacker": ("green", "-"), "symmetry-breaking": ("red", "-"),
-                "grazing": ("saddlebrown", "--")}
+#: colour of the asymmetric 1:1 branches (the symmetric one is C_BRANCH)
+C_ASYMMETRIC = palette.C_ASYMMETRIC
+#: colour of each boundary curve type, line style of each family (drawn over a thin white
+#: halo, so they show on every class colour and colour map)
+CURVE_COLOURS = {"fold": palette.OKABE_ITO["blue"], "flip": palette.OKABE_ITO["reddish purple"],
+                 "neimark-sacker": palette.OKABE_ITO["bluish green"],
+                 "symmetry-breaking": palette.OKABE_ITO["vermillion"],
+                 "grazing": "#A6761D"}
+FAMILY_STYLES = {"symmetric": "-", "asymmetric": (0, (4, 1.6))}
+#: what a grazing curve is, for captions and legends
+GRAZING_NOTE = ("the orbit touches a wall with zero relative velocity;\nbeyond it the ball "
+                "would cross the wall:\nno admissible 1:1 orbit there")
 HALO = [patheffects.Stroke(linewidth=2.4, foreground="white"), patheffects.Normal()]
 
 
@@ -57,10 +63,12 @@ def _branch_curves(ax, sub: xr.Dataset, label: bool):
                     lw=1.4, label=lab if (label and k == 0) else None)
 
 
-def draw_switched(fig, branches):
+def draw_switched(fig, branches, sweep=None, outer_dim=None):
     """Add the asymmetric branches of each branch dataset to a zoom figure (row i of
     ``fig``: bifurcation panel, |lambda| panel): impact velocities (solid stable, dotted
-    unstable) and lambda_max. Axis limits are kept."""
+    unstable) and lambda_max. Axis limits are kept. Where the asymmetric branches span less
+    than ``INSET_BELOW`` of the panel's eta range, an inset zooms on them (with the swept
+    points of ``sweep`` at the row's ``outer_dim`` value when given)."""
     axes = fig.axes
     for i, br in enumerate(branches):
         ax, axl = axes[2 * i], axes[2 * i + 1]
@@ -70,15 +78,81 @@ def draw_switched(fig, branches):
             _branch_curves(ax, sub, label=j == 0)
             adm = sub["admissible"].values.astype(bool)
             axl.plot(sub["eta"].values, np.where(adm, sub["lambda_max"].values, np.nan), "-",
-                     color=C_ASYMMETRIC, lw=1.0,
+                     color=C_ASYMMETRIC, lw=1.2,
                      label=r"$|\lambda_{\max}|$ asymmetric" if j == 0 else None)
         ax.set_xlim(lims[0])
         ax.set_ylim(lims[1])
         axl.set_xlim(lims[2])
         axl.set_ylim(lims[3])
         if subs:
-            ax.legend(fontsize=7, loc="best", markerscale=4)
-            axl.legend(fontsize=7, loc="best", ncol=2)
+            _inset(ax, br, subs, sweep, outer_dim)
+
+
+#: an inset zooms on the asymmetric branches when they span less than this fraction of the
+#: panel's eta range
+INSET_BELOW = 0.15
+
+
+#: candidate inset boxes (axes fraction: x0, y0, width, height), first the upper right
+INSET_BOXES = ([0.58, 0.56, 0.4, 0.4], [0.06, 0.56, 0.4, 0.4], [0.58, 0.06, 0.4, 0.4],
+               [0.06, 0.06, 0.4, 0.4])
+
+
+def _emptiest_corner(ax):
+    """The box of ``INSET_BOXES`` that covers the fewest drawn points of ``ax``."""
+    pts = [np.asarray(c.get_offsets(), float).reshape(-1, 2) for c in ax.collections]
+    for ln in ax.lines:          # lines sampled along their segments, not only at vertices
+        xy = np.asarray(ln.get_xydata(), float).reshape(-1, 2)
+        if len(xy) > 1:
+            t = np.linspace(0.0, 1.0, 20)[:, None, None]
+            xy = (xy[:-1] + t * (xy[1:] - xy[:-1])).reshape(-1, 2)
+        pts.append(xy)
+    xy = np.concatenate(pts or [np.empty((0, 2))])
+    xy = xy[np.all(np.isfinite(xy), axis=1)]
+    frac = (ax.transData + ax.transAxes.inverted()).transform(xy) if xy.size else xy
+
+    def covered(b):
+        return int(np.sum((frac[:, 0] >= b[0] - 0.03) & (frac[:, 0] <= b[0] + b[2] + 0.03)
+                          & (frac[:, 1] >= b[1] - 0.03) & (frac[:, 1] <= b[1] + b[3] + 0.03)))
+    return min(INSET_BOXES, key=covered)
+
+
+def _inset(ax, br, subs, sweep, outer_dim):
+    """Inset on the admissible part of the asymmetric branches ``subs`` of ``br``."""
+    eta = np.concatenate([s["eta"].values[s["admissible"].values.astype(bool)] for s in subs])
+    if eta.size == 0:
+        return
+    lo, hi = ax.get_xlim()
+    a, b = float(eta.min()), float(eta.max())
+    if b - a >= INSET_BELOW * (hi - lo):
+        return
+    pad = max(0.5 * (b - a), 1e-3 * (hi - lo))
+    a, b = a - pad, b + pad
+    ins = ax.inset_axes(_emptiest_corner(ax))
+    ys = []
+    if sweep is not None:
+        from .checks import sweep_points
+        x, y = sweep_points(sweep, float(br[outer_dim].values[0]))
+        m = (x >= a) & (x <= b)
+        ins.scatter(x[m], y[m], s=2.0, color="black", linewidths=0, rasterized=True)
+        ys.append(y[m])
+    for sub in [br.isel(point=_rows(br)[0])] + subs:
+        adm = sub["admissible"].values.astype(bool)
+        m = adm & (sub["eta"].values >= a) & (sub["eta"].values <= b)
+        ys += [sub[k].values[m] for k in ("dw_L", "dw_R")]
+    from .draw import branch_lines
+    branch_lines(ins, br.isel(point=_rows(br)[0]), label=False)
+    for sub in subs:
+        _branch_curves(ins, sub, label=False)
+    ins.set_xlim(a, b)
+    y = np.concatenate(ys) if ys else np.array([])
+    y = y[np.isfinite(y)]
+    if y.size:
+        top = float(np.max(np.abs(y)))
+        ins.set_ylim(-1.1 * top, 1.1 * top)
+    ins.tick_params(labelsize=6)
+    ins.set_title("asymmetric branches (zoom)", fontsize=6.5)
+    ax.indicate_inset_zoom(ins, edgecolor="0.3")
 
 
 # ------------------------------------------------------------------ boundary curves (Figs 12, 16)
@@ -89,23 +163,38 @@ def boundaries(path) -> xr.Dataset:
     require(ds, variables=("curve_type", "family", "row_size"), finite=("eta", "omega"))
     if "F" not in ds.attrs:
         raise FigureInputError(f"{path}: global attribute 'F' is missing")
-    unknown = set(ds["curve_type"].values.tolist()) - set(CURVE_STYLES)
+    unknown = set(ds["curve_type"].values.tolist()) - set(CURVE_COLOURS)
     if unknown:
         raise FigureInputError(f"{path}: unknown curve types {sorted(unknown)}")
     return ds
 
 
 def draw_curves(ax, ds: xr.Dataset) -> set:
-    """Draw every curve of ``ds`` on ``ax`` (axis limits kept); returns the types drawn."""
+    """Draw every curve of ``ds`` on ``ax`` (axis limits kept): colour by curve type, line
+    style by family; returns the (type, family) pairs drawn."""
     xlim, ylim = ax.get_xlim(), ax.get_ylim()
     etas, omegas = ragged_rows(ds, "eta"), ragged_rows(ds, "omega")
-    types = ds["curve_type"].values.tolist()
-    for typ, e, w in zip(types, etas, omegas, strict=False):
-        colour, ls = CURVE_STYLES[typ]
-        ax.plot(e, w, ls, color=colour, lw=1.1, path_effects=HALO)
+    kinds = list(zip(ds["curve_type"].values.tolist(), ds["family"].values.tolist(),
+                     strict=True))
+    for (typ, fam), e, w in zip(kinds, etas, omegas, strict=False):
+        ax.plot(e, w, color=CURVE_COLOURS[typ], ls=FAMILY_STYLES.get(fam, ":"), lw=1.2,
+                path_effects=HALO)
     ax.set_xlim(xlim)
     ax.set_ylim(ylim)
-    return set(types)
+    return set(kinds)
+
+
+def curve_handles(drawn, note=True) -> list:
+    """Legend entries of the curve types drawn (colours) and of the families (line styles);
+    ``note``: the grazing entry says what grazing is."""
+    types = {t for t, _ in drawn}
+    fams = {f for _, f in drawn}
+    out = [Line2D([], [], color=CURVE_COLOURS[t], lw=1.6, label=t.replace("-", " ") + " curve"
+                  + (f" ({GRAZING_NOTE})" if t == "grazing" and note else ""))
+           for t in CURVE_COLOURS if t in types]
+    out += [Line2D([], [], color="0.2", ls=FAMILY_STYLES.get(f, ":"), lw=1.2,
+                   label=f"{f} 1:1 family") for f in FAMILY_STYLES if f in fams]
+    return out
 
 
 def draw_on_panels(fig, axes, F_values, paths, legend=True) -> list:
@@ -119,9 +208,7 @@ def draw_on_panels(fig, axes, F_values, paths, legend=True) -> list:
         if ds is None:
             raise FigureInputError(f"no boundary curves at F = {F} (curves at F = {sorted(by_F)})")
         drawn |= draw_curves(ax, ds)
-    handles = [Line2D([], [], color=CURVE_STYLES[t][0], ls=CURVE_STYLES[t][1], lw=1.4,
-                      label=t.replace("-", " ") + " curve")
-               for t in CURVE_STYLES if t in drawn]
+    handles = curve_handles(drawn)
     if handles and legend:
         fig.legend(handles=handles, loc="outside lower center", ncol=len(handles), fontsize=8,
                    frameon=False, title=f"boundaries in ({LABELS['eta'].split()[-1]}, "

@@ -221,7 +221,8 @@ def basin_slice(path) -> xr.Dataset:
 
 def timehistory(path) -> xr.Dataset:
     """Time histories of single runs (at least 2 samples per point), their impacts and, if
-    stored, the samples of the whole measurement window (``window_*``)."""
+    stored, the samples of the whole measurement window (``window_*``); the attribute
+    ``solver_r`` (impact directions, ``vines.plotting.impacts``)."""
     ds = load(path)
     impacts = ("impact_t", "impact_dw", "impact_phase")
     require(ds, variables=("t", "z_m", "v_m", "z_b", "v_b", "row_size") + impacts,
@@ -233,4 +234,7 @@ def timehistory(path) -> xr.Dataset:
         raise FigureInputError(f"{_where(ds)}: row_size sums to {n}, {stored} impacts stored")
     if "window_t" in ds.variables:
         require(ds, finite=tuple(f"window_{k}" for k in ("t", "z_m", "v_m", "z_b", "v_b")))
+    if "solver_r" not in ds.attrs:     # the impact law carries v_b over sample-less gaps
+        raise FigureInputError(f"{_where(ds)}: global attribute 'solver_r' (coefficient of "
+                               f"restitution) is missing")
     return ds

@@ -11,14 +11,18 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
+from matplotlib import patheffects  # noqa: E402
 from matplotlib.colors import BoundaryNorm, ListedColormap, LogNorm  # noqa: E402
+from matplotlib.lines import Line2D  # noqa: E402, F401  (re-exported for legends)
 from matplotlib.patches import Patch  # noqa: E402
 from matplotlib.ticker import MaxNLocator  # noqa: E402
 
 from ..core.conventions import WALL_L, WALL_R  # noqa: E402
 from ..core.params import L_HALF_M  # noqa: E402
 from ..data.netcdf import new_file_mode  # noqa: E402
+from . import palette  # noqa: E402
 from .checks import FigureInputError  # noqa: E402
+from .impacts import SAME_WAY, TOWARDS, impact_direction, point_impacts  # noqa: E402
 
 #: axis labels (symbols and units)
 LABELS = {
@@ -31,11 +35,10 @@ LABELS = {
     "abs_lambda": r"$|\lambda|$",
     "t": r"time $\tau$",
 }
-#: colours of the paper: LO / cavity ends blue, ball red, analytic branch red
-C_LO, C_BALL, C_BRANCH = "tab:blue", "tab:red", "tab:red"
+#: colours of the paper: LO / cavity ends blue, ball red, analytic (symmetric) branch red
+C_LO, C_BALL, C_BRANCH = palette.C_LO, palette.C_BALL, palette.C_SYMMETRIC
 #: Fig 16 classes (label, colour) by value of ``cls`` in the stability datasets
-CLASSES = {0: ("no admissible 1:1", "0.6"), 1: ("symmetric stable 1:1", "tab:orange"),
-           2: ("asymmetric stable 1:1", "black"), 3: ("unstable 1:1", "white")}
+CLASSES = palette.CLASSES
 #: parameter symbols in panel titles
 SYMBOLS = {"eta": r"\eta", "omega": r"\Omega", "F": "F"}
 
@@ -70,25 +73,35 @@ def metres(x):
     return np.asarray(x, dtype=float) * L_HALF_M
 
 
-#: impact markers by phase: (0, pi) LO and ball moving the same way, (pi, 2 pi) opposite
-IMPACT_STYLES = ((r"impact, $\varphi_i \in (0, \pi)$", "v", "darkorange"),
-                 (r"impact, $\varphi_i \in (\pi, 2\pi)$", "^", "black"))
+#: impact markers by direction of motion just before impact (``vines.plotting.impacts``)
+IMPACT_STYLES = {TOWARDS: ("LO and ball moving towards each other", "^", palette.C_TOWARDS),
+                 SAME_WAY: ("LO and ball moving the same way", "v", palette.C_SAME_WAY)}
+#: walls: filled markers at the right end (wall R, z_b = z_m + 1), open at the left end
+WALL_STYLES = ((WALL_R, "right end", True), (WALL_L, "left end", False))
 
 
-def point_impacts(ds: xr.Dataset, i: int) -> dict:
-    """Impacts of point ``i`` of a time-history dataset: t, dw, phase, wall arrays."""
-    edges = np.concatenate([[0], np.cumsum(ds["row_size"].values)])
-    return {k: ds[f"impact_{k}"].values[edges[i]:edges[i + 1]]
-            for k in ("t", "dw", "phase", "wall")}
+def impact_handles() -> list:
+    """Legend entries of the impact markers: the two directions (filled: right end) and the
+    open marker of the left end."""
+    out = [Line2D([], [], ls="", marker=mk, ms=5, color=col, label=lab + " (filled: right end)")
+           for lab, mk, col in IMPACT_STYLES.values()]
+    out.append(Line2D([], [], ls="", marker="o", ms=5, mfc="none", mec="0.3",
+                      label="open: left end"))
+    return out
 
 
-def _same_way(phase) -> np.ndarray:
-    return np.mod(phase, 2 * np.pi) < np.pi
+def _impact_markers(ax, x, y, direction, wall, **kw):
+    """Impacts at (x, y) marked by direction (marker, colour) and wall (filled / open)."""
+    for code, (_, mk, col) in IMPACT_STYLES.items():
+        for w, _, filled in WALL_STYLES:
+            m = (direction == code) & (wall == w)
+            if m.any():
+                ax.plot(x[m], y[m], mk, ls="", mec=col, mfc=col if filled else "none", **kw)
 
 
 def time_history(ax_t, ax_p, ds: xr.Dataset, i: int):
     """Cavity ends z_m +- 1 (blue) and ball z_b (red) over the last periods, impacts marked
-    by phase; beside it the phase portraits of the last periods (dark) over those of the
+    by direction and wall (``IMPACT_STYLES``, ``WALL_STYLES``); beside it the phase portraits of the last periods (dark) over those of the
     whole measurement window (light, ``window_*`` samples, when the dataset has them)."""
     t, zm = ds["t"].values[i], ds["z_m"].values[i]
     zb = ds["z_b"].values[i]
@@ -97,10 +110,8 @@ def time_history(ax_t, ax_p, ds: xr.Dataset, i: int):
     ax_t.plot(t, zb, color=C_BALL, lw=0.9, label=r"ball $z_b$")
     imp = point_impacts(ds, i)
     shown = (imp["t"] >= t[0]) & (imp["t"] <= t[-1])
-    for same, (lab, mk, col) in zip((True, False), IMPACT_STYLES, strict=False):
-        m = shown & (_same_way(imp["phase"]) == same)
-        ax_t.plot(imp["t"][m], np.interp(imp["t"][m], t, zb), mk, color=col, ms=4,
-                  ls="", label=lab)
+    _impact_markers(ax_t, imp["t"][shown], np.interp(imp["t"][shown], t, zb),
+                    impact_direction(ds, i)[shown], imp["wall"][shown], ms=4.5, mew=0.9)
     ax_t.set_xlim(t[0], t[-1])
     ax_t.set_xlabel(LABELS["t"])
     ax_t.set_ylabel(r"displacement $z$ (units of $L$)")
@@ -124,31 +135,29 @@ def _broken(t, y, t_impacts):
 
 def impact_phase_panel(ax, ds: xr.Dataset, i: int) -> dict:
     """|w'_i| against the impact phase of every impact of the dataset (the whole measurement
-    window): filled markers at the right end of the cavity (wall R, z_b = z_m + 1, where the
-    paper's convention applies: phi_i in (0, pi) LO and ball moving the same way), open ones
-    at the left end; (0, pi) shaded. Returns per wall the impacts and those in (0, pi)."""
+    window), marked by direction and wall (filled: right end, where the paper's phase
+    convention applies; open: left end); (0, pi) shaded. Returns per wall the number of
+    impacts and of those with the LO and the ball moving the same way."""
     imp = point_impacts(ds, i)
     ph = np.mod(imp["phase"], 2 * np.pi)
-    ax.axvspan(0, np.pi, color="0.92", lw=0)
-    counts = {}
-    for wall, name, filled in ((WALL_R, "right end", True), (WALL_L, "left end", False)):
-        at = imp["wall"] == wall
-        for same, (_, mk, col) in zip((True, False), IMPACT_STYLES, strict=False):
-            m = at & (_same_way(ph) == same)
-            ax.plot(ph[m], np.abs(imp["dw"][m]), mk, ls="", ms=4.5, alpha=0.7, mec=col,
-                    mfc=col if filled else "none", mew=0.8, rasterized=True)
-        counts[name] = (int(at.sum()), int((at & _same_way(ph)).sum()))
+    direction = impact_direction(ds, i)
+    ax.axvspan(0, np.pi, color="0.93", lw=0)
+    _impact_markers(ax, ph, np.abs(imp["dw"]), direction, imp["wall"], ms=4.5, alpha=0.75,
+                    mew=0.8, rasterized=True)
+    counts = {name: (int((imp["wall"] == w).sum()),
+                     int(((imp["wall"] == w) & (direction == SAME_WAY)).sum()))
+              for w, name, _ in WALL_STYLES}
     ax.axvline(np.pi, color="0.4", lw=0.8, ls=":")
     ax.set_xlim(0, 2 * np.pi)
     if ph.size:
-        ax.set_ylim(0, 1.25 * float(np.max(np.abs(imp["dw"]))))
+        ax.set_ylim(0, 1.3 * float(np.max(np.abs(imp["dw"]))))
     ax.set_xticks([0, np.pi / 2, np.pi, 1.5 * np.pi, 2 * np.pi],
                   ["0", r"$\pi/2$", r"$\pi$", r"$3\pi/2$", r"$2\pi$"])
     ax.set_xlabel(r"impact phase $\varphi_i$")
     ax.set_ylabel(r"$|\dot w_i|$")
-    text = "\n".join(f"{name} (" + ("filled" if name == "right end" else "open")
-                      + f"): {n}, {k} in (0, $\\pi$)" for name, (n, k) in counts.items())
-    ax.text(0.03, 0.97, text, transform=ax.transAxes, fontsize=6.5, va="top")
+    text = "\n".join(f"{name}: {n} impacts, {k} same way" for name, (n, k) in counts.items())
+    ax.text(0.03, 0.97, text, transform=ax.transAxes, fontsize=6.5, va="top",
+            bbox={"facecolor": "white", "alpha": 0.85, "lw": 0, "pad": 1.5})
     return counts
 
 
@@ -158,7 +167,7 @@ def bifurcation_dots(ax, x, y, **kw):
     ax.scatter(x, y, **kw)
 
 
-def branch_lines(ax, br: xr.Dataset):
+def branch_lines(ax, br: xr.Dataset, label=True):
     """Analytic 1:1 branch (admissible points): solid stable, dotted unstable, both walls."""
     eta = br["eta"].values
     adm = br["admissible"].values.astype(bool)
@@ -166,10 +175,14 @@ def branch_lines(ax, br: xr.Dataset):
     un = (~br["stable"].values.astype(bool)) & adm
     for k, key in enumerate(("dw_L", "dw_R")):
         y = br[key].values
-        for mask, ls, lab in ((st, "-", "analytic 1:1, stable"),
-                              (un, ":", "analytic 1:1, unstable")):
+        for mask, ls, lab in ((st, "-", "analytic symmetric 1:1, stable"),
+                              (un, ":", "analytic symmetric 1:1, unstable")):
             ax.plot(eta, np.where(mask, y, np.nan), ls, color=C_BRANCH, lw=1.6,
-                    label=lab if k == 0 else None)
+                    label=lab if (k == 0 and label) else None)
+
+
+#: markers and greys of the four |lambda| (colours are kept for the branches)
+EIGEN_STYLES = (("o", "black"), ("s", "0.45"), ("^", "0.25"), ("D", "0.6"))
 
 
 def eigenvalue_panel(ax, br: xr.Dataset):
@@ -178,8 +191,9 @@ def eigenvalue_panel(ax, br: xr.Dataset):
     adm = br["admissible"].values.astype(bool)
     ev = np.asarray(br["abs_eigenvalues"].values, dtype=float)
     for j in range(ev.shape[1]):
-        ax.plot(eta, np.where(adm, ev[:, j], np.nan), ".", ms=2.5,
-                label=rf"$|\lambda_{j + 1}|$")
+        mk, col = EIGEN_STYLES[j % len(EIGEN_STYLES)]
+        ax.plot(eta, np.where(adm, ev[:, j], np.nan), mk, ms=2.5, color=col, mfc="none",
+                mew=0.6, label=rf"$|\lambda_{j + 1}|$")
     ax.axhline(1.0, color="black", ls=":", lw=1.0)
     ax.set_xlabel(LABELS["eta"])
     ax.set_ylabel(LABELS["abs_lambda"])
@@ -208,28 +222,38 @@ def class_handles(classes: dict, suffix=None) -> list:
 def twin_measures(ax, x, ke, xmax_m, xlabel):
     """x_max (m, red circles, left axis) and KE ratio (blue stars, right axis); returns the
     right axis."""
-    ax.plot(x, xmax_m, "o", color="tab:red", ms=3.5, mfc="none", label=r"$x_m^{\max}$")
+    red, blue = palette.OKABE_ITO["vermillion"], palette.OKABE_ITO["blue"]
+    ax.plot(x, xmax_m, "o", color=red, ms=3.5, mfc="none", label=r"$x_m^{\max}$")
     ax.set_xlabel(xlabel)
-    ax.set_ylabel(LABELS["xmax_m"], color="tab:red")
-    ax.tick_params(axis="y", colors="tab:red")
+    ax.set_ylabel(LABELS["xmax_m"], color=red)
+    ax.tick_params(axis="y", colors=red)
     ax2 = ax.twinx()
-    ax2.plot(x, ke, "*", color="tab:blue", ms=4.5, label="KE ratio")
-    ax2.set_ylabel(LABELS["ke_ratio"], color="tab:blue")
-    ax2.tick_params(axis="y", colors="tab:blue")
+    ax2.plot(x, ke, "*", color=blue, ms=4.5, label="KE ratio")
+    ax2.set_ylabel(LABELS["ke_ratio"], color=blue)
+    ax2.tick_params(axis="y", colors=blue)
     ax2.set_ylim(-0.02, max(1.0, float(np.nanmax(ke)) * 1.05))
     return ax2
 
 
-def contour_map(fig, ax, x, y, z, *, label, vmin=None, vmax=None, log=False, cells=False):
-    """Filled contour (20 levels, jet) with a colour bar; needs at least 2 x 2 points.
-    ``log``: levels equally spaced in log10(z) (z > 0), so small values keep their detail
-    next to a large resonance peak. ``cells``: one flat cell per grid point in the same 20
-    colours instead of contours (coarse grids, where contouring would invent shapes)."""
+def contour_map(fig, ax, x, y, z, *, label, vmin=None, vmax=None, log=False, cells=False,
+                colorbar=True, no_impact=None):
+    """Filled contour (20 levels of the configured colour map, ``palette.colormap``) with a
+    colour bar; needs at least 2 x 2 points. ``log``: levels equally spaced in log10(z)
+    (z > 0), so small values keep their detail next to a large resonance peak. ``cells``:
+    one flat cell per grid point in the same 20 colours instead of contours (coarse grids,
+    where contouring would invent shapes). ``colorbar=False``: none here (panels comparing
+    one quantity share one, ``shared_colorbar``). ``no_impact``: mask of the points without
+    impacts, not drawn as data but as the grey class ``palette.NO_IMPACT`` (around them
+    with contours). NaN points are left blank (no data). Returns the mappable."""
     if len(x) < 2 or len(y) < 2:
         raise FigureInputError(f"a contour map of {label} needs at least 2 x 2 grid points, "
                                f"got {len(x)} x {len(y)}")
-    vmin = float(np.nanmin(z)) if vmin is None else vmin
-    vmax = float(np.nanmax(z)) if vmax is None else vmax
+    z = np.ma.masked_invalid(np.asarray(z, dtype=float))
+    if no_impact is not None and np.any(no_impact):
+        z = np.ma.masked_where(np.asarray(no_impact, bool), z)
+        ax.set_facecolor(palette.NO_IMPACT)
+    vmin = float(z.min()) if vmin is None else vmin
+    vmax = float(z.max()) if vmax is None else vmax
     if log and vmin <= 0:
         raise FigureInputError(f"a log colour scale of {label} needs values > 0, "
                                f"minimum {vmin}")
@@ -240,14 +264,73 @@ def contour_map(fig, ax, x, y, z, *, label, vmin=None, vmax=None, log=False, cel
     else:
         levels, norm, ticks = np.linspace(vmin, vmax, 21), None, MaxNLocator(6)
     if cells:
-        cs = ax.pcolormesh(x, y, z, shading="nearest", cmap=plt.get_cmap("jet", 20),
-                           norm=norm or BoundaryNorm(levels, 20))
+        cs = ax.pcolormesh(x, y, z, shading="nearest", cmap=palette.colormap(20),
+                           norm=norm or BoundaryNorm(levels, 20), rasterized=True)
     else:
-        cs = ax.contourf(x, y, z, levels=levels, cmap="jet", norm=norm, extend="neither")
-    cb = fig.colorbar(cs, ax=ax, shrink=0.9, ticks=ticks)
+        cs = ax.contourf(x, y, z, levels=levels, cmap=palette.colormap(), norm=norm,
+                         extend="neither")
+    cs.vines_scale = (label, log, vmin, vmax, ticks)
+    if colorbar:
+        shared_colorbar(fig, cs, ax)
+    return cs
+
+
+def shared_colorbar(fig, mappable, axes, **kw):
+    """One colour bar for ``axes`` (one axes or several comparing one quantity, drawn with
+    the same range) from a mappable of ``contour_map``."""
+    label, log, vmin, vmax, ticks = mappable.vines_scale
+    cb = fig.colorbar(mappable, ax=axes, shrink=kw.pop("shrink", 0.9), ticks=ticks, **kw)
     if log:
         _log_ticks(cb, vmin, vmax)
     cb.set_label(label + (" (log scale)" if log else ""))
+    return cb
+
+
+def common_range(arrays, log=False):
+    """(vmin, vmax) over several panels of one quantity (positive values only if ``log``)."""
+    vals = np.concatenate([np.asarray(a, float).ravel() for a in arrays])
+    vals = vals[np.isfinite(vals) & ((vals > 0) if log else True)]
+    return float(vals.min()), float(vals.max())
+
+
+#: edge of the stable 1:1 region on colour maps: white over a thin black halo
+STABLE_EDGE = {"color": "white", "lw": 1.5}
+_EDGE_HALO = [patheffects.Stroke(linewidth=2.7, foreground="black"), patheffects.Normal()]
+
+
+def stable_edge(ax, smap: xr.Dataset):
+    """The |lambda_max| = 1 edge of the stable 1:1 region of the stability map ``smap``
+    (interpolated between map points, ``stable_region.stability_margin``)."""
+    from .stable_region import stability_margin
+    cs = ax.contour(smap["eta"].values, smap["omega"].values, stability_margin(smap),
+                    levels=[0.0], colors=STABLE_EDGE["color"], linewidths=STABLE_EDGE["lw"])
+    cs.set_path_effects(_EDGE_HALO)
+    return cs
+
+
+def stable_edge_handle(label=r"edge of the stable 1:1 region ($|\lambda_{\max}| = 1$, Fig. 16)"):
+    """Legend entry drawn as the edge is."""
+    return Line2D([], [], label=label, path_effects=_EDGE_HALO, **STABLE_EDGE)
+
+
+def hatch_cells(ax, x, y, mask, hatch="////", color="white"):
+    """Hatch the cells (one per grid point, edges half-way between points) where ``mask``
+    (len(y), len(x)) is True."""
+    from matplotlib.patches import Rectangle
+
+    def edges(v):
+        v = np.asarray(v, float)
+        mid = (v[1:] + v[:-1]) / 2
+        return np.concatenate([[2 * v[0] - mid[0]], mid, [2 * v[-1] - mid[-1]]])
+    ex, ey = edges(x), edges(y)
+    for j, i in zip(*np.nonzero(mask), strict=True):
+        ax.add_patch(Rectangle((ex[i], ey[j]), ex[i + 1] - ex[i], ey[j + 1] - ey[j],
+                               fill=False, hatch=hatch, edgecolor=color, lw=0))
+
+
+def no_impact_handle(what="no impact (the LO never reaches a wall)"):
+    """Legend patch of the no-impact class of KE-ratio maps."""
+    return Patch(facecolor=palette.NO_IMPACT, edgecolor="0.3", lw=0.5, label=what)
 
 
 def _log_ticks(cb, vmin, vmax):
@@ -262,8 +345,15 @@ def _log_ticks(cb, vmin, vmax):
     cb.ax.minorticks_off()
 
 
+#: file metadata without a creation date (or a version string), so that the same data give
+#: the same bytes
+METADATA = {"pdf": {"CreationDate": None, "Producer": None, "Creator": None},
+            "png": {"Software": None}}
+
+
 def save(fig, pdf, png, dpi=150):
-    """Write the figure as PDF and PNG atomically (temp file in the same dir + os.replace)."""
+    """Write the figure as PDF and PNG atomically (temp file in the same dir + os.replace),
+    without a creation date: rendering the same data twice gives identical bytes."""
     for path, kw in ((Path(pdf), {}), (Path(png), {"dpi": dpi})):
         path.parent.mkdir(parents=True, exist_ok=True)
         fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=path.suffix,
@@ -271,7 +361,8 @@ def save(fig, pdf, png, dpi=150):
         os.close(fd)
         os.chmod(tmp, new_file_mode())
         try:
-            fig.savefig(tmp, format=path.suffix.lstrip("."), **kw)
+            fmt_ = path.suffix.lstrip(".")
+            fig.savefig(tmp, format=fmt_, metadata=METADATA.get(fmt_), **kw)
             os.replace(tmp, path)
         except BaseException:
             if os.path.exists(tmp):

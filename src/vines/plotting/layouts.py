@@ -13,6 +13,7 @@ from .draw import (
     eigenvalue_panel,
     figure,
     fmt,
+    impact_handles,
     impact_phase_panel,
     panel_label,
     th_title,
@@ -25,7 +26,7 @@ ZOOM_PAD = 0.6
 
 def time_history_figure(ds: xr.Dataset):
     """Figs 4, 5, 9, 10: one row per point: time history of the last periods with the
-    impacts marked by phase (a, c), phase portraits over those periods (dark) and the whole
+    impacts marked by direction of motion and wall (a, c), phase portraits over those periods (dark) and the whole
     measurement window (light) (b, d), |w'_i| against the impact phase of every impact of
     the window (third column, titled after the row's time history)."""
     n = ds.sizes["point"]
@@ -40,8 +41,10 @@ def time_history_figure(ds: xr.Dataset):
                     if "window_t" in ds.variables else None)
         axes[i, 2].set_title(f"impacts of ({chr(ord('a') + 2 * i)}), {window}", loc="left",
                              fontsize=9)
-    axes[0, 0].legend(fontsize=7, loc="upper right", ncol=2)
-    axes[0, 1].legend(fontsize=7, loc="upper right")
+    lines = axes[0, 0].get_legend_handles_labels()[0]     # same colours in (b, d)
+    fig.legend(handles=lines + impact_handles(), loc="outside lower center", ncol=3,
+               fontsize=7.5, frameon=False, title="impacts: direction of motion just before "
+               "impact", title_fontsize=7.5)
     return fig
 
 
@@ -68,9 +71,10 @@ def zoom_range(br: xr.Dataset):
 
 
 def zoom_figure(sw: xr.Dataset, branches, outer_dim: str):
-    """Figs 6, 15: per branch a row of (zoomed bifurcation + analytic 1:1, |lambda|)."""
+    """Figs 6, 15: per branch a row of (zoomed bifurcation + analytic 1:1, |lambda|); the
+    legend below the figure (``zoom_legend``, once every curve is drawn)."""
     n = len(branches)
-    fig, axes = figure(n, 2, width=9.0, height=3.0 * n)
+    fig, axes = figure(n, 2, width=10.0, height=3.2 * n + 0.8)
     for i, br in enumerate(branches):
         outer = float(br[outer_dim].values[0])
         ax, axl = axes[i]
@@ -85,9 +89,17 @@ def zoom_figure(sw: xr.Dataset, branches, outer_dim: str):
         others = ", ".join(f"${SYMBOLS[k]}$ = {fmt(float(br[k].values[0]))}"
                            for k in ("F", "omega"))
         panel_label(ax, 2 * i, others)
-        ax.legend(fontsize=7, loc="best", markerscale=4)
         eigenvalue_panel(axl, br)
         axl.set_xlim(lo, hi)
         panel_label(axl, 2 * i + 1, others)
-        axl.legend(fontsize=7, loc="best", ncol=2)
     return fig
+
+
+def zoom_legend(fig):
+    """One legend below a zoom figure: every label drawn on its panels, once."""
+    seen = {}
+    for ax in fig.axes:
+        for h, lab in zip(*ax.get_legend_handles_labels(), strict=True):
+            seen.setdefault(lab, h)
+    fig.legend(list(seen.values()), list(seen), loc="outside lower center", ncol=4,
+               fontsize=7.5, frameon=False, markerscale=3)

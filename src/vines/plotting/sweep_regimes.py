@@ -22,11 +22,10 @@ import xarray as xr
 
 from ..core.regime import CHATTER_RUN, longest_same_wall_run
 from ..data.builders import ragged_rows
+from . import palette
 
-#: regime codes -> (label, colour); the 1:1 colours are those of Fig 16
-REGIMES = {0: ("no impact", "0.85"), 1: ("1:1 symmetric", "tab:orange"),
-           2: ("1:1 asymmetric", "black"), 3: ("other periodic", "tab:green"),
-           4: ("irregular", "tab:blue"), 5: ("chatter", "tab:purple")}
+#: regime codes -> (label, colour): the one regime palette (``vines.plotting.palette``)
+REGIMES = palette.REGIMES
 (REGIME_NONE, REGIME_SYM, REGIME_ASYM, REGIME_PERIODIC, REGIME_IRREGULAR,
  REGIME_CHATTER) = range(6)
 #: relative tolerance of a repeating impact sequence (dw and phase, scaled by max(1, |dw|))

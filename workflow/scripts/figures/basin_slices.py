@@ -7,9 +7,9 @@ from matplotlib.colors import BoundaryNorm, ListedColormap
 import vines.plotting as P
 from vines.pipeline.jobs import run_job
 
-#: attractor colours in table order (largest basin first); grey: run stopped early
-COLOURS = ["tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:brown",
-           "tab:pink", "tab:olive", "tab:cyan", "gold"]
+#: attractor colours in table order (largest basin first; the palette's categorical
+#: colours, black kept for "other"); grey: run stopped early
+COLOURS = [c for c in P.palette.CATEGORICAL if c != P.palette.OKABE_ITO["black"]]
 UNSETTLED = "0.5"
 
 
@@ -56,6 +56,7 @@ def draw(ax, ds):
 
 
 def main(sm):
+    P.configure(sm)
     slices = [P.basin_slice(p) for p in sm.input.slices]
     fig, axes = P.figure(1, len(slices), width=4.8 * len(slices), height=6.4)
     for j, ds in enumerate(slices):

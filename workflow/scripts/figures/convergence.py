@@ -7,7 +7,6 @@ KE-ratio contour to the finest grid's against grid resolution, (f) the contours 
 Inputs (datasets of ``vines.studies.convergence``): ``snakemake.input.window``, ``.vstick``,
 ``.grid``; outputs ``snakemake.output.pdf`` / ``.png``; log ``snakemake.log[0]``.
 """
-import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.lines import Line2D
 
@@ -25,8 +24,8 @@ def point_label(ds, i):
 
 
 def colours(n):
-    cmap = plt.get_cmap("tab20" if n > 10 else "tab10")
-    return [cmap(i % cmap.N) for i in range(n)]
+    """n distinct colours: the palette's categorical ones, or steps of the colour map."""
+    return P.palette.CATEGORICAL[:n] if n <= len(P.palette.CATEGORICAL) else P.palette.sequence(n)
 
 
 def log_values(y, floor=FLOOR):
@@ -136,10 +135,12 @@ def vstick_panels(ax_d, ax_c, ax_leg, v):
 def grid_panels(fig, ax_e, ax_f, ax_leg, g):
     res = g["resolution"].values
     coarse = res < res.max()
-    for name, style, lab in (("contour_dist_mean", "-o", "mean distance"),
-                             ("contour_dist_max", "-s", "max distance (one-sided Hausdorff)"),
-                             ("contour_hausdorff", "--^", "symmetric Hausdorff")):
-        ax_e.plot(res[coarse], g[name].values[coarse], style, ms=4, lw=1.0, label=lab)
+    for k, (name, style, lab) in enumerate((
+            ("contour_dist_mean", "-o", "mean distance"),
+            ("contour_dist_max", "-s", "max distance (one-sided Hausdorff)"),
+            ("contour_hausdorff", "--^", "symmetric Hausdorff"))):
+        ax_e.plot(res[coarse], g[name].values[coarse], style, ms=4, lw=1.0, label=lab,
+                  color=P.palette.CATEGORICAL[k])
     da = np.abs(g["d_area_fraction"].values[coarse])
     ax_e.plot(res[coarse], np.where(da > 0, da, np.nan), ":d", ms=4, lw=1.0,
               color="0.3", label=r"$|\Delta$ area fraction$|$ (KE > level)")
@@ -161,28 +162,31 @@ def grid_panels(fig, ax_e, ax_f, ax_leg, g):
     P.panel_label(ax_e, 4, rf"KE ratio = {P.fmt(level)} contour vs grid "
                            rf"(finest {int(res.max())}$^2$)")
     eta, om = g["eta"].values, g["omega"].values
-    ke = np.asarray(g["ke_ratio"].values, dtype=float)
-    mesh = ax_f.pcolormesh(om, eta, ke, cmap="Greys", vmin=0, vmax=1, shading="nearest",
-                           rasterized=True)
+    ke = np.asarray(g["ke_ratio"].transpose("omega", "eta").values, dtype=float)
+    mesh = ax_f.pcolormesh(eta, om, ke, cmap=P.palette.GREY_COLORMAP, vmin=0, vmax=1,
+                           shading="nearest", rasterized=True)
     cb = fig.colorbar(mesh, ax=ax_f, shrink=0.9)
     cb.set_label(P.LABELS["ke_ratio"] + f" ({int(res.max())}$^2$ grid)", fontsize=7)
-    cmap = plt.get_cmap("plasma")
     handles = []
-    for q, (n, s) in enumerate(zip(res, g["stride"].values, strict=False)):
-        c = cmap(q / max(1, res.size - 1) * 0.85)
+    for c, n, s in zip(P.palette.sequence(res.size), res, g["stride"].values, strict=False):
         s = int(s)
-        ax_f.contour(om[::s], eta[::s], ke[::s, ::s], levels=[level], colors=[c],
+        ax_f.contour(eta[::s], om[::s], ke[::s, ::s], levels=[level], colors=[c],
                      linewidths=1.6 if s == 1 else 1.0)
         handles.append(Line2D([], [], color=c, label=f"{int(n)} x {int(n)}"))
     ax_leg.legend(handles=handles, fontsize=6.5, loc="center left", frameon=False,
                   title=f"contour KE ratio = {P.fmt(level)}\non the grid",
                   title_fontsize=6.5)
-    ax_f.set_xlabel(P.LABELS["omega"])
-    ax_f.set_ylabel(P.LABELS["eta"])
-    P.panel_label(ax_f, 5, rf"contours KE ratio = {P.fmt(level)}, $F$ = {P.fmt(F)}")
+    # (f) the plane of Figs 12 and 16: eta across, Omega up
+    ax_f.set_xlim(eta.min(), eta.max())
+    ax_f.set_ylim(om.min(), om.max())
+    ax_f.set_xlabel(P.LABELS["eta"])
+    ax_f.set_ylabel(P.LABELS["omega"])
+    P.panel_label(ax_f, 5, rf"contours KE ratio = {P.fmt(level)} over ($\eta$, $\Omega$), "
+                           rf"$F$ = {P.fmt(F)}")
 
 
 def main(sm):
+    P.configure(sm)
     w = P.require(P.load(sm.input.window), coords=("t_end",),
                   variables=("window_rule", "window_length", "window_fraction",
                              "regime_same", "t_transient", "reference_t_transient"),

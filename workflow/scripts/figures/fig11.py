@@ -39,12 +39,12 @@ def xmax_panel(ax, s, F, d, i):
                                  f"the grid's d = {d} (eta = {eta})")
     fine, amp, w_pk, a_pk = stuck_curve(W, eta, F, d)
     kv = int(np.argmax(s["xmax_m"].values))
-    ax.semilogy(W, s["xmax_m"].values, "-", color="tab:red", lw=1.3, label="VINES, Eqs. (5)-(6)")
+    ax.semilogy(W, s["xmax_m"].values, "-", color=P.C_BALL, lw=1.3, label="VINES, Eqs. (5)-(6)")
     ax.semilogy(fine, amp, "-", color="black", lw=1.0, label="stuck linear, Eq. (28)")
-    ax.plot([W[kv]], [s["xmax_m"].values[kv]], "o", color="tab:red", ms=4)
+    ax.plot([W[kv]], [s["xmax_m"].values[kv]], "o", color=P.C_BALL, ms=4)
     ax.plot([w_pk], [a_pk], "o", color="black", ms=4)
     ax.axvline(1.0, color="0.6", lw=0.6, ls=":")
-    ax.axvline(1 / np.sqrt(1 + eta), color="tab:pink", lw=0.9, ls="--",
+    ax.axvline(1 / np.sqrt(1 + eta), color=P.palette.OKABE_ITO["reddish purple"], lw=0.9, ls="--",
                label=r"$\Omega = 1/\sqrt{1+\eta}$")
     ax.set_xlabel(P.LABELS["omega"])
     ax.set_ylabel(P.LABELS["xmax_m"])
@@ -68,6 +68,7 @@ def damping(ds, path) -> float:
 
 
 def main(sm):
+    P.configure(sm)
     ds = P.measures(sm.input.measures[0], axes=("omega",), fixed=("F",), min_size=3)
     P.require(ds, coords=("eta",), finite=("xmax_stuck_linear_m",))
     th = P.timehistory(sm.input.th[0])
@@ -83,7 +84,7 @@ def main(sm):
         ax = fig.add_subplot(gs[1, k * (ne * nt) // nt:(k + 1) * (ne * nt) // nt])
         t, zm = th["t"].values[k], th["z_m"].values[k]
         eta, om, Fk = (float(th[v].values[k]) for v in ("eta", "omega", "F"))
-        ax.plot(t, P.metres(zm), color="tab:red", lw=1.0, label="VINES")
+        ax.plot(t, P.metres(zm), color=P.C_BALL, lw=1.0, label="VINES")
         ax.plot(t, P.metres(eq28_steady(t, eta, om, Fk, d)), color="black", lw=1.0,
                 label="Eq. (28)")
         ax.set_xlim(t[0], t[-1])

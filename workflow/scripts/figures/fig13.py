@@ -6,6 +6,7 @@ from vines.pipeline.jobs import run_job
 
 
 def main(sm):
+    P.configure(sm)
     grids = P.sorted_by_fixed([P.measures(p, axes=("eta", "omega"), fixed=("F",))
                                for p in sm.input.measures], "F")
     etas = P.marked_sections(grids, "eta", "fig12")

@@ -1,5 +1,6 @@
-"""Fig 14: 3-D bifurcation diagrams of w'_i over (eta, W), one row per F (sweeps fig14_*),
-W <= 1 (a, c, e) and W >= 1 (b, d, f). The impacts of each swept point are coloured by the
+"""Fig 14: 3-D bifurcation diagrams of w'_i over (eta, W), one panel per F (sweeps fig14_*),
+each over the whole W range and at the full page width (the paper's (a, b), (c, d), (e, f)
+split at W = 1 is one panel here). The impacts of each swept point are coloured by the
 point's regime (vines.plotting.sweep_regimes): 1:1 points large and opaque, the others
 small and faint, so the 1:1 windows stand out; the companion figure fig14_regimes shows the
 same regimes flat over (eta, W)."""
@@ -12,11 +13,11 @@ from vines.pipeline.jobs import run_job
 #: impacts drawn per swept point (the last ones recorded), keeps the 3-D scatter readable
 MAX_PER_POINT = 12
 #: marker size and opacity: 1:1 points (emphasised) and all other points
-STYLE_1TO1 = {"s": 1.2, "alpha": 0.9}
-STYLE_OTHER = {"s": 0.25, "alpha": 0.35}
-#: view (elevation, azimuth): eta across, W into depth; the W <= 1 panels have their W axis
-#: reversed, so that W = 1 (the 1:1 windows the text discusses) is the front row of both
-VIEW = (22, -68)
+STYLE_1TO1 = {"s": 2.5, "alpha": 0.9}
+STYLE_OTHER = {"s": 0.5, "alpha": 0.35}
+#: view (elevation, azimuth): eta across, W into depth, seen from low and from the side of
+#: small W, so that the two branches (w' > 0 and w' < 0) of consecutive W rows separate
+VIEW = (14, -52)
 
 
 def panel(ax, s, W_sel, codes):
@@ -37,6 +38,7 @@ def panel(ax, s, W_sel, codes):
 
 
 def main(sm):
+    P.configure(sm)
     sweeps = [P.sweep(p) for p in sm.input.sweeps]
     for s, p in zip(sweeps, sm.input.sweeps, strict=False):
         if s.attrs.get("swept_parameter") != "eta" or s.attrs.get("outer_parameter") != "omega":
@@ -45,27 +47,23 @@ def main(sm):
                                      f"{s.attrs.get('outer_parameter')!r}")
     Fs = [P.sweep_fixed(s, "F") for s in sweeps]
     n = len(sweeps)
-    fig = plt.figure(figsize=(11.0, 4.2 * n), constrained_layout=True)
+    fig = plt.figure(figsize=(9.5, 4.9 * n), constrained_layout=True)
     for r, k in enumerate(np.argsort(Fs)):
         s, codes = sweeps[k], P.sweep_regimes(sweeps[k])
         W = np.unique(s["outer_value"].values)
-        for c, (sel, side) in enumerate(((W <= 1 + 1e-12, r"$\Omega \leq 1$"),
-                                         (W >= 1 - 1e-12, r"$\Omega \geq 1$"))):
-            ax = fig.add_subplot(n, 2, 2 * r + c + 1, projection="3d")
-            if not sel.any():
-                raise P.FigureInputError(f"{sm.input.sweeps[k]}: no sweep with {side}")
-            panel(ax, s, W[sel], codes)
-            lim = (W[sel].min(), W[sel].max())
-            ax.set_ylim(lim[::-1] if c == 0 else lim)
-            ax.set_xlabel(P.LABELS["eta"], fontsize=8)
-            ax.set_ylabel(r"$\Omega$", fontsize=8)
-            ax.set_zlabel(r"$\dot w_i$", fontsize=8)
-            ax.tick_params(labelsize=7)
-            ax.view_init(*VIEW)
-            P.panel_label(ax, 2 * r + c, rf"$F$ = {P.fmt(Fs[k])}, {side}")
+        ax = fig.add_subplot(n, 1, r + 1, projection="3d")
+        panel(ax, s, W, codes)
+        ax.set_ylim(W.min(), W.max())
+        ax.set_xlabel(P.LABELS["eta"], fontsize=9)
+        ax.set_ylabel(r"$\Omega$", fontsize=9)
+        ax.set_zlabel(r"$\dot w_i$", fontsize=9)
+        ax.tick_params(labelsize=8)
+        ax.view_init(*VIEW)
+        ax.set_box_aspect((1.7, 1.0, 0.75), zoom=1.3)
+        P.panel_label(ax, r, rf"$F$ = {P.fmt(Fs[k])}")
     handles = [plt.Line2D([], [], ls="", marker="o", ms=5, color=col, label=lab)
                for lab, col in P.REGIMES.values()]
-    fig.legend(handles=handles, loc="outside lower center", ncol=len(handles), fontsize=8,
+    fig.legend(handles=handles, loc="outside lower center", ncol=3, fontsize=8,
                frameon=False, title="regime of the swept point (from its recorded impacts)",
                title_fontsize=8)
     P.save(fig, sm.output.pdf, sm.output.png, dpi=170)

@@ -26,6 +26,7 @@ def window_text(xs, ys, grid) -> str:
 
 
 def main(sm):
+    P.configure(sm)
     sweeps = sorted((P.sweep(p) for p in sm.input.sweeps), key=lambda s: P.sweep_fixed(s, "F"))
     n = len(sweeps)
     fig, axes = P.figure(1, n, width=4.2 * n + 1.8, height=4.2)

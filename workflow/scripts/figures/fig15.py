@@ -9,8 +9,8 @@ import vines.plotting as P
 from vines.pipeline.jobs import run_job
 from vines.plotting import bifurcation as B
 
-#: colour of the dots on a stable asymmetric 1:1 orbit
-C_ASYM = "tab:blue"
+#: colour of the dots on a stable asymmetric 1:1 orbit (that of the asymmetric branches)
+C_ASYM = P.palette.C_ASYMMETRIC
 
 
 def label_asymmetric(ax, sw, outer, codes):
@@ -22,22 +22,23 @@ def label_asymmetric(ax, sw, outer, codes):
     m = (c == P.REGIME_ASYM) & (x >= lo) & (x <= hi)
     if m.any():
         P.bifurcation_dots(ax, x[m], y[m], s=3.0, color=C_ASYM,
-                           label="numerics: stable asymmetric 1:1 orbit")
-        ax.legend(fontsize=7, loc="best", markerscale=3)
+                           label="numerical, on a stable asymmetric 1:1 orbit")
         print(f"omega = {outer}: {int(np.unique(x[m]).size)} swept points on an asymmetric "
               f"1:1 orbit, eta {x[m].min():.4g} ... {x[m].max():.4g}")
 
 
 def main(sm):
+    P.configure(sm)
     sw = P.sweep(sm.input.sweep[0])
     brs = sorted((P.branch(p) for p in sm.input.branches),
                  key=lambda b: float(b["omega"][0]))
     outer_dim = sw.attrs.get("outer_parameter", "omega")
     fig = P.zoom_figure(sw, B.continued_branches(brs), outer_dim=outer_dim)
-    B.draw_switched(fig, brs)
+    B.draw_switched(fig, brs, sw, outer_dim)
     codes = P.sweep_regimes(sw)
     for i, br in enumerate(brs):
         label_asymmetric(fig.axes[2 * i], sw, float(br[outer_dim].values[0]), codes)
+    P.zoom_legend(fig)
     P.save(fig, sm.output.pdf, sm.output.png, dpi=200)
 
 

@@ -7,6 +7,7 @@ from vines.pipeline.jobs import run_job
 
 
 def main(sm):
+    P.configure(sm)
     grids = P.sorted_by_fixed([P.measures(p, axes=("eta",), fixed=("omega", "F"))
                                for p in sm.input.measures], "F")
     fig, axes = P.figure(1, len(grids), width=5.0 * len(grids), height=3.6)

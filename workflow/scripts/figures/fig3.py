@@ -7,6 +7,7 @@ from vines.pipeline.jobs import run_job
 
 
 def main(sm):
+    P.configure(sm)
     sw = P.sweep(sm.input.sweep[0])
     if sw.attrs.get("swept_parameter") != "eta":
         raise P.FigureInputError(f"{sm.input.sweep[0]}: Fig 3 sweeps eta, the dataset "

@@ -6,6 +6,7 @@ from vines.pipeline.jobs import run_job
 
 
 def main(sm):
+    P.configure(sm)
     grids = P.sorted_by_fixed([P.measures(p, axes=("eta", "F"), fixed=("omega",))
                                for p in sm.input.measures], "omega")
     Fs = P.marked_sections(grids, "F", "fig7")

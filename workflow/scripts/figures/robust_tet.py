@@ -1,62 +1,73 @@
 """Robust-TET map beside Fig 12: over (eta, W), one column per F, (a-c) the KE ratio of the
-run from rest (Fig 12 (d-f)), (d-f) the basin fraction of efficient motion (attractors with
-KE ratio above the map's threshold) and (g-i) the basin fraction of the stable 1:1 orbit,
-from a census of Sobol initial states per grid point (robust maps robust_*). On every panel
-the white outline is the stable 1:1 region of Fig 16 (|lambda_max| = 1)."""
-import matplotlib.pyplot as plt
-
+run from rest (Fig 12 (d-f); points without impacts a grey class, no data left blank),
+(d-f) the basin fraction of efficient motion (attractors with KE ratio above the map's
+threshold) and (g-i) the basin fraction of the stable 1:1 orbit, from a census of Sobol
+initial states per grid point (robust maps robust_*), hatched where the 95 % Wilson interval
+of the fraction is wider than 0.2. Each row one colour bar. On every panel the edge of the
+stable 1:1 region of Fig 16 (|lambda_max| = 1)."""
 import vines.plotting as P
 from vines.pipeline.jobs import run_job
-
-
-def outline(ax, smap, eta, W):
-    ax.contour(smap["eta"].values, smap["omega"].values, P.stability_margin(smap),
-               levels=[0.0], colors="white", linewidths=1.4)
-    ax.set_xlim(eta.min(), eta.max())
-    ax.set_ylim(W.min(), W.max())
+from vines.plotting.uncertainty import WIDE_INTERVAL, wilson_width
 
 
 def _by_F(datasets):
     return {round(float(d.attrs["F"]), 9): d for d in datasets}
 
 
+def panels(ds, rob, thr):
+    """(source, values, label, no-impact mask) of the three rows at one F."""
+    silent = P.grid2d(ds, "n_impacts", "eta", "omega") == 0
+    return [
+        (ds, P.grid2d(ds, "ke_ratio", "eta", "omega"), P.LABELS["ke_ratio"] + " from rest",
+         silent),
+        (rob, P.grid2d(rob, "efficient_fraction", "eta", "omega"),
+         f"basin fraction, KE ratio > {P.fmt(thr)}", None),
+        (rob, P.grid2d(rob, "stable_1to1_fraction", "eta", "omega"),
+         "basin fraction of the stable 1:1 orbit", None),
+    ]
+
+
 def main(sm):
+    P.configure(sm)
     grids = P.sorted_by_fixed([P.measures(p, axes=("eta", "omega"), fixed=("F",))
                                for p in sm.input.measures], "F")
     maps = _by_F(map(P.stability, sm.input.stability))
     robust = _by_F(map(P.robust_map, sm.input.robust))
     n = len(grids)
-    fig, axes = P.figure(3, n, width=4.3 * n, height=10.2)
+    fig, axes = P.figure(3, n, width=4.0 * n + 1.0, height=10.4)
+    mappables = [None] * 3
     for j, ds in enumerate(grids):
         F = P.fixed_value(ds, "F")
         smap, rob = maps.get(round(F, 9)), robust.get(round(F, 9))
         if smap is None or rob is None:
             raise P.FigureInputError(f"no stability map or robust map at F = {F} for "
                                      f"{ds.attrs['_path']} (robust maps at F = {sorted(robust)})")
-        thr = float(rob.attrs["threshold"])
-        panels = [
-            (ds, P.grid2d(ds, "ke_ratio", "eta", "omega"), P.LABELS["ke_ratio"] + " from rest"),
-            (rob, P.grid2d(rob, "efficient_fraction", "eta", "omega"),
-             f"basin fraction, KE ratio > {P.fmt(thr)}"),
-            (rob, P.grid2d(rob, "stable_1to1_fraction", "eta", "omega"),
-             "basin fraction of the stable 1:1 orbit"),
-        ]
-        for i, (src, z, label) in enumerate(panels):
+        n_states = int(rob.attrs["n_states"])
+        for i, (src, z, label, silent) in enumerate(panels(ds, rob, float(rob.attrs["threshold"]))):
             ax = axes[i, j]
             eta, W = src["eta"].values, src["omega"].values
             # (d-i): a coarse census grid, drawn cell by cell (contours would invent shapes)
-            P.contour_map(fig, ax, eta, W, z, label=label, vmin=0.0, vmax=1.0, cells=i > 0)
-            outline(ax, smap, eta, W)
+            mappables[i] = P.contour_map(fig, ax, eta, W, z, label=label, vmin=0.0, vmax=1.0,
+                                         cells=i > 0, colorbar=False, no_impact=silent)
+            if i > 0:
+                P.hatch_cells(ax, eta, W, wilson_width(z, n_states) > WIDE_INTERVAL)
+            P.stable_edge(ax, smap)
+            # only the computed grid: no data is not zero
+            ax.set_xlim(eta.min(), eta.max())
+            ax.set_ylim(W.min(), W.max())
             ax.set_xlabel(P.LABELS["eta"])
             ax.set_ylabel(P.LABELS["omega"])
             P.panel_label(ax, i * n + j, rf"$F$ = {P.fmt(F)}")
         print(f"F = {F}: mean efficient basin fraction {float(rob['efficient_fraction'].mean()):.3f}, "
               f"from rest efficient {float(rob['from_rest_efficient'].mean()):.3f} of the points")
-    n_states = int(grids and robust[min(robust)].attrs["n_states"])
-    fig.legend(handles=[plt.Line2D([], [], color="black", lw=1.4,
-                                   label=r"edge of the stable 1:1 region ($|\lambda_{\max}| = 1$, "
-                                         "Fig. 16)")],
-               loc="outside lower center", fontsize=8, frameon=False,
+    for i, m in enumerate(mappables):
+        P.shared_colorbar(fig, m, axes[i, :], shrink=0.85)
+    n_states = int(robust[min(robust)].attrs["n_states"])
+    handles = [P.stable_edge_handle(), P.no_impact_handle("(a-c) no impact from rest"),
+               P.Patch(facecolor="0.55", edgecolor="white", hatch="////",
+                       label=f"(d-i) 95 % Wilson interval wider than {P.fmt(WIDE_INTERVAL)} "
+                             f"({n_states} states)")]
+    fig.legend(handles=handles, loc="outside lower center", ncol=3, fontsize=8, frameon=False,
                title=f"(d-i): {n_states} Sobol initial states per grid point", title_fontsize=8)
     P.save(fig, sm.output.pdf, sm.output.png)
 

@@ -6,6 +6,7 @@ from vines.pipeline.jobs import run_job
 
 
 def main(sm):
+    P.configure(sm)
     ds = P.timehistory(sm.input.th[0])
     fig = P.time_history_figure(ds)
     P.save(fig, sm.output.pdf, sm.output.png)

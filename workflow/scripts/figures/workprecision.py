@@ -6,9 +6,11 @@ import vines.plotting as P
 from vines.pipeline.jobs import run_job
 
 FLOOR = 1e-16          # errors below (exact agreement in double precision) drawn here
-STYLE = {"exact": dict(color="k", marker="o"), "RK45": dict(color="tab:blue", marker="s"),
-         "DOP853": dict(color="tab:red", marker="^"), "LSODA": dict(color="tab:green", marker="v"),
-         "Radau": dict(color="tab:purple", marker="x")}
+_C = P.palette.OKABE_ITO
+STYLE = {"exact": dict(color="k", marker="o"), "RK45": dict(color=_C["blue"], marker="s"),
+         "DOP853": dict(color=_C["vermillion"], marker="^"),
+         "LSODA": dict(color=_C["bluish green"], marker="v"),
+         "Radau": dict(color=_C["reddish purple"], marker="x")}
 COLUMNS = (("t_error", "max error of impact times"), ("ke_error", "error of KE ratio"),
            ("xmax_error", r"error of $x_m^{\max}$ (units of $L$)"))
 VARS = ("method", "knob", "tolerance", "seconds", "sequence_ok", "t_error", "ke_error",
@@ -43,6 +45,7 @@ def _summary(ds):
 
 
 def main(sm):
+    P.configure(sm)
     cases = [P.load(p) for p in sm.input.cases]
     for ds in cases:
         P.require(ds, variables=VARS, finite=("seconds",))
@@ -71,8 +74,19 @@ def main(sm):
             title = (rf"$\eta$ = {P.fmt(a['case_eta'])}, $\Omega$ = {P.fmt(a['case_omega'])}, "
                      rf"$F$ = {P.fmt(a['case_F'])}, $t \in$ [0, {P.fmt(a['t_end'])}]")
             P.panel_label(ax, row * 3 + col, title if col == 0 else None)
-        axes[row, 1].set_title(_summary(ds), loc="right", fontsize=6.5)
-    axes[0, 2].legend(fontsize=6.5, loc="upper right")
+        summary = _summary(ds)
+        if summary:      # after the panel letter, small: the panels' titles must not overlap
+            axes[row, 1].set_title(f"({chr(ord('a') + row * 3 + 1)}) {summary}", loc="left",
+                                   fontsize=7)
+    seen = {}
+    for ax in axes.ravel():
+        for h, lab in zip(*ax.get_legend_handles_labels(), strict=True):
+            seen.setdefault(lab, h)
+    handles = list(seen.values()) + [P.Line2D([], [], ls="", marker="o", ms=7, mfc="none",
+                                              color="0.3", label="impact sequence differs "
+                                              "from the reference (drawn at the top)")]
+    fig.legend(handles=handles, loc="outside lower center", ncol=4, fontsize=7.5,
+               frameon=False)
     P.save(fig, sm.output.pdf, sm.output.png)
 
 
