@@ -349,7 +349,7 @@ def test_reruns_only_what_changed(tmp_path):
     flow.write_text(original)
     # ...a change of a non-computing source (CLI) does not
 
-    cli = tmp_path / "src" / "vines" / "cli.py"
+    cli = tmp_path / "src" / "vines" / "cli" / "common.py"
     cli.write_text(cli.read_text() + "\n# edited\n")
     assert _planned(_smk(tmp_path, "-n", cfg=TINY)) == {}
 
