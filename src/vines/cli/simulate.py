@@ -18,7 +18,7 @@ from ..core.params import (
     SolverSettings,
     check_real,
 )
-from ..core.simulation import SOLVERS
+from ..solvers import SOLVERS
 from .common import VinesArgumentParser, add_model_args, emit, model_params, quiet_stdout
 
 NAME = "simulate"
@@ -74,14 +74,11 @@ def run(args: argparse.Namespace) -> int:
     settings = SolverSettings(t_end=args.t_end, t_transient=args.t_transient,
                               v_stick=args.v_stick, max_impacts=args.max_impacts)
     rtol = check_real("rtol", args.rtol, lo=RTOL_MIN, hi=RTOL_MAX)   # as vines.simulate
-    from ..core import simulation  # imported lazily: argument errors never pay for the solver
+    from ..solvers import run_simulation
 
     with quiet_stdout():
-        result = simulation.simulate(
-            eta=params.eta, omega=params.omega, F=params.F, r=params.r, d=params.d,
-            phi=params.phi, t_end=settings.t_end, t_transient=settings.t_transient,
-            solver=args.solver, rtol=rtol, v_stick=settings.v_stick,
-            max_impacts=settings.max_impacts, periodic_shortcut=args.periodic_shortcut)
+        result = run_simulation(params, settings, solver=args.solver, rtol=rtol,
+                                periodic_shortcut=args.periodic_shortcut)
     return emit(args.json, result.to_dict(), lambda d: _table(d).rstrip("\n"))
 
 

@@ -32,7 +32,7 @@ from numba import njit
 
 from ..core.exact import oscillators
 from ..core.flow import I_ARES, I_NRES, I_PC, I_PS, I_RES, I_W, flow, fundamentals
-from ..core.params import D_DEFAULT, R_DEFAULT, ModelParams
+from ..core.params import D_DEFAULT, R_DEFAULT, ModelParams, SolverSettings
 from ..core.walls import WALL_L, WALL_R, impact_velocities
 from ._lapack import lambda_max_4
 from .maps import admissible_kernel, map_kernel
@@ -526,10 +526,10 @@ def seed_orbits(p: ModelParams, osc=None, simulation=True, scan=True) -> list:
 
 
 def _simulation_seed(p: ModelParams, osc, t_end=600.0) -> list:
-    from ..core.simulation import simulate
+    from ..core.simulation import simulate_exact
     try:
-        res = simulate(p.eta, p.omega, p.F, r=p.r, d=p.d, phi=p.phi, t_end=t_end,
-                       t_transient=0.5 * t_end, max_impacts=200_000)
+        st = SolverSettings(t_end=t_end, t_transient=0.5 * t_end, max_impacts=200_000)
+        res = simulate_exact(p, st)
     except Exception:                        # pragma: no cover - a seed is optional
         return []
     imp = res.impacts
