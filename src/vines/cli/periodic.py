@@ -28,10 +28,10 @@ def add_parser(subparsers) -> VinesArgumentParser:
 
 def run(args: argparse.Namespace) -> int:
     params = model_params(args)
-    from ..orbits.periodic import find_1to1
+    from ..orbits.periodic import orbits_1to1
 
     with quiet_stdout():
-        orbits = find_1to1(params.eta, params.omega, params.F, r=params.r, d=params.d)
+        orbits = orbits_1to1(params)
     sols = [{k: o.to_dict()[k] for k in ORBIT_KEYS} for o in orbits]
     return emit(args.json, {"solutions": sols, "params": params.as_dict()}, _text)
 

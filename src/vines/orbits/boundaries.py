@@ -276,7 +276,7 @@ def _edge_seeds(model, F, edge):
     """Seeds of one-parameter continuations along a class-changing edge, from each end
     with an admissible 1:1 orbit towards the other (the event between them is the seed)."""
     from .continuation import continue_branch
-    from .periodic import find_1to1
+    from .periodic import orbits_1to1
     a, b, _, classes = edge
     k = 0 if a[0] != b[0] else 1
     param = ("eta", "omega")[k]
@@ -284,7 +284,8 @@ def _edge_seeds(model, F, edge):
         if c == 0:
             continue
         fixed = {"F": F, ("omega", "eta")[k]: float(start[1 - k])}
-        for o in find_1to1(start[0], start[1], F, r=model.r, d=model.d, simulation=False):
+        for o in orbits_1to1(ModelParams(eta=start[0], omega=start[1], F=F, r=model.r,
+                                          d=model.d), simulation=False):
             if not o.admissible:
                 continue
             kind = "symmetric" if o.symmetric else "asymmetric"
@@ -331,13 +332,14 @@ def _on_curve(curves, seed, step) -> bool:
 def _seeds(model, F, box, n_scan):
     """(family, kind, graze, z0) from one-parameter scans (module docstring, step 1)."""
     from .continuation import continue_branch
-    from .periodic import find_1to1
+    from .periodic import orbits_1to1
     (e0, e1), (w0, w1) = box
     lines = [("eta", e0, e1, {"omega": w, "F": F}) for w in np.linspace(w0, w1, n_scan)]
     lines += [("omega", w0, w1, {"eta": e, "F": F}) for e in np.linspace(e0, e1, n_scan)]
     for param, start, stop, fixed in lines:
         p = dict(fixed, **{param: start})
-        orbits = find_1to1(p["eta"], p["omega"], F, r=model.r, d=model.d, simulation=False)
+        orbits = orbits_1to1(ModelParams(eta=p["eta"], omega=p["omega"], F=F, r=model.r,
+                                         d=model.d), simulation=False)
         for kind in ("symmetric", "asymmetric"):
             cands = [o for o in orbits if o.symmetric == (kind == "symmetric")]
             for o in cands[:1 if kind == "asymmetric" else 2]:

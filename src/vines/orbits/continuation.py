@@ -46,7 +46,7 @@ from ..core.params import (
 )
 from ..core.walls import WALL_L, WALL_R
 from .branch import EVENT_TYPES, Branch, make_branch
-from .periodic import PeriodicOrbit, find_1to1, solve_orbit
+from .periodic import PeriodicOrbit, orbits_1to1, solve_orbit
 
 PARAMS = PARAM_NAMES
 MIRROR = np.diag([-1.0, -1.0, -1.0, 1.0])
@@ -152,7 +152,7 @@ def continue_branch(param: str, start, stop, step=None, fixed: dict | None = Non
     p0 = cont.params(start)                 # validates every parameter
     cont.params(stop)
     if orbit is None:
-        cands = [o for o in find_1to1(p0, None, None)
+        cands = [o for o in orbits_1to1(p0)
                  if o.symmetric == (branch == "symmetric")]
         if not cands:
             return _make_branch(param, [], [], f"no {branch} 1:1 orbit at start")

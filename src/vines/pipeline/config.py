@@ -69,11 +69,7 @@ def validate_config(config: dict, schema: dict) -> dict:
         err = min(errors, key=lambda e: -len(e.absolute_path))
         key = ".".join(str(p) for p in err.absolute_path) or "<top level>"
         raise ConfigError(key, err.message)
-    check_physical(config)
-    sim = config["simulation"]
-    if sim["t_transient"] >= sim["t_end"]:
-        raise ConfigError("simulation.t_transient",
-                          f"{sim['t_transient']} must be < simulation.t_end = {sim['t_end']}")
+    check_physical(config)   # every value through the API's validators (t_transient < t_end)
     for name, grid in config["grids"].items():
         axes = grid_axes(grid, key=f"grids.{name}")
         for dim, vals in grid.get("sections", {}).items():
@@ -93,10 +89,6 @@ def validate_config(config: dict, schema: dict) -> dict:
         need = set(DIMS) - {br["param"]}
         if set(br["fixed"]) != need:
             raise ConfigError(f"branches.{name}.fixed", f"must give exactly {sorted(need)}")
-    for name, case in config["work_precision"]["cases"].items():
-        if case["t_transient"] >= case["t_end"]:
-            raise ConfigError(f"work_precision.cases.{name}.t_transient",
-                              f"{case['t_transient']} must be < t_end = {case['t_end']}")
     for name, sm in config["stability_maps"].items():
         axis_values(sm["eta"], key=f"stability_maps.{name}.eta")
         axis_values(sm["omega"], key=f"stability_maps.{name}.omega")
