@@ -11,7 +11,7 @@ sm = snakemake  # noqa: F821  (injected by Snakemake)
 
 
 def main():
-    study = sm.wildcards.study
+    study = sm.wildcards.name
     spec, model = dict(sm.params.spec), dict(sm.params.model)
     simulation = dict(sm.params.simulation)
     t0 = time.perf_counter()

@@ -22,7 +22,7 @@ def main():
                             min_time=settings["min_time"],
                             progress=lambda line: print(line, flush=True))
     attrs = provenance_attrs(
-        title=f"vines work-precision {sm.wildcards.case}",
+        title=f"vines work-precision {sm.wildcards.name}",
         config_subset={"case": case, "settings": settings, "model": model,
                        "v_stick": sm.params.v_stick},
         settings=model, code_version=sm.params.code)

@@ -17,7 +17,7 @@ import numpy as np
 import xarray as xr
 
 from ..core.conventions import BATCH_FIELDS
-from ..core.params import PARAM_NAMES as DIMS
+from ..core.params import PARAM_NAMES
 from .schema import (
     BASIN_SLICE_ATTRS,
     BATCH_ATTRS,
@@ -48,12 +48,12 @@ def _variables(dims, arrays: dict, table: dict) -> dict:
 
 def _coords(axes: dict) -> dict:
     return {d: xr.Variable((d,), np.asarray(axes[d], dtype=float), COORD_ATTRS[d])
-            for d in DIMS}
+            for d in PARAM_NAMES}
 
 
 def grid_dataset(axes: dict, fields: dict, attrs: dict) -> xr.Dataset:
     """Dataset over dims (eta, omega, F) holding ``fields`` (``simulate_batch`` arrays)."""
-    data = {name: xr.Variable(DIMS, np.asarray(arr).astype(BATCH_FIELDS[name]),
+    data = {name: xr.Variable(PARAM_NAMES, np.asarray(arr).astype(BATCH_FIELDS[name]),
                               cf(BATCH_ATTRS, name))
             for name, arr in fields.items()}
     return xr.Dataset(data, coords=_coords(axes), attrs=attrs)
@@ -65,13 +65,13 @@ def merge_chunks(datasets, axes: dict) -> dict:
     Values are matched exactly (chunks are cut from the same axes). Raises ValueError when a
     chunk value is not on an axis or a grid point is missing.
     """
-    full = {d: np.asarray(axes[d], dtype=float) for d in DIMS}
-    shape = tuple(full[d].size for d in DIMS)
+    full = {d: np.asarray(axes[d], dtype=float) for d in PARAM_NAMES}
+    shape = tuple(full[d].size for d in PARAM_NAMES)
     out = {k: np.full(shape, FILL[np.dtype(dt).kind], dtype=dt) for k, dt in BATCH_FIELDS.items()}
     seen = np.zeros(shape, dtype=bool)
     for ds in datasets:
         idx = []
-        for d in DIMS:
+        for d in PARAM_NAMES:
             v = ds[d].values
             pos = np.clip(np.searchsorted(full[d], v), 0, full[d].size - 1)
             if not np.array_equal(full[d][pos], v):
@@ -89,7 +89,7 @@ def merge_chunks(datasets, axes: dict) -> dict:
 def measures_dataset(grid: xr.Dataset, derived: dict, sections: dict) -> xr.Dataset:
     """The grid dataset plus derived measures and ``section_<dim>`` markers (int8 flags)."""
     ds = grid.copy()
-    ds.update(_variables(DIMS, derived, DERIVED_ATTRS))
+    ds.update(_variables(PARAM_NAMES, derived, DERIVED_ATTRS))
     for dim, mark in sections.items():
         ds[f"section_{dim}"] = xr.Variable(
             (dim,), np.asarray(mark, dtype="i1"),
@@ -175,8 +175,8 @@ def timehistory_dataset(points: list[dict], th: dict, attrs: dict) -> xr.Dataset
     and timed by ``t`` / ``window_t`` / ``impact_t``."""
     dims_of = {"": ("point", "sample"), "window_": ("point", "window_sample")}
     data = {k: xr.Variable(("point",), np.asarray([p[k] for p in points]), COORD_ATTRS[k])
-            for k in DIMS}
-    where = " ".join(DIMS)
+            for k in PARAM_NAMES}
+    where = " ".join(PARAM_NAMES)
     coordinates = {}
     for k in [k for k in TIMEHISTORY_ATTRS if k in th]:
         prefix = "window_" if k.startswith("window_") else ""
@@ -216,8 +216,8 @@ def branch_dataset(br, attrs: dict) -> xr.Dataset:
     rows = _branch_rows(br)
     P = ("point",)
     cat = {k: np.concatenate([np.asarray(getattr(b, k)) for b in rows])
-           for k in DIMS + BRANCH_POINT_VARS}
-    data = {k: xr.Variable(P, cat[k], COORD_ATTRS[k]) for k in DIMS}
+           for k in PARAM_NAMES + BRANCH_POINT_VARS}
+    data = {k: xr.Variable(P, cat[k], COORD_ATTRS[k]) for k in PARAM_NAMES}
     for k in BRANCH_POINT_VARS:
         a = cat[k].astype("i1") if k in ("stable", "symmetric", "admissible") else cat[k]
         data[k] = xr.Variable(P, a, cf(BRANCH_ATTRS, k))
@@ -244,7 +244,7 @@ def branch_dataset(br, attrs: dict) -> xr.Dataset:
                                    {"long_name": f"{br.param} value of the event", "units": "1"})
     data["event_branch"] = xr.Variable(("event",), np.asarray([i for i, _ in events], "i4"),
                                        cf(BRANCH_ATTRS, "event_branch"))
-    where = " ".join(DIMS)
+    where = " ".join(PARAM_NAMES)
     return _dsg(data, attrs, {k: where for k in BRANCH_POINT_VARS + ("abs_eigenvalues",)})
 
 
@@ -296,7 +296,7 @@ def _eta_omega_coords(eta, omega) -> dict:
 
 
 def robust_dataset(eta, omega, fields: dict, attrs: dict) -> xr.Dataset:
-    """A robust-TET map (``attractors.maps.robust_point`` fields) over (eta, omega)."""
+    """A robust-TET map (``attractors.census_maps.robust_point`` fields) over (eta, omega)."""
     D = ("eta", "omega")
     shape = (np.size(eta), np.size(omega))
     data = {}
@@ -310,7 +310,7 @@ def robust_dataset(eta, omega, fields: dict, attrs: dict) -> xr.Dataset:
 
 
 def basin_slice_dataset(z_m0, v_m0, res: dict, attrs: dict) -> xr.Dataset:
-    """A basin slice (``attractors.maps.basin_slice``): attractor index over (z_m0, v_m0)
+    """A basin slice (``attractors.census_maps.basin_slice``): attractor index over (z_m0, v_m0)
     and the attractor table over ``attractor_index``."""
     a = BASIN_SLICE_ATTRS
     table = res["table"]

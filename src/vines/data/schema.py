@@ -131,7 +131,7 @@ TIMEHISTORY_ATTRS = {
 }
 
 
-#: robust-TET maps over (eta, omega) (``vines.attractors.maps.robust_point``)
+#: robust-TET maps over (eta, omega) (``vines.attractors.census_maps.robust_point``)
 ROBUST_ATTRS = {
     "efficient_fraction": ("basin fraction of attractors with KE ratio above the threshold", "1"),
     "stable_1to1_fraction": ("basin fraction of the stable 1:1 orbit", "1"),
@@ -141,7 +141,7 @@ ROBUST_ATTRS = {
     "from_rest_ke_ratio": ("KE ratio of the attractor reached from rest", "1"),
 }
 
-#: basin slices (``vines.attractors.maps.basin_slice``): per slice point, per attractor
+#: basin slices (``vines.attractors.census_maps.basin_slice``): per slice point, per attractor
 BASIN_SLICE_ATTRS = {
     "z_m0": ("initial LO displacement z_m(0) (units of L)", "1"),
     "v_m0": ("initial LO velocity z_m'(0)", "1"),

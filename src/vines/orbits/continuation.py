@@ -45,10 +45,9 @@ from ..core.params import (
     check_step_points,
 )
 from ..core.walls import WALL_L, WALL_R
-from .branch import EVENT_TYPES, Branch, make_branch
+from .branch_result import EVENT_TYPES, Branch, make_branch
 from .periodic import PeriodicOrbit, orbits_1to1, solve_orbit
 
-PARAMS = PARAM_NAMES
 MIRROR = np.diag([-1.0, -1.0, -1.0, 1.0])
 __all__ = ["continue_branch", "Branch", "EVENT_TYPES"]
 
@@ -172,7 +171,7 @@ def continue_branch(param: str, start, stop, step=None, fixed: dict | None = Non
 def _checked(param, start, stop, step, fixed, min_step, event_tol, max_points, method,
              branch, switch, max_inadmissible):
     """Validated (param, start, stop, step, fixed others) of ``continue_branch``."""
-    if not isinstance(param, str) or param not in PARAMS:
+    if not isinstance(param, str) or param not in PARAM_NAMES:
         raise ParameterError("param", param, "must be one of eta, omega, F")
     if method not in CONTINUATION_METHODS:
         raise ParameterError("method", method, "must be one of arclength, natural")
@@ -185,8 +184,8 @@ def _checked(param, start, stop, step, fixed, min_step, event_tol, max_points, m
     if param in fixed:
         raise ParameterError(param, fixed[param],
                              f"must not be fixed when continuing in {param} (it runs from "
-                             f"start to stop; fix only {' and '.join(q for q in PARAMS if q != param)})")
-    others = [q for q in PARAMS if q != param]
+                             f"start to stop; fix only {' and '.join(q for q in PARAM_NAMES if q != param)})")
+    others = [q for q in PARAM_NAMES if q != param]
     for q in others:
         if q not in fixed:
             raise ParameterError(q, None, f"is required when continuing in {param}")

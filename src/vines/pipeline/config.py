@@ -1,5 +1,5 @@
 """Pipeline config: YAML reading, schema validation with defaults, the physical checks of
-``vines.pipeline.checks`` and cross-key rules; every error is one line naming the key.
+``vines.pipeline.config_checks`` and cross-key rules; every error is one line naming the key.
 
 ``python -m vines.pipeline.config FILE`` checks a config file without running anything
 (Snakemake itself reports a YAML syntax error in a ``--configfile`` without its line)."""
@@ -7,8 +7,9 @@ from __future__ import annotations
 
 import copy
 
-from .axes import DIMS, ConfigError, axis_values, grid_axes
-from .checks import check_physical
+from ..core.params import PARAM_NAMES
+from .axes import ConfigError, axis_values, grid_axes
+from .config_checks import check_physical
 
 
 def _with_defaults(validator_class):
@@ -80,13 +81,13 @@ def validate_config(config: dict, schema: dict) -> dict:
     for name, sw in config["sweeps"].items():
         if sw["outer"] == sw["param"]:
             raise ConfigError(f"sweeps.{name}.outer", "must differ from param")
-        need = set(DIMS) - {sw["param"], sw["outer"]}
+        need = set(PARAM_NAMES) - {sw["param"], sw["outer"]}
         if set(sw["fixed"]) != need:
             raise ConfigError(f"sweeps.{name}.fixed", f"must give exactly {sorted(need)}")
         axis_values(sw["values"], key=f"sweeps.{name}.values")
         axis_values(sw["outer_values"], key=f"sweeps.{name}.outer_values")
     for name, br in config["branches"].items():
-        need = set(DIMS) - {br["param"]}
+        need = set(PARAM_NAMES) - {br["param"]}
         if set(br["fixed"]) != need:
             raise ConfigError(f"branches.{name}.fixed", f"must give exactly {sorted(need)}")
     for name, sm in config["stability_maps"].items():

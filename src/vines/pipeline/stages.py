@@ -12,10 +12,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..core.params import PARAM_NAMES
 from ..data import builders
 from ..data.netcdf import read_dataset
 from ..data.provenance import provenance_attrs
-from .axes import DIMS, axis_values
+from .axes import axis_values
 from .execution import compute
 
 # ------------------------------------------------------------------ simulate-grid
@@ -33,7 +34,7 @@ def compute_chunk(chunk: dict, *, model: dict, simulation: dict, n_workers: int 
     import dask
 
     from ..core.simulation import BATCH_FIELDS
-    e, w, f = np.meshgrid(*(np.asarray(chunk[d], dtype=float) for d in DIMS), indexing="ij")
+    e, w, f = np.meshgrid(*(np.asarray(chunk[d], dtype=float) for d in PARAM_NAMES), indexing="ij")
     shape = e.shape
     e, w, f = e.ravel(), w.ravel(), f.ravel()
     kw = {**model, **simulation}
@@ -258,7 +259,7 @@ def _census_kw(model: dict, simulation: dict) -> dict:
 
 
 def _robust_block(points, F, kw):
-    from ..attractors.maps import robust_point
+    from ..attractors.census_maps import robust_point
     return [robust_point(e, w, F, n_threads=1, **kw) for e, w in points]
 
 
@@ -268,7 +269,7 @@ def robust_map(spec: dict, *, model: dict, simulation: dict, code: str, title: s
     ``spec['n']`` Sobol states (seed ``spec['seed']``) per point, in dask blocks."""
     import dask
 
-    from ..attractors.maps import ROBUST_FIELDS
+    from ..attractors.census_maps import ROBUST_FIELDS
     eta, omega = axis_values(spec["eta"]), axis_values(spec["omega"])
     points = [(e, w) for e in eta for w in omega]
     kw = {**_census_kw(model, simulation), "n": spec["n"], "seed": spec["seed"],
@@ -291,7 +292,7 @@ def basin_slice(spec: dict, *, model: dict, simulation: dict, code: str, title: 
                 n_workers: int = 1):
     """Dataset of one basin slice: the attractor reached from each (z_m(0), z_m'(0)) with
     the ball at rest in the middle of the cavity, at ``spec``'s (eta, omega, F)."""
-    from ..attractors.maps import basin_slice as solve_slice
+    from ..attractors.census_maps import basin_slice as solve_slice
     z_m0, v_m0 = axis_values(spec["z_m0"]), axis_values(spec["v_m0"])
     res = solve_slice(spec["eta"], spec["omega"], spec["F"], z_m0, v_m0,
                       n_threads=max(1, int(n_workers)), **_census_kw(model, simulation))
