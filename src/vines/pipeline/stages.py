@@ -1,9 +1,10 @@
 """The pipeline's compute stages: config entry in, CF dataset out.
 
-One function per stage, named as the rule, the rule file and the workflow script:
-``simulate_grid``, ``extract_measures``, ``bifurcation_sweep``, ``map_solve``,
-``stability_map``, ``boundaries``, ``timehistory``, ``robust_map``, ``basin_slice``. Each
-calls the numerics (``vines.core``, ``vines.orbits``, ``vines.attractors``), lets
+One function per stage, named as the rule, the rule file, the workflow script and the
+output folder: ``simulate_grid``, ``extract_measures``, ``bifurcation_sweep``,
+``map_solve``, ``stability_map``, ``boundaries``, ``timehistory``, ``robust_map``,
+``basin_slice``, ``work_precision``, ``convergence``. Each calls the numerics
+(``vines.core``, ``vines.orbits``, ``vines.attractors``, ``vines.studies``), lets
 ``vines.pipeline.execution`` spread independent tasks over dask, and hands plain arrays to
 ``vines.data.builders``. Results are assembled by index, so the
 numbers do not depend on workers, block size, chunk size or scheduler.
@@ -301,3 +302,36 @@ def basin_slice(spec: dict, *, model: dict, simulation: dict, code: str, title: 
                              settings={**model, **simulation}, code_version=code)
     attrs.update(eta=float(spec["eta"]), omega=float(spec["omega"]), F=float(spec["F"]))
     return builders.basin_slice_dataset(z_m0, v_m0, res, attrs)
+
+
+# ------------------------------------------------------------------ work-precision, convergence
+
+def work_precision(case: dict, *, settings: dict, model: dict, v_stick: float, code: str,
+                   title: str, progress=None):
+    """Dataset of one work-precision case: error and cost of every solver setting against
+    the 40-digit reference (``settings``: the ``work_precision`` section but its cases)."""
+    from ..studies.workprecision import work_precision as study
+    result = study(case["eta"], case["omega"], case["F"], t_end=case["t_end"],
+                   t_transient=case["t_transient"], r=model["r"], d=model["d"],
+                   v_stick=v_stick, v_sticks=case.get("v_sticks", []),
+                   root_tols=settings["root_tols"], rk_methods=settings["rk_methods"],
+                   rtols=settings["rtols"], dps=settings["dps"],
+                   h_sample=settings["h_sample"], v_visible=settings["v_visible"],
+                   min_time=settings["min_time"], progress=progress)
+    attrs = provenance_attrs(
+        title=title,
+        config_subset={"case": case, "settings": settings, "model": model, "v_stick": v_stick},
+        settings=model, code_version=code)
+    return builders.work_precision_dataset(result, attrs)
+
+
+def convergence(study: str, spec: dict, *, model: dict, simulation: dict, code: str,
+                title: str, n_workers: int = 1):
+    """Dataset of one convergence study (``study``: window, vstick or grid)."""
+    from ..studies.convergence import STUDIES
+    result = STUDIES[study](**spec, **simulation, **model, n_threads=n_workers)
+    attrs = provenance_attrs(
+        title=title,
+        config_subset={"spec": spec, "model": model, "simulation": simulation},
+        settings={**model, **simulation}, code_version=code)
+    return builders.convergence_dataset(study, result, attrs)

@@ -1,7 +1,7 @@
 """Convergence of the measures with run length and window, sticking threshold and grid.
 
 Three studies, each returning a result object of plain numpy arrays and the settings that
-describe them (``vines.data.studies.convergence_dataset`` makes it a CF dataset):
+describe them (``vines.data.builders.convergence_dataset`` makes it a CF dataset):
 
 * :func:`window_convergence` -> :class:`WindowConvergence`: KE ratio, x_max and regime at
   named parameter points over a grid of run lengths ``t_end`` and window rules (a fixed

@@ -12,7 +12,7 @@ Every run of one case (a parameter point and a horizon [0, t_end], window
   measure) and impacts per second.
 
 :func:`work_precision` returns a :class:`WorkPrecisionResult` (plain arrays over the runs and
-the settings of the case); ``vines.data.studies.work_precision_dataset`` makes it a dataset.
+the settings of the case); ``vines.data.builders.work_precision_dataset`` makes it a dataset.
 
 Knobs: the exact solver's ``root_tol`` (at the case's v_stick) and ``v_stick`` (the chatter
 threshold, a model knob: these runs are compared with a reference at ``v_stick_reference``,
