@@ -15,7 +15,7 @@ import types
 
 import numpy as np
 import pytest
-from test_cli import run_vines
+from conftest import run_vines
 
 import vines
 from vines.core import params as P
