@@ -239,6 +239,7 @@ def _copy_workflow(dst: Path, with_src_copy=False):
     shutil.copytree(ROOT / "workflow", dst / "workflow",
                     ignore=shutil.ignore_patterns("__pycache__"))
     shutil.copytree(ROOT / "config", dst / "config")
+    shutil.copy(ROOT / "environment.yml", dst / "environment.yml")   # the rules' conda env
     if with_src_copy:   # a private copy of the sources (keeps the numba cache: copy2 mtimes)
         shutil.copytree(ROOT / "src", dst / "src", ignore=shutil.ignore_patterns("*.egg-info"))
     else:
