@@ -32,7 +32,7 @@ import yaml
 
 import vines
 from vines.core.params import ModelParams
-from vines.core.simulation import _measures
+from vines.core.simulation import window_measures as _measures
 from vines.core.sweep import bifurcation_sweep, sweep_point
 from vines.pipeline.axes import axis_values, grid_axes
 

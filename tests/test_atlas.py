@@ -12,9 +12,9 @@ import numpy as np
 import pytest
 
 from vines.core.params import ModelParams, ParameterError
-from vines.core.simulation import simulate
 from vines.orbits.atlas import FAMILIES, PAPER_LABELS, atlas_arrays, atlas_point
 from vines.orbits.sequence import canonical_walls, has_half_symmetry
+from vines.solvers import simulate
 
 # (eta, omega, F): regimes 2:2 (Fig 9), 2:2 asymmetric, 2:1, 3:2, period-2 of 2:1, of 2:2
 # and of 3:2, 1:1 (points of coarse simulation scans)

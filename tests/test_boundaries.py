@@ -5,7 +5,7 @@ import json
 
 import numpy as np
 import pytest
-from test_cli import run_vines
+from conftest import run_vines
 
 from vines.core.params import D_DEFAULT, R_DEFAULT, ParameterError
 from vines.orbits import augmented as ag

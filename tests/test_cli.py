@@ -1,13 +1,11 @@
 """Command-line contract (spec section 7): error paths and the --json success path."""
 import json
 import math
-import os
 import pathlib
-import subprocess
-import sys
 import tomllib
 
 import pytest
+from conftest import run_vines
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 SRC = ROOT / "src"
@@ -15,13 +13,6 @@ SRC = ROOT / "src"
 SIMULATE_KEYS = {"ke_ratio", "xmax_m", "xmax", "xmax_whole_run_m", "n_impacts",
                  "impacts_per_period", "regime", "t_stuck", "solver", "params"}
 BASE = ["--eta", "0.05", "--omega", "1", "--F", "0.05"]
-
-
-def run_vines(*args, timeout=600):
-    env = dict(os.environ)
-    env["PYTHONPATH"] = os.pathsep.join([str(SRC), env.get("PYTHONPATH", "")]).rstrip(os.pathsep)
-    return subprocess.run([sys.executable, "-m", "vines", *args], capture_output=True,
-                          text=True, env=env, timeout=timeout, cwd=ROOT)
 
 
 def assert_one_line_error(proc, *fragments):

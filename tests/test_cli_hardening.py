@@ -15,11 +15,11 @@ import types
 
 import numpy as np
 import pytest
-from test_cli import run_vines
+from conftest import run_vines
 
 import vines
 from vines.core import params as P
-from vines.core.simulation import _measures
+from vines.core.simulation import window_measures
 from vines.orbits.continuation import continue_branch
 from vines.orbits.periodic import find_1to1
 from vines.orbits.stability_map import stability_map
@@ -195,7 +195,7 @@ def test_regime_of_runs_that_stop_early(status, regime):
                                 xmax_window=0.5, xmax_whole_run=0.5, n_impacts=0,
                                 t_stuck_window=0.0, t_stuck_total=0.0, n_sticks=0,
                                 shortcut_time=float("nan"), shortcut_period=0)
-    m = _measures(p, st, raw)
+    m = window_measures(p, st, raw)
     assert m["regime"] == regime and m["period"] == 0
 
 

@@ -1,11 +1,9 @@
 """Command-line contract of `vines periodic` and `vines continue` (spec section 7)."""
 import json
-import os
 import pathlib
-import subprocess
-import sys
 
 import pytest
+from conftest import run_vines
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 SRC = ROOT / "src"
@@ -14,13 +12,6 @@ SOLUTION_KEYS = {"symmetric", "admissible", "stable", "lambda_max", "eigenvalues
                  "dw_R", "phase_L", "phase_R", "flight_times"}
 POINT_KEYS = {"eta", "omega", "F", "lambda_max", "stable", "symmetric", "admissible", "dw_L"}
 EVENT_TYPES = {"fold", "flip", "neimark-sacker", "admissibility-loss", "symmetry-breaking"}
-
-
-def run_vines(*args, timeout=600):
-    env = dict(os.environ)
-    env["PYTHONPATH"] = os.pathsep.join([str(SRC), env.get("PYTHONPATH", "")]).rstrip(os.pathsep)
-    return subprocess.run([sys.executable, "-m", "vines", *args], capture_output=True,
-                          text=True, env=env, timeout=timeout, cwd=ROOT)
 
 
 def test_periodic_json():

@@ -1,5 +1,5 @@
 """vines.studies.convergence: run length / window, v_stick and grid-resolution studies;
-their datasets (vines.data.studies) and the contour geometry (vines.studies.contours).
+their datasets (vines.data.builders) and the contour geometry (vines.studies.contours).
 
 Small sizes (a few seconds in all). Physical facts used as oracles, not values from the code:
 * a stable periodic attractor reached well before t = 4000 (1:1 at eta 0.05, W 1, F 0.05)
@@ -19,8 +19,8 @@ import pytest
 import xarray as xr
 
 import vines
+from vines.data.builders import convergence_dataset
 from vines.data.netcdf import read_dataset, write_dataset
-from vines.data.studies import convergence_dataset
 from vines.studies import contours as G
 from vines.studies import convergence as C
 

@@ -20,8 +20,8 @@ import math
 
 import numpy as np
 import pytest
+from conftest import run_vines
 from scipy.optimize import brentq
-from test_cli import run_vines
 
 import vines
 from vines.core import kernel

@@ -9,7 +9,6 @@ import xarray as xr
 
 import vines.plotting as P
 from vines.core.measures import time_histories
-from vines.core.simulation import simulate
 from vines.orbits.stability_map import stability_map
 from vines.plotting.sweep_regimes import (
     REGIME_CHATTER,
@@ -18,6 +17,7 @@ from vines.plotting.sweep_regimes import (
     REGIME_PERIODIC,
     point_regime,
 )
+from vines.solvers import simulate
 
 N_REC = 10
 

@@ -5,7 +5,6 @@ import pytest
 import xarray as xr
 
 from vines.core.measures import time_histories
-from vines.core.simulation import simulate
 from vines.plotting.impacts import (
     SAME_WAY,
     TOWARDS,
@@ -13,6 +12,7 @@ from vines.plotting.impacts import (
     impact_direction,
     pre_impact_velocities,
 )
+from vines.solvers import simulate
 
 SIM = {"t_end": 300.0, "t_transient": 150.0}
 R = 0.65

@@ -226,11 +226,11 @@ def _copy_datasets(tmp_path, subdirs):
 
 
 @needs_snakemake
-@pytest.mark.skipif(not (SMOKE / "measures").is_dir(), reason="no smoke datasets")
+@pytest.mark.skipif(not (SMOKE / "extract_measures").is_dir(), reason="no smoke datasets")
 def test_editing_a_figure_script_reruns_only_its_figures(tmp_path):
     _copy_workflow(tmp_path, with_src_copy=True)
-    _copy_datasets(tmp_path, ("grid", "measures", "stability", "boundaries",
-                                    "timehistories"))
+    _copy_datasets(tmp_path, ("simulate_grid", "extract_measures", "stability_map",
+                                    "boundaries", "timehistory"))
     smoke = ["--configfile", str(tmp_path / "config" / "smoke.yaml")]
     names = ("fig2", "fig16") + TH_FIGURES
     figs = [f"results/smoke/figures/{f}.{e}" for f in names for e in ("pdf", "png")]
@@ -254,11 +254,11 @@ def test_editing_a_figure_script_reruns_only_its_figures(tmp_path):
 
 
 @needs_snakemake
-@pytest.mark.skipif(not (SMOKE / "measures").is_dir(), reason="no smoke datasets")
+@pytest.mark.skipif(not (SMOKE / "extract_measures").is_dir(), reason="no smoke datasets")
 def test_figure_rule_fails_clearly_on_bad_input(tmp_path):
     _copy_workflow(tmp_path)
-    dst = _copy_datasets(tmp_path, ("grid", "measures"))
-    bad = dst / "measures" / "fig2_F0.1.nc"
+    dst = _copy_datasets(tmp_path, ("simulate_grid", "extract_measures"))
+    bad = dst / "extract_measures" / "fig2_F0.1.nc"
     with xr.open_dataset(bad) as ds:
         ds = ds.load()
     ds["ke_ratio"][1] = np.nan
@@ -266,7 +266,7 @@ def test_figure_rule_fails_clearly_on_bad_input(tmp_path):
     r = _smk(tmp_path, "results/smoke/figures/fig2.png",
              "--configfile", str(tmp_path / "config" / "smoke.yaml"), check=False)
     assert r.returncode != 0
-    line = "vines fig2: FigureInputError: results/smoke/measures/fig2_F0.1.nc: variable "
+    line = "vines fig2: FigureInputError: results/smoke/extract_measures/fig2_F0.1.nc: variable "
     assert line + "'ke_ratio' has 1 non-finite value" in r.stderr + r.stdout
     log = (dst / "logs" / "figures" / "fig2.log").read_text()
     assert log.splitlines()[-1].startswith(line)

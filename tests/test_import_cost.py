@@ -6,7 +6,7 @@ import sys
 import pytest
 
 NUMBA_FREE = ["vines", "vines.plotting", "vines.data.builders", "vines.data.netcdf",
-              "vines.data.studies", "vines.pipeline.config", "vines.pipeline.axes",
+              "vines.pipeline.config", "vines.pipeline.axes",
               "vines.pipeline.codeversion", "vines.pipeline.stages", "vines.pipeline.jobs"]
 
 

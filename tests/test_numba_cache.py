@@ -8,7 +8,7 @@ from vines._numba_cache import COMPILED_SUBPACKAGES, STAMP, refresh
 
 def _pkg(tmp_path):
     for rel, text in (("core/flow.py", "x = 1\n"), ("orbits/maps.py", "y = 2\n"),
-                      ("plotting/draw.py", "z = 3\n"), ("cli.py", "c = 4\n")):
+                      ("plotting/draw.py", "z = 3\n"), ("cli/common.py", "c = 4\n")):
         (tmp_path / rel).parent.mkdir(exist_ok=True)
         (tmp_path / rel).write_text(text)
     cache = tmp_path / "orbits" / "__pycache__"
@@ -37,7 +37,7 @@ def test_edits_outside_the_compiled_subpackages_keep_the_cache(tmp_path):
     refresh(tmp_path)
     (cache / "maps.f-10.py311.nbi").write_bytes(b"compiled")
     (tmp_path / "plotting" / "draw.py").write_text("z = 4\n")
-    (tmp_path / "cli.py").write_text("c = 5\n")
+    (tmp_path / "cli" / "common.py").write_text("c = 5\n")
     assert refresh(tmp_path) is False
     assert (cache / "maps.f-10.py311.nbi").exists()
 

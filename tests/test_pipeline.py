@@ -244,6 +244,7 @@ def _copy_workflow(dst: Path, with_src_copy=False):
     shutil.copytree(ROOT / "workflow", dst / "workflow",
                     ignore=shutil.ignore_patterns("__pycache__"))
     shutil.copytree(ROOT / "config", dst / "config")
+    shutil.copy(ROOT / "environment.yml", dst / "environment.yml")   # the rules' conda env
     if with_src_copy:   # a private copy of the sources (keeps the numba cache: copy2 mtimes)
         shutil.copytree(ROOT / "src", dst / "src", ignore=shutil.ignore_patterns("*.egg-info"))
     else:
@@ -306,14 +307,14 @@ def test_reruns_only_what_changed(tmp_path):
     _copy_workflow(tmp_path, with_src_copy=True)
     _smk(tmp_path, cfg=TINY)
     out = tmp_path / "results" / "tiny"
-    ds = read_dataset(out / "measures" / "gB.nc")
+    ds = read_dataset(out / "extract_measures" / "gB.nc")
     assert ds["ke_ratio"].shape == (2, 1, 2) and ds["section_F"].values.tolist() == [0, 1]
-    sw = read_dataset(out / "sweeps" / "sw.nc")
+    sw = read_dataset(out / "bifurcation_sweep" / "sw.nc")
     assert sw["row_size"].attrs["sample_dimension"] == "impact"
     assert _planned(_smk(tmp_path, "-n", cfg=TINY)) == {}
 
     # rerunning a job rewrites a byte-identical file
-    chunk = sorted((out / "grid" / "gA").glob("chunk_*.nc"))[0]
+    chunk = sorted((out / "simulate_grid" / "gA").glob("chunk_*.nc"))[0]
     before = chunk.read_bytes()
     _smk(tmp_path, "--forcerun", "simulate_grid", "--until", "simulate_grid", cfg=TINY)
     assert chunk.read_bytes() == before
@@ -354,7 +355,7 @@ def test_reruns_only_what_changed(tmp_path):
     flow.write_text(original)
     # ...a change of a non-computing source (CLI) does not
 
-    cli = tmp_path / "src" / "vines" / "cli.py"
+    cli = tmp_path / "src" / "vines" / "cli" / "common.py"
     cli.write_text(cli.read_text() + "\n# edited\n")
     assert _planned(_smk(tmp_path, "-n", cfg=TINY)) == {}
 
@@ -365,7 +366,7 @@ def test_killed_run_keeps_finished_chunks(tmp_path):
     _copy_workflow(tmp_path)
     cfg = dict(TINY, grids={"gA": TINY["grids"]["gA"]}, sweeps={}, timehistories={})
     _smk(tmp_path, "--until", "simulate_grid", cfg=cfg)
-    done = sorted((tmp_path / "results" / "tiny" / "grid" / "gA").glob("chunk_*.nc"))
+    done = sorted((tmp_path / "results" / "tiny" / "simulate_grid" / "gA").glob("chunk_*.nc"))
     done[0].unlink()          # as if that job had been killed (atomic writes: no partial file)
     assert _planned(_smk(tmp_path, "-n", cfg=cfg)) == {
         "simulate_grid": 1, "extract_measures": 1, "all": 1}
@@ -391,9 +392,9 @@ def test_damaged_chunk_is_named_and_recomputed_after_removal(tmp_path):
     cfg["grids"] = {"gA": TINY["grids"]["gA"]}
     _smk(tmp_path, cfg=cfg)
     out = tmp_path / "results" / "tiny"
-    measures = out / "measures" / "gA.nc"
+    measures = out / "extract_measures" / "gA.nc"
     before = read_dataset(measures)
-    chunk = sorted((out / "grid" / "gA").glob("chunk_*.nc"))[0]
+    chunk = sorted((out / "simulate_grid" / "gA").glob("chunk_*.nc"))[0]
     data = chunk.read_bytes()
     chunk.write_bytes(data[: len(data) // 2])
     r = _smk(tmp_path, cfg=cfg, check=False)

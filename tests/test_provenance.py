@@ -97,7 +97,7 @@ def test_jobs_run_their_own_checkout_not_another_on_pythonpath(tmp_path):
             del os.environ["PYTHONPATH"]
         else:
             os.environ["PYTHONPATH"] = saved
-    ds = read_dataset(b / "results" / "tiny" / "timehistories" / "th.nc")
+    ds = read_dataset(b / "results" / "tiny" / "timehistory" / "th.nc")
     assert ds.attrs["code_version"] == code_version(COMPUTE, b / "src" / "vines")
 
 

@@ -15,7 +15,6 @@ import numpy as np
 import pytest
 
 from vines.core.params import ModelParams, ParameterError
-from vines.core.simulation import simulate
 from vines.orbits.periodic import find_1to1
 from vines.orbits.sequence import (
     canonical_walls,
@@ -27,6 +26,7 @@ from vines.orbits.sequence import (
     solve_sequence,
     state_at,
 )
+from vines.solvers import simulate
 
 REST = (0.0, 0.0, 0.0, 0.0)
 AGREE = 1e-7

@@ -6,12 +6,13 @@ import vines
 from vines import cli
 from vines.core import params as P
 from vines.core.measures import time_histories
-from vines.core.simulation import RK_METHODS, SOLVERS, simulate, simulate_batch
+from vines.core.simulation import simulate_batch
 from vines.core.sweep import bifurcation_sweep
 from vines.core.walls import WALL_L, WALL_R, impact_velocities
 from vines.pipeline.config import load_schema
 from vines.reference.hiprec import DPS_DEFAULT, H_SAMPLE_DEFAULT
 from vines.reference.rk import METHODS
+from vines.solvers import RK_METHODS, SOLVERS, simulate
 
 SCHEMA = load_schema()
 PROPS = SCHEMA["properties"]

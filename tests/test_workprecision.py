@@ -7,7 +7,7 @@ import pytest
 import vines
 from vines.core.params import ModelParams, ParameterError, SolverSettings
 from vines.core.result import IMPACT_DTYPE
-from vines.data.studies import work_precision_dataset
+from vines.data.builders import work_precision_dataset
 from vines.reference.hiprec import reference_run
 from vines.studies.workprecision import (
     RUN_FIELDS,

@@ -26,7 +26,7 @@ except PackageNotFoundError:   # sources used without installing (not a release)
     __version__ = "0+unknown"
 
 #: public names loaded on first access, and their modules
-_LAZY = {"simulate": ".core.simulation", "simulate_batch": ".core.simulation",
+_LAZY = {"simulate": ".solvers", "simulate_batch": ".core.simulation",
          "SimulationResult": ".core.result", "IMPACT_DTYPE": ".core.result",
          "design": ".studies.design"}
 

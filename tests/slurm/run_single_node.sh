@@ -241,7 +241,7 @@ import numpy as np
 import xarray as xr
 
 TIMING = {"seconds", "run_time", "impacts_per_second", "calls"}
-TIMED = {"workprecision", "convergence"}        # folders of the datasets that hold timings
+TIMED = {"work_precision", "convergence"}        # folders of the datasets that hold timings
 
 
 def same(a, b):

@@ -3,16 +3,16 @@
 
 rule basin_slice:
     output:
-        f"{RES}/basins/{{bslice}}.nc",
+        dataset("basin_slice"),
     log:
-        f"{RES}/logs/basin_slice/{{bslice}}.log",
+        job_log("basin_slice"),
     benchmark:
-        f"{RES}/benchmarks/basin_slice/{{bslice}}.tsv"
+        job_benchmark("basin_slice")
     conda:
         "../../environment.yml"
     threads: config["threads"]
     params:
-        spec=lambda w: SLICES[w.bslice],
+        spec=lambda w: BASIN_SLICES[w.name],
         model=MODEL,
         simulation=SIMULATION,
         code=CODE_ATTRACTORS,

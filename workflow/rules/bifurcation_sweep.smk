@@ -5,16 +5,16 @@
 
 rule bifurcation_sweep:
     output:
-        f"{RES}/sweeps/{{sweep}}.nc",
+        dataset("bifurcation_sweep"),
     log:
-        f"{RES}/logs/bifurcation_sweep/{{sweep}}.log",
+        job_log("bifurcation_sweep"),
     benchmark:
-        f"{RES}/benchmarks/bifurcation_sweep/{{sweep}}.tsv"
+        job_benchmark("bifurcation_sweep")
     conda:
         "../../environment.yml"
     threads: config["threads"]
     params:
-        spec=lambda w: SWEEPS[w.sweep],
+        spec=lambda w: SWEEPS[w.name],
         model=MODEL,
         periodic_shortcut=SIMULATION["periodic_shortcut"],
         code=CODE,

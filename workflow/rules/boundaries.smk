@@ -6,15 +6,15 @@ rule boundaries:
     input:
         stability=boundaries_seed_map,
     output:
-        f"{RES}/boundaries/{{bnd}}.nc",
+        dataset("boundaries"),
     log:
-        f"{RES}/logs/boundaries/{{bnd}}.log",
+        job_log("boundaries"),
     benchmark:
-        f"{RES}/benchmarks/boundaries/{{bnd}}.tsv"
+        job_benchmark("boundaries")
     conda:
         "../../environment.yml"
     params:
-        spec=lambda w: BOUNDARIES[w.bnd],
+        spec=lambda w: BOUNDARIES[w.name],
         model=MODEL,
         code=CODE,
     script:

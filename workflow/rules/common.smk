@@ -61,14 +61,14 @@ AXES = {name: grid_axes(g, key=f"grids.{name}") for name, g in GRIDS.items()}
 CHUNKS = {name: chunk_map(AXES[name], config["chunk_size"]) for name in GRIDS}
 SWEEPS = config["sweeps"]
 BRANCHES = config["branches"]
-SMAPS = config["stability_maps"]
+STABILITY_MAPS = config["stability_maps"]
 BOUNDARIES = config["boundaries"]
-THIST = config["timehistories"]
-ROBUST = config["robust_maps"]
-SLICES = config["basin_slices"]
-WPREC = config["work_precision"]
-WPREC_SETTINGS = {k: v for k, v in WPREC.items() if k != "cases"}
-CONV = config["convergence"]
+TIMEHISTORIES = config["timehistories"]
+ROBUST_MAPS = config["robust_maps"]
+BASIN_SLICES = config["basin_slices"]
+WORK_PRECISION = config["work_precision"]
+WORK_PRECISION_SETTINGS = {k: v for k, v in WORK_PRECISION.items() if k != "cases"}
+CONVERGENCE = config["convergence"]
 
 # A damaged dataset (a truncated chunk, a disk error) would look finished to Snakemake:
 # stop before any job, naming the file and the command that recomputes it.
@@ -84,37 +84,58 @@ if _DAMAGED:
 wildcard_constraints:
     grid="[A-Za-z0-9_.-]+",
     key="[0-9a-f]{16}",
-    sweep="[A-Za-z0-9_.-]+",
-    branch="[A-Za-z0-9_.-]+",
-    smap="[A-Za-z0-9_.-]+",
-    bnd="[A-Za-z0-9_.-]+",
-    th="[A-Za-z0-9_.-]+",
-    rmap="[A-Za-z0-9_.-]+",
-    bslice="[A-Za-z0-9_.-]+",
+    name="[A-Za-z0-9_.-]+",
+
+
+# Result paths: every stage writes results/<run>/<rule>/<entry>.nc (the folder is named
+# after the rule), its log to logs/<rule>/ and its benchmark to benchmarks/<rule>/; the
+# entry is the wildcard {name} (the config entry's name) unless given.
+def dataset(stage, name="{name}"):
+    return f"{RES}/{stage}/{name}.nc"
+
+
+def job_log(stage, name="{name}"):
+    return f"{RES}/logs/{stage}/{name}.log"
+
+
+def job_benchmark(stage, name="{name}"):
+    return f"{RES}/benchmarks/{stage}/{name}.tsv"
 
 
 def chunk_files(wildcards):
-    return [f"{RES}/grid/{wildcards.grid}/chunk_{k}.nc" for k in CHUNKS[wildcards.grid]]
+    return [
+        dataset("simulate_grid", f"{wildcards.name}/chunk_{k}")
+        for k in CHUNKS[wildcards.name]
+    ]
 
 
 def boundaries_seed_map(wildcards):
     """The stability map whose class changes seed the boundary curves (key stability_map)."""
-    name = BOUNDARIES[wildcards.bnd].get("stability_map")
-    return [f"{RES}/stability/{name}.nc"] if name else []
+    name = BOUNDARIES[wildcards.name].get("stability_map")
+    return [dataset("stability_map", name)] if name else []
+
+
+#: stage -> the config entries it makes one dataset of
+STAGE_ENTRIES = {
+    "extract_measures": GRIDS,
+    "bifurcation_sweep": SWEEPS,
+    "map_solve": BRANCHES,
+    "stability_map": STABILITY_MAPS,
+    "boundaries": BOUNDARIES,
+    "timehistory": TIMEHISTORIES,
+    "robust_map": ROBUST_MAPS,
+    "basin_slice": BASIN_SLICES,
+    "work_precision": WORK_PRECISION["cases"],
+    "convergence": CONVERGENCE,
+}
 
 
 def all_datasets():
-    out = [f"{RES}/measures/{g}.nc" for g in GRIDS]
     # the chunks too: a chunk removed (the remedy for a damaged one) is then recomputed
     # by the same command, and the measures after it
-    out += [f"{RES}/grid/{g}/chunk_{k}.nc" for g in GRIDS for k in CHUNKS[g]]
-    out += [f"{RES}/sweeps/{s}.nc" for s in SWEEPS]
-    out += [f"{RES}/branches/{b}.nc" for b in BRANCHES]
-    out += [f"{RES}/stability/{m}.nc" for m in SMAPS]
-    out += [f"{RES}/boundaries/{b}.nc" for b in BOUNDARIES]
-    out += [f"{RES}/timehistories/{t}.nc" for t in THIST]
-    out += [f"{RES}/robust/{m}.nc" for m in ROBUST]
-    out += [f"{RES}/basins/{s}.nc" for s in SLICES]
-    out += [f"{RES}/workprecision/{c}.nc" for c in WPREC["cases"]]
-    out += [f"{RES}/convergence/{s}.nc" for s in CONV]
-    return out
+    chunks = [
+        dataset("simulate_grid", f"{g}/chunk_{k}") for g in GRIDS for k in CHUNKS[g]
+    ]
+    return chunks + [
+        dataset(stage, n) for stage, entries in STAGE_ENTRIES.items() for n in entries
+    ]

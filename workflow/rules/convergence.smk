@@ -5,18 +5,18 @@
 
 rule convergence:
     output:
-        f"{RES}/convergence/{{study}}.nc",
+        dataset("convergence"),
     log:
-        f"{RES}/logs/convergence/{{study}}.log",
+        job_log("convergence"),
     benchmark:
-        f"{RES}/benchmarks/convergence/{{study}}.tsv"
+        job_benchmark("convergence")
     wildcard_constraints:
-        study="window|vstick|grid",
+        name="window|vstick|grid",
     conda:
         "../../environment.yml"
     threads: config["threads"]
     params:
-        spec=lambda w: CONV[w.study],
+        spec=lambda w: CONVERGENCE[w.name],
         model=MODEL,
         simulation=SIMULATION,
         code=CODE_STUDY,

@@ -6,16 +6,16 @@ rule extract_measures:
     input:
         chunk_files,
     output:
-        f"{RES}/measures/{{grid}}.nc",
+        dataset("extract_measures"),
     log:
-        f"{RES}/logs/extract_measures/{{grid}}.log",
+        job_log("extract_measures"),
     benchmark:
-        f"{RES}/benchmarks/extract_measures/{{grid}}.tsv"
+        job_benchmark("extract_measures")
     conda:
         "../../environment.yml"
     params:
-        axes=lambda w: {d: v.tolist() for d, v in AXES[w.grid].items()},
-        sections=lambda w: GRIDS[w.grid]["sections"],
+        axes=lambda w: {d: v.tolist() for d, v in AXES[w.name].items()},
+        sections=lambda w: GRIDS[w.name]["sections"],
         model=MODEL,
         code=CODE,
     script:

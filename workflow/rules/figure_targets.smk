@@ -5,44 +5,44 @@
 # (e.g. a test config) is not requested. Included by workflow/rules/figures.smk.
 
 
-def _named(section, prefix, folder):
+def _named(stage, prefix):
     return [
-        f"{RES}/{folder}/{n}.nc"
-        for n in sorted(section)
+        dataset(stage, n)
+        for n in sorted(STAGE_ENTRIES[stage])
         if n == prefix or n.startswith(f"{prefix}_")
     ]
 
 
 def _measures(p):
-    return _named(GRIDS, p, "measures")
+    return _named("extract_measures", p)
 
 
 def _sweeps(p):
-    return _named(SWEEPS, p, "sweeps")
+    return _named("bifurcation_sweep", p)
 
 
 def _branches(p):
-    return _named(BRANCHES, p, "branches")
+    return _named("map_solve", p)
 
 
 def _smaps(p):
-    return _named(SMAPS, p, "stability")
+    return _named("stability_map", p)
 
 
 def _boundaries(p):
-    return _named(BOUNDARIES, p, "boundaries")
+    return _named("boundaries", p)
 
 
 def _th(p):
-    return _named(THIST, p, "timehistories")
+    return _named("timehistory", p)
 
 
 def _robust(p):
-    return _named(ROBUST, p, "robust")
+    return _named("robust_map", p)
 
 
 def _slices(p):
-    return _named(SLICES, p, "basins")
+    return _named("basin_slice", p)
 
 
 # figure -> named inputs (lists of dataset files); every list must be non-empty
@@ -78,9 +78,11 @@ FIG_INPUTS = {
     },
     "basin_slices": {"slices": _slices("basin")},
     # beyond the paper: the solver studies
-    "workprecision": {"cases": [f"{RES}/workprecision/{c}.nc" for c in WPREC["cases"]]},
+    "workprecision": {
+        "cases": [dataset("work_precision", c) for c in WORK_PRECISION["cases"]]
+    },
     "convergence": {
-        s: f"{RES}/convergence/{s}.nc" if s in CONV else ""
+        s: dataset("convergence", s) if s in CONVERGENCE else ""
         for s in ("window", "vstick", "grid")
     },
 }

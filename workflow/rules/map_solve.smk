@@ -3,15 +3,15 @@
 
 rule map_solve:
     output:
-        f"{RES}/branches/{{branch}}.nc",
+        dataset("map_solve"),
     log:
-        f"{RES}/logs/map_solve/{{branch}}.log",
+        job_log("map_solve"),
     benchmark:
-        f"{RES}/benchmarks/map_solve/{{branch}}.tsv"
+        job_benchmark("map_solve")
     conda:
         "../../environment.yml"
     params:
-        spec=lambda w: BRANCHES[w.branch],
+        spec=lambda w: BRANCHES[w.name],
         model=MODEL,
         code=CODE,
     script:

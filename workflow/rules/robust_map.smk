@@ -4,16 +4,16 @@
 
 rule robust_map:
     output:
-        f"{RES}/robust/{{rmap}}.nc",
+        dataset("robust_map"),
     log:
-        f"{RES}/logs/robust_map/{{rmap}}.log",
+        job_log("robust_map"),
     benchmark:
-        f"{RES}/benchmarks/robust_map/{{rmap}}.tsv"
+        job_benchmark("robust_map")
     conda:
         "../../environment.yml"
     threads: config["threads"]
     params:
-        spec=lambda w: ROBUST[w.rmap],
+        spec=lambda w: ROBUST_MAPS[w.name],
         model=MODEL,
         simulation=SIMULATION,
         code=CODE_ATTRACTORS,

@@ -6,11 +6,11 @@
 
 rule simulate_grid:
     output:
-        f"{RES}/grid/{{grid}}/chunk_{{key}}.nc",
+        dataset("simulate_grid", "{grid}/chunk_{key}"),
     log:
-        f"{RES}/logs/simulate_grid/{{grid}}/{{key}}.log",
+        job_log("simulate_grid", "{grid}/{key}"),
     benchmark:
-        f"{RES}/benchmarks/simulate_grid/{{grid}}/{{key}}.tsv"
+        job_benchmark("simulate_grid", "{grid}/{key}")
     conda:
         "../../environment.yml"
     threads: config["threads"]

@@ -3,16 +3,16 @@
 
 rule stability_map:
     output:
-        f"{RES}/stability/{{smap}}.nc",
+        dataset("stability_map"),
     log:
-        f"{RES}/logs/stability_map/{{smap}}.log",
+        job_log("stability_map"),
     benchmark:
-        f"{RES}/benchmarks/stability_map/{{smap}}.tsv"
+        job_benchmark("stability_map")
     conda:
         "../../environment.yml"
     threads: config["threads"]
     params:
-        spec=lambda w: SMAPS[w.smap],
+        spec=lambda w: STABILITY_MAPS[w.name],
         model=MODEL,
         code=CODE,
     script:

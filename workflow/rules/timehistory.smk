@@ -4,15 +4,15 @@
 
 rule timehistory:
     output:
-        f"{RES}/timehistories/{{th}}.nc",
+        dataset("timehistory"),
     log:
-        f"{RES}/logs/timehistory/{{th}}.log",
+        job_log("timehistory"),
     benchmark:
-        f"{RES}/benchmarks/timehistory/{{th}}.tsv"
+        job_benchmark("timehistory")
     conda:
         "../../environment.yml"
     params:
-        spec=lambda w: THIST[w.th],
+        spec=lambda w: TIMEHISTORIES[w.name],
         model=MODEL,
         simulation=SIMULATION,
         code=CODE,

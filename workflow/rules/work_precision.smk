@@ -10,17 +10,17 @@
 
 rule work_precision:
     output:
-        f"{RES}/workprecision/{{case}}.nc",
+        dataset("work_precision"),
     log:
-        f"{RES}/logs/work_precision/{{case}}.log",
+        job_log("work_precision"),
     benchmark:
-        f"{RES}/benchmarks/work_precision/{{case}}.tsv"
+        job_benchmark("work_precision")
     conda:
         "../../environment.yml"
     threads: lambda wildcards: workflow.resource_settings.cores or 1
     params:
-        case=lambda w: WPREC["cases"][w.case],
-        settings=WPREC_SETTINGS,
+        case=lambda w: WORK_PRECISION["cases"][w.name],
+        settings=WORK_PRECISION_SETTINGS,
         model=MODEL,
         v_stick=SIMULATION["v_stick"],
         code=CODE_STUDY,

@@ -9,7 +9,7 @@ sm = snakemake  # noqa: F821  (injected by Snakemake)
 def main():
     ds = stages.basin_slice(dict(sm.params.spec), model=dict(sm.params.model),
                             simulation=dict(sm.params.simulation), code=sm.params.code,
-                            title=f"vines basin slice {sm.wildcards.bslice}",
+                            title=f"vines basin slice {sm.wildcards.name}",
                             n_workers=sm.threads)
     write_dataset(ds, sm.output[0])
 

@@ -8,7 +8,7 @@ sm = snakemake  # noqa: F821  (injected by Snakemake)
 
 def main():
     ds = stages.boundaries(dict(sm.params.spec), model=dict(sm.params.model),
-                           code=sm.params.code, title=f"vines boundary curves {sm.wildcards.bnd}",
+                           code=sm.params.code, title=f"vines boundary curves {sm.wildcards.name}",
                            stability_path=sm.input.stability[0] if sm.input.stability else None)
     write_dataset(ds, sm.output[0])
 

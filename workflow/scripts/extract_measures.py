@@ -10,7 +10,7 @@ def main():
     p = sm.params
     ds = stages.extract_measures(list(sm.input), axes=p.axes, sections=dict(p.sections),
                                  model=dict(p.model), code=p.code,
-                                 title=f"vines measures, grid {sm.wildcards.grid}")
+                                 title=f"vines measures, grid {sm.wildcards.name}")
     write_dataset(ds, sm.output[0])
     print(f"merged {len(sm.input)} chunks", flush=True)
 

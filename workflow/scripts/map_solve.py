@@ -8,7 +8,7 @@ sm = snakemake  # noqa: F821  (injected by Snakemake)
 
 def main():
     ds = stages.map_solve(dict(sm.params.spec), model=dict(sm.params.model),
-                          code=sm.params.code, title=f"vines 1:1 branch {sm.wildcards.branch}")
+                          code=sm.params.code, title=f"vines 1:1 branch {sm.wildcards.name}")
     write_dataset(ds, sm.output[0])
 
 

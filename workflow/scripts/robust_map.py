@@ -9,7 +9,7 @@ sm = snakemake  # noqa: F821  (injected by Snakemake)
 def main():
     ds = stages.robust_map(dict(sm.params.spec), model=dict(sm.params.model),
                            simulation=dict(sm.params.simulation), code=sm.params.code,
-                           title=f"vines robust-TET map {sm.wildcards.rmap}",
+                           title=f"vines robust-TET map {sm.wildcards.name}",
                            n_workers=sm.threads, scheduler=sm.config["dask_scheduler"])
     write_dataset(ds, sm.output[0])
 

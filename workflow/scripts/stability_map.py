@@ -9,7 +9,7 @@ sm = snakemake  # noqa: F821  (injected by Snakemake)
 def main():
     ds = stages.stability_map(dict(sm.params.spec), model=dict(sm.params.model),
                               code=sm.params.code,
-                              title=f"vines stability map {sm.wildcards.smap}",
+                              title=f"vines stability map {sm.wildcards.name}",
                               n_workers=sm.threads)
     write_dataset(ds, sm.output[0])
 

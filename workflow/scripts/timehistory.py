@@ -9,7 +9,7 @@ sm = snakemake  # noqa: F821  (injected by Snakemake)
 def main():
     ds = stages.timehistory(dict(sm.params.spec), model=dict(sm.params.model),
                             simulation=dict(sm.params.simulation), code=sm.params.code,
-                            title=f"vines time histories {sm.wildcards.th}")
+                            title=f"vines time histories {sm.wildcards.name}")
     write_dataset(ds, sm.output[0])
 
 

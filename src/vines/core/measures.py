@@ -9,8 +9,8 @@ import math
 import numpy as np
 
 from .linear import stuck_amplitude
-from .params import L_HALF_M, T_END_DEFAULT, T_TRANSIENT_DEFAULT
-from .simulation import simulate
+from .params import L_HALF_M, T_END_DEFAULT, T_TRANSIENT_DEFAULT, ModelParams, SolverSettings
+from .simulation import simulate_exact
 
 
 def derived_measures(fields: dict, eta, omega, F, d: float) -> dict:
@@ -81,8 +81,12 @@ def time_histories(points: list[dict], *, model: dict, simulation: dict,
     out.update(ke_ratio=np.empty(P), xmax=np.empty(P), regime=np.empty(P, dtype="U16"),
                status=np.empty(P, dtype="U16"), shortcut_time=np.empty(P))
     imp_t, imp_dw, imp_phase, imp_wall, row_size = [], [], [], [], np.zeros(P, dtype=np.int64)
+    settings = {k: v for k, v in simulation.items() if k != "periodic_shortcut"}
+    st = SolverSettings(**settings)
+    shortcut = bool(simulation.get("periodic_shortcut", True))
     for i, pt in enumerate(points):
-        res = simulate(pt["eta"], pt["omega"], pt["F"], **model, **simulation)
+        p = ModelParams(eta=pt["eta"], omega=pt["omega"], F=pt["F"], **model)
+        res = simulate_exact(p, st, periodic_shortcut=shortcut)
         t1 = res.t_last
         t_tr = min(float(simulation.get("t_transient", T_TRANSIENT_DEFAULT)), t1)
         t0 = max(0.0, t1 - n_periods * 2 * math.pi / pt["omega"])

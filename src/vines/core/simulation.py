@@ -1,4 +1,6 @@
-"""Front end: ``simulate`` one parameter point, ``simulate_batch`` many on threads."""
+"""The exact solver's front end on validated inputs: measures of a raw run, one run
+(``simulate_exact``), ``simulate_batch`` of many points on threads. ``vines.simulate``
+(every solver, keyword arguments) is in ``vines.solvers``."""
 from __future__ import annotations
 
 import os
@@ -14,39 +16,19 @@ from .params import (
     PARAM_BOUNDS,
     R_DEFAULT,
     ROOT_TOL_DEFAULT,
-    RTOL_DEFAULT,
-    RTOL_MAX,
-    RTOL_MIN,
     T_END_DEFAULT,
     T_TRANSIENT_DEFAULT,
     V_STICK_DEFAULT,
     ModelParams,
-    ParameterError,
     SolverSettings,
     check_bool,
     check_conditioning,
     check_int,
     check_param,
-    check_real,
 )
 from .regime import classify_tally, strobe_times
 from .result import RawRun, SimulationResult
 from .tally import ImpactTally
-
-#: scipy methods of the RK reference solver (``vines.reference.rk``)
-RK_METHODS = ("DOP853", "RK45", "LSODA", "Radau")
-
-
-def _run_rk(p: ModelParams, st: SolverSettings, *, method, rtol, atol) -> RawRun:
-    """The independent RK reference (imported on first use: scipy's event loop)."""
-    from ..reference.rk import run_rk
-    return run_rk(p, st, method=method, rtol=rtol, atol=atol)
-
-
-#: solver registry: name -> function(params, settings, **options) -> RawRun; the API,
-#: the CLI (--solver) and the work-precision study take their names from here
-SOLVERS = {"exact": run_exact, "rk": _run_rk}
-
 
 #: regime label of a run that did not reach t_end, by status. "zeno" (RK reference: impacts
 #: accumulate at a wall where the ball may not stick) is chatter; "max_impacts" only says the
@@ -57,7 +39,7 @@ SOLVERS = {"exact": run_exact, "rk": _run_rk}
 _UNFINISHED_REGIME = {"zeno": "chatter", "max_impacts": "unfinished"}
 
 
-def _measures(p: ModelParams, st: SolverSettings, raw: RawRun) -> dict:
+def window_measures(p: ModelParams, st: SolverSettings, raw: RawRun) -> dict:
     """Energy measures, impacts per period and regime from a raw run."""
     t_win = st.t_end - st.t_transient
     K_m = 0.5 * raw.int_vm2 / t_win
@@ -83,53 +65,22 @@ def _measures(p: ModelParams, st: SolverSettings, raw: RawRun) -> dict:
                 shortcut_time=raw.shortcut_time, shortcut_period=raw.shortcut_period)
 
 
-def _settings(t_end, t_transient, v_stick, max_impacts, root_tol, state0) -> SolverSettings:
-    return SolverSettings(t_end=t_end, t_transient=t_transient, v_stick=v_stick,
-                          max_impacts=max_impacts, root_tol=root_tol, state0=state0)
-
-
-def simulate(eta, omega, F, r=R_DEFAULT, d=D_DEFAULT, phi=0.0, *, t_end=T_END_DEFAULT,
-             t_transient=T_TRANSIENT_DEFAULT, solver="exact", rtol=RTOL_DEFAULT, atol=None,
-             method="DOP853", v_stick=V_STICK_DEFAULT, max_impacts=MAX_IMPACTS_DEFAULT,
-             root_tol=ROOT_TOL_DEFAULT, state0=(0.0, 0.0, 0.0, 0.0),
-             periodic_shortcut=True, keep_impacts=True) -> SimulationResult:
-    """Simulate the VINES from ``state0`` at t = 0 to ``t_end`` (dimensionless time).
-
-    solver="exact" uses the closed-form event-driven kernel (``root_tol``: contact is
-    declared within this distance of the wall, in units of L); solver="rk" integrates the
-    same model with scipy's ``method`` at ``rtol``/``atol`` (the independent reference).
-    Measures are exact time averages over [t_transient, t_end]. ``periodic_shortcut``
-    (exact solver only): once the motion has settled on a periodic orbit, complete the run
-    from one period of it (``vines.core.shortcut``; the result's ``shortcut_time`` says
-    when, NaN if never). ``keep_impacts`` (exact solver only): keep the impact list and
-    the whole trajectory; with False the measures are accumulated as the run goes and
-    memory does not grow with t_end or max_impacts: ``impacts`` is then empty and
-    ``state_at`` covers only the last stroboscopic periods of the window (``regime``).
-    Raises ParameterError for bad input.
-    """
-    p = ModelParams(eta=eta, omega=omega, F=F, r=r, d=d, phi=phi)
-    st = _settings(t_end, t_transient, v_stick, max_impacts, root_tol, state0)
-    if not isinstance(solver, str) or solver not in SOLVERS:
-        raise ParameterError("solver", solver, f"must be one of {', '.join(SOLVERS)}")
-    # the tolerances of the rk solver are checked whichever solver runs (same values as the CLI)
-    rtol = check_real("rtol", rtol, lo=RTOL_MIN, hi=RTOL_MAX)
-    if atol is not None:
-        atol = check_real("atol", atol, lo=0.0, lo_open=True, hi=RTOL_MAX)
-    if solver == "exact":
-        periodic_shortcut = check_bool("periodic_shortcut", periodic_shortcut)
-        keep = check_bool("keep_impacts", keep_impacts)
-        raw = SOLVERS[solver](p, st, periodic_shortcut=periodic_shortcut, keep_records=keep)
-        options = {"root_tol": st.root_tol, "periodic_shortcut": periodic_shortcut}
-    else:
-        if not isinstance(method, str) or method not in RK_METHODS:
-            raise ParameterError("method", method, f"must be one of {', '.join(RK_METHODS)}")
-        raw = SOLVERS[solver](p, st, method=method, rtol=rtol, atol=atol)
-        options = {"method": method, "rtol": rtol,
-                   "atol": raw.solver_info.get("atol", atol)}
-    m = _measures(p, st, raw)
+def simulation_result(p: ModelParams, st: SolverSettings, raw: RawRun, solver: str,
+                      options: dict) -> SimulationResult:
+    """The ``SimulationResult`` of a raw run of ``solver`` with ``options``."""
+    m = window_measures(p, st, raw)
     return SimulationResult(params=p, settings=st, solver=solver, solver_options=options,
                             impacts=raw.impacts, status=raw.status, t_last=raw.t_last,
                             _state_at=raw.state_at, **m)
+
+
+def simulate_exact(p: ModelParams, st: SolverSettings, *, periodic_shortcut: bool = True,
+                   keep_impacts: bool = True) -> SimulationResult:
+    """One exact run (``vines.simulate`` with solver "exact") on validated inputs;
+    ``keep_impacts=False`` keeps no impact list (memory bounded in t_end)."""
+    raw = run_exact(p, st, periodic_shortcut=periodic_shortcut, keep_records=keep_impacts)
+    options = {"root_tol": st.root_tol, "periodic_shortcut": periodic_shortcut}
+    return simulation_result(p, st, raw, "exact", options)
 
 
 def run_measured(p: ModelParams, st: SolverSettings, state0=None,
@@ -141,7 +92,7 @@ def run_measured(p: ModelParams, st: SolverSettings, state0=None,
     (``SolverSettings`` does)."""
     raw = run_exact(p, st, record_from=st.t_transient, state0=state0,
                     periodic_shortcut=periodic_shortcut, keep_records=keep_records)
-    m = _measures(p, st, raw)
+    m = window_measures(p, st, raw)
     m["status"] = raw.status
     return raw, m
 
@@ -164,7 +115,8 @@ def simulate_batch(eta, omega, F, *, r=R_DEFAULT, d=D_DEFAULT, phi=0.0, t_end=T_
     ``shortcut_time``, NaN where not taken). ``progress(n_done, n_total)`` is called as
     points finish. Returns a dict of arrays with the broadcast shape (keys: BATCH_FIELDS).
     """
-    st = _settings(t_end, t_transient, v_stick, max_impacts, root_tol, (0.0, 0.0, 0.0, 0.0))
+    st = SolverSettings(t_end=t_end, t_transient=t_transient, v_stick=v_stick,
+                        max_impacts=max_impacts, root_tol=root_tol, state0=(0.0, 0.0, 0.0, 0.0))
     shortcut = check_bool("periodic_shortcut", periodic_shortcut)
     e, w, f = np.broadcast_arrays(np.asarray(eta, float), np.asarray(omega, float),
                                   np.asarray(F, float))

@@ -31,8 +31,6 @@ from .params import (
     check_real,
 )
 
-SWEEP_PARAMS = PARAM_NAMES
-
 
 def sweep_point(params: ModelParams, state, t_run: float, n_record: int, v_stick: float,
                 max_impacts_per_period: float, periodic_shortcut: bool):
@@ -89,10 +87,10 @@ def bifurcation_sweep(param, values, *, eta=None, omega=None, F=None, r=R_DEFAUL
     next point starts from the periodic orbit's state at the end of the run (equal to the
     full run's to ~1e-10; a chaotic point amplifies such differences).
     """
-    if param not in SWEEP_PARAMS:
-        raise ParameterError("param", param, f"must be one of {', '.join(SWEEP_PARAMS)}")
+    if param not in PARAM_NAMES:
+        raise ParameterError("param", param, f"must be one of {', '.join(PARAM_NAMES)}")
     fixed = {"eta": eta, "omega": omega, "F": F}
-    for name in SWEEP_PARAMS:
+    for name in PARAM_NAMES:
         if name != param and fixed[name] is None:
             raise ParameterError(name, None, f"must be given when sweeping {param}")
     values = np.asarray(values, dtype=float).ravel()
@@ -138,8 +136,8 @@ def bifurcation_sweeps(param, values, outer, outer_values, *, n_threads=None, pr
     Each line is computed the same way whatever the thread count.
     """
     outer_values = np.asarray(outer_values, dtype=float).ravel()
-    if outer not in SWEEP_PARAMS or outer == param:
-        raise ParameterError("outer", outer, f"must be one of {SWEEP_PARAMS} other than {param}")
+    if outer not in PARAM_NAMES or outer == param:
+        raise ParameterError("outer", outer, f"must be one of {PARAM_NAMES} other than {param}")
     n_threads = check_int("n_threads", n_threads or os.cpu_count() or 1, lo=1)
 
     def one(v):

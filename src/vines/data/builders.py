@@ -9,7 +9,11 @@ Names, ``long_name`` and ``units`` come from ``vines.data.schema``. Layouts:
   ``coordinates`` attribute of every data variable names (docs/cf-compliance.md);
 * 1:1 branches (``branch`` instances of ``point`` samples, plus ``event``) and boundary
   curves (``curve`` instances of ``point`` samples) as contiguous ragged arrays too;
-  stability maps over (eta, omega).
+  stability maps over (eta, omega);
+* the solver studies (``vines.studies``): work precision over dimension ``run``; the
+  convergence studies over (point, window, t_end), (point, v_stick) and (eta, omega) +
+  resolution. 0/1 flags are int8 with int8 ``flag_values``; ``attrs`` (provenance) are
+  merged over the study's own global attributes.
 """
 from __future__ import annotations
 
@@ -17,22 +21,29 @@ import numpy as np
 import xarray as xr
 
 from ..core.conventions import BATCH_FIELDS
-from ..core.params import PARAM_NAMES as DIMS
+from ..core.params import PARAM_NAMES
 from .schema import (
     BASIN_SLICE_ATTRS,
     BATCH_ATTRS,
     BOUNDARY_CURVE_ATTRS,
     BRANCH_ATTRS,
+    CONVENTIONS,
+    CONVERGENCE_ATTRS,
     COORD_ATTRS,
     COUNT_DTYPE,
     DERIVED_ATTRS,
     FEATURE_TYPE,
+    FLAG_MEANINGS,
+    MEASURE_ATTRS,
+    REFERENCES,
     ROBUST_ATTRS,
     STABILITY_ATTRS,
     STABILITY_CLASS_FLAGS,
     SWEEP_INSTANCE_ATTRS,
     SWEEP_SAMPLE_ATTRS,
     TIMEHISTORY_ATTRS,
+    TITLES,
+    WORK_PRECISION_ATTRS,
 )
 from .schema import attrs as cf
 
@@ -48,12 +59,12 @@ def _variables(dims, arrays: dict, table: dict) -> dict:
 
 def _coords(axes: dict) -> dict:
     return {d: xr.Variable((d,), np.asarray(axes[d], dtype=float), COORD_ATTRS[d])
-            for d in DIMS}
+            for d in PARAM_NAMES}
 
 
 def grid_dataset(axes: dict, fields: dict, attrs: dict) -> xr.Dataset:
     """Dataset over dims (eta, omega, F) holding ``fields`` (``simulate_batch`` arrays)."""
-    data = {name: xr.Variable(DIMS, np.asarray(arr).astype(BATCH_FIELDS[name]),
+    data = {name: xr.Variable(PARAM_NAMES, np.asarray(arr).astype(BATCH_FIELDS[name]),
                               cf(BATCH_ATTRS, name))
             for name, arr in fields.items()}
     return xr.Dataset(data, coords=_coords(axes), attrs=attrs)
@@ -65,13 +76,13 @@ def merge_chunks(datasets, axes: dict) -> dict:
     Values are matched exactly (chunks are cut from the same axes). Raises ValueError when a
     chunk value is not on an axis or a grid point is missing.
     """
-    full = {d: np.asarray(axes[d], dtype=float) for d in DIMS}
-    shape = tuple(full[d].size for d in DIMS)
+    full = {d: np.asarray(axes[d], dtype=float) for d in PARAM_NAMES}
+    shape = tuple(full[d].size for d in PARAM_NAMES)
     out = {k: np.full(shape, FILL[np.dtype(dt).kind], dtype=dt) for k, dt in BATCH_FIELDS.items()}
     seen = np.zeros(shape, dtype=bool)
     for ds in datasets:
         idx = []
-        for d in DIMS:
+        for d in PARAM_NAMES:
             v = ds[d].values
             pos = np.clip(np.searchsorted(full[d], v), 0, full[d].size - 1)
             if not np.array_equal(full[d][pos], v):
@@ -89,7 +100,7 @@ def merge_chunks(datasets, axes: dict) -> dict:
 def measures_dataset(grid: xr.Dataset, derived: dict, sections: dict) -> xr.Dataset:
     """The grid dataset plus derived measures and ``section_<dim>`` markers (int8 flags)."""
     ds = grid.copy()
-    ds.update(_variables(DIMS, derived, DERIVED_ATTRS))
+    ds.update(_variables(PARAM_NAMES, derived, DERIVED_ATTRS))
     for dim, mark in sections.items():
         ds[f"section_{dim}"] = xr.Variable(
             (dim,), np.asarray(mark, dtype="i1"),
@@ -175,8 +186,8 @@ def timehistory_dataset(points: list[dict], th: dict, attrs: dict) -> xr.Dataset
     and timed by ``t`` / ``window_t`` / ``impact_t``."""
     dims_of = {"": ("point", "sample"), "window_": ("point", "window_sample")}
     data = {k: xr.Variable(("point",), np.asarray([p[k] for p in points]), COORD_ATTRS[k])
-            for k in DIMS}
-    where = " ".join(DIMS)
+            for k in PARAM_NAMES}
+    where = " ".join(PARAM_NAMES)
     coordinates = {}
     for k in [k for k in TIMEHISTORY_ATTRS if k in th]:
         prefix = "window_" if k.startswith("window_") else ""
@@ -216,8 +227,8 @@ def branch_dataset(br, attrs: dict) -> xr.Dataset:
     rows = _branch_rows(br)
     P = ("point",)
     cat = {k: np.concatenate([np.asarray(getattr(b, k)) for b in rows])
-           for k in DIMS + BRANCH_POINT_VARS}
-    data = {k: xr.Variable(P, cat[k], COORD_ATTRS[k]) for k in DIMS}
+           for k in PARAM_NAMES + BRANCH_POINT_VARS}
+    data = {k: xr.Variable(P, cat[k], COORD_ATTRS[k]) for k in PARAM_NAMES}
     for k in BRANCH_POINT_VARS:
         a = cat[k].astype("i1") if k in ("stable", "symmetric", "admissible") else cat[k]
         data[k] = xr.Variable(P, a, cf(BRANCH_ATTRS, k))
@@ -244,7 +255,7 @@ def branch_dataset(br, attrs: dict) -> xr.Dataset:
                                    {"long_name": f"{br.param} value of the event", "units": "1"})
     data["event_branch"] = xr.Variable(("event",), np.asarray([i for i, _ in events], "i4"),
                                        cf(BRANCH_ATTRS, "event_branch"))
-    where = " ".join(DIMS)
+    where = " ".join(PARAM_NAMES)
     return _dsg(data, attrs, {k: where for k in BRANCH_POINT_VARS + ("abs_eigenvalues",)})
 
 
@@ -296,7 +307,7 @@ def _eta_omega_coords(eta, omega) -> dict:
 
 
 def robust_dataset(eta, omega, fields: dict, attrs: dict) -> xr.Dataset:
-    """A robust-TET map (``attractors.maps.robust_point`` fields) over (eta, omega)."""
+    """A robust-TET map (``attractors.census_maps.robust_point`` fields) over (eta, omega)."""
     D = ("eta", "omega")
     shape = (np.size(eta), np.size(omega))
     data = {}
@@ -310,7 +321,7 @@ def robust_dataset(eta, omega, fields: dict, attrs: dict) -> xr.Dataset:
 
 
 def basin_slice_dataset(z_m0, v_m0, res: dict, attrs: dict) -> xr.Dataset:
-    """A basin slice (``attractors.maps.basin_slice``): attractor index over (z_m0, v_m0)
+    """A basin slice (``attractors.census_maps.basin_slice``): attractor index over (z_m0, v_m0)
     and the attractor table over ``attractor_index``."""
     a = BASIN_SLICE_ATTRS
     table = res["table"]
@@ -325,3 +336,173 @@ def basin_slice_dataset(z_m0, v_m0, res: dict, attrs: dict) -> xr.Dataset:
     coords = {"z_m0": xr.Variable(("z_m0",), np.asarray(z_m0, float), cf(a, "z_m0")),
               "v_m0": xr.Variable(("v_m0",), np.asarray(v_m0, float), cf(a, "v_m0"))}
     return xr.Dataset(data, coords=coords, attrs=attrs)
+
+
+# ------------------------------------------------------------------ solver studies: work precision
+
+
+
+def _flag_attrs(name: str) -> dict:
+    return {"flag_values": np.array([0, 1], dtype="i1"), "flag_meanings": FLAG_MEANINGS[name]}
+
+
+def _var(dims, data, long_name, units, **extra) -> xr.Variable:
+    return xr.Variable(dims, data, {"long_name": long_name, "units": units, **extra})
+
+
+def work_precision_dataset(result, attrs: dict | None = None) -> xr.Dataset:
+    """Dataset over dimension ``run`` of a ``vines.studies.workprecision.WorkPrecisionResult``."""
+    data = {}
+    for k, (long_name, units) in WORK_PRECISION_ATTRS.items():
+        extra = _flag_attrs(k) if k in FLAG_MEANINGS else {}
+        values = result.runs[k].astype("i1") if extra else result.runs[k]
+        data[k] = _var("run", values, long_name, units, **extra)
+    c, ref, lim = result.case, result.reference, result.reference_limit
+    own = {f"case_{k}": c[k] for k in ("eta", "omega", "F", "r", "d")}
+    own.update({k: c[k] for k in ("t_end", "t_transient", "v_visible")})
+    own.update({
+        "reference": f"vines.hiprec at {ref['dps']} digits, sampling step {ref['h_sample']}",
+        **{f"reference_{k}": ref[k] for k in ("v_stick", "n_impacts", "ke_ratio", "xmax",
+                                              "n_sticks")},
+        "comment": "seconds are wall-clock measurements: they vary from run to run",
+    })
+    if lim is not None:
+        own.update({f"reference_limit_{k}": lim[k]
+                    for k in ("v_stick", "n_impacts", "ke_ratio", "xmax")})
+    return xr.Dataset(data, attrs={**own, **(attrs or {})})
+
+
+# ------------------------------------------------------------------ convergence
+
+
+
+def _cv(name, dims, data, **extra) -> xr.Variable:
+    return _var(dims, data, *CONVERGENCE_ATTRS[name], **extra)
+
+
+def _difference_vars(dims, diff: dict, ke_tol, xmax_rtol, ref: str) -> dict:
+    """d_ke, rel_d_xmax and the 0/1 flags converged, regime_same over ``dims``."""
+    conv = (f"1 where |d_ke| <= {ke_tol:g} and |rel_d_xmax| <= {xmax_rtol:g} "
+            f"(difference to the {ref})")
+    return {
+        "d_ke": _var(dims, diff["d_ke"], f"KE ratio minus its value at the {ref}", "1"),
+        "rel_d_xmax": _var(dims, diff["rel_d_xmax"],
+                           f"relative difference of x_max to the {ref}", "1"),
+        "converged": _var(dims, np.asarray(diff["converged"]).astype("i1"), conv, "1",
+                          **_flag_attrs("converged")),
+        "regime_same": _var(dims, np.asarray(diff["regime_same"]).astype("i1"),
+                            f"1 where the regime equals the {ref}'s", "1",
+                            **_flag_attrs("regime_same")),
+    }
+
+
+def _tested_vars(data: dict, tested: dict, where: str) -> dict:
+    """``tested_<name>``: the differences at the tested setting (over ``point``)."""
+    out = {}
+    for name in ("d_ke", "rel_d_xmax", "converged", "regime_same"):
+        v = data[name]
+        out[f"tested_{name}"] = _var(("point",), np.asarray(tested[name]).astype(v.dtype),
+                                     f"{v.attrs['long_name']}, at the tested {where}",
+                                     v.attrs["units"],
+                                     **{a: v.attrs[a] for a in ("flag_values", "flag_meanings")
+                                        if a in v.attrs})
+    return out
+
+
+def _measure_vars(dims, measures: dict) -> dict:
+    return {k: _var(dims, a, *MEASURE_ATTRS[k]) for k, a in measures.items()}
+
+
+def _point_coords(pts: list[dict]) -> dict:
+    c = {"point": _cv("point", ("point",), np.arange(len(pts)))}
+    for k in ("eta", "omega", "F"):
+        c[k] = xr.Variable(("point",), np.array([p[k] for p in pts]), COORD_ATTRS[k])
+    c["label"] = _cv("label", ("point",), np.array([p["label"] for p in pts]))
+    return c
+
+
+def _global_attrs(study: str, own: dict, solver: dict, attrs: dict | None) -> dict:
+    base = {"Conventions": CONVENTIONS, "title": TITLES[study], **own,
+            **{f"solver_{k}": v for k, v in solver.items()}}
+    return {**base, **(attrs or {})}
+
+
+def window_convergence_dataset(result, attrs: dict | None = None) -> xr.Dataset:
+    """Dataset over (point, window, t_end) of a ``WindowConvergence``."""
+    dims = ("point", "window", "t_end")
+    ref = REFERENCES["window"]
+    data = _measure_vars(dims, result.measures)
+    data.update(_difference_vars(dims, result.differences, result.ke_tol, result.xmax_rtol,
+                                 ref))
+    data["t_transient"] = _cv("t_transient", dims, result.t_transient)
+    data["converged_from_t_end"] = _cv("converged_from_t_end", ("point", "window"),
+                                       result.converged_from_t_end)
+    data["reference_t_transient"] = _cv("reference_t_transient", ("point",),
+                                        result.reference_t_transient)
+    data.update(_tested_vars(data, result.tested,
+                             f"setting t_end = {result.tested_t_end:g}, t_transient = "
+                             f"{result.tested_t_transient:g}"))
+    rules = result.rules
+    coords = _point_coords(result.points)
+    coords["t_end"] = _cv("t_end", ("t_end",), result.t_end)
+    coords["window"] = _cv("window", ("window",), np.arange(len(rules)))
+    coords["window_rule"] = _cv("window_rule", ("window",), np.array([k for k, _ in rules]))
+    coords["window_length"] = _cv("window_length", ("window",), np.array(
+        [x if k == "length" else np.nan for k, x in rules]))
+    coords["window_fraction"] = _cv("window_fraction", ("window",), np.array(
+        [x if k == "fraction" else np.nan for k, x in rules]))
+    own = {"reference": "largest t_end, widest window", "ke_tol": result.ke_tol,
+           "xmax_rtol": result.xmax_rtol, "whole_periods": int(result.whole_periods),
+           "tested_t_end": result.tested_t_end,
+           "tested_t_transient": result.tested_t_transient,
+           "tested_window": result.tested_window}
+    return xr.Dataset(data, coords=coords,
+                      attrs=_global_attrs("window", own, result.solver, attrs))
+
+
+def vstick_convergence_dataset(result, attrs: dict | None = None) -> xr.Dataset:
+    """Dataset over (point, v_stick) of a ``VStickConvergence``."""
+    dims = ("point", "v_stick")
+    data = _measure_vars(dims, result.measures)
+    data.update(_difference_vars(dims, result.differences, result.ke_tol, result.xmax_rtol,
+                                 REFERENCES["vstick"]))
+    data["run_time"] = _cv("run_time", dims, result.run_time)
+    data["converged_below"] = _cv("converged_below", ("point",), result.converged_below)
+    data.update(_tested_vars(data, result.tested, f"v_stick = {result.tested_v_stick:g}"))
+    coords = _point_coords(result.points)
+    coords["v_stick"] = _cv("v_stick", ("v_stick",), result.v_stick)
+    own = {"reference": REFERENCES["vstick"], "ke_tol": result.ke_tol,
+           "xmax_rtol": result.xmax_rtol, "tested_v_stick": result.tested_v_stick}
+    return xr.Dataset(data, coords=coords,
+                      attrs=_global_attrs("vstick", own, result.solver, attrs))
+
+
+def grid_convergence_dataset(result, attrs: dict | None = None) -> xr.Dataset:
+    """Dataset over (eta, omega) and ``resolution`` of a ``GridConvergence``."""
+    grid = ("eta", "omega")
+    data = {k: _var(grid, result.fields[k], *BATCH_ATTRS[k])
+            for k in ("ke_ratio", "xmax", "regime")}
+    data.update({k: _cv(k, ("resolution",), a) for k, a in result.per_resolution.items()})
+    coords = {"eta": xr.Variable(("eta",), result.eta, COORD_ATTRS["eta"]),
+              "omega": xr.Variable(("omega",), result.omega, COORD_ATTRS["omega"]),
+              "resolution": _cv("resolution", ("resolution",), result.resolution)}
+    own = {"F": result.F, "level": result.level,
+           "distance": "Euclidean in the (omega, eta) plane, parameter units"}
+    return xr.Dataset(data, coords=coords,
+                      attrs=_global_attrs("grid", own, result.solver, attrs))
+
+
+#: dataset builder of each convergence study
+CONVERGENCE_BUILDERS = {"window": window_convergence_dataset,
+                        "vstick": vstick_convergence_dataset,
+                        "grid": grid_convergence_dataset}
+
+
+def convergence_dataset(study: str, result, attrs: dict | None = None) -> xr.Dataset:
+    """Dataset of the convergence study ``study`` (window, vstick or grid) from its result."""
+    try:
+        build = CONVERGENCE_BUILDERS[study]
+    except KeyError:
+        raise ValueError(f"unknown convergence study {study!r}: one of "
+                         f"{', '.join(CONVERGENCE_BUILDERS)}") from None
+    return build(result, attrs)

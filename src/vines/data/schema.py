@@ -1,6 +1,6 @@
 """The one dataset schema of vines: every variable's CF ``long_name`` and ``units``.
 
-Builders (``vines.data.builders``, ``vines.data.studies``) take names from here, so a
+Builders (``vines.data.builders``) take names from here, so a
 quantity has one name and one description in every dataset. ``units`` is ``"1"`` for
 dimensionless numbers and ``""`` for labels (strings). How the datasets meet the CF checkers
 (and where they knowingly deviate): docs/cf-compliance.md.
@@ -131,7 +131,7 @@ TIMEHISTORY_ATTRS = {
 }
 
 
-#: robust-TET maps over (eta, omega) (``vines.attractors.maps.robust_point``)
+#: robust-TET maps over (eta, omega) (``vines.attractors.census_maps.robust_point``)
 ROBUST_ATTRS = {
     "efficient_fraction": ("basin fraction of attractors with KE ratio above the threshold", "1"),
     "stable_1to1_fraction": ("basin fraction of the stable 1:1 orbit", "1"),
@@ -141,7 +141,7 @@ ROBUST_ATTRS = {
     "from_rest_ke_ratio": ("KE ratio of the attractor reached from rest", "1"),
 }
 
-#: basin slices (``vines.attractors.maps.basin_slice``): per slice point, per attractor
+#: basin slices (``vines.attractors.census_maps.basin_slice``): per slice point, per attractor
 BASIN_SLICE_ATTRS = {
     "z_m0": ("initial LO displacement z_m(0) (units of L)", "1"),
     "v_m0": ("initial LO velocity z_m'(0)", "1"),
@@ -159,3 +159,71 @@ def attrs(table: dict, name: str, **extra) -> dict:
     """CF attributes of ``name`` from one of the tables above (plus ``extra``)."""
     long_name, units = table[name]
     return {"long_name": long_name, "units": units, **extra}
+
+
+# ------------------------------------------------------------------ solver studies
+
+#: per-run variables of the work-precision datasets: name -> (long_name, units)
+WORK_PRECISION_ATTRS = {
+    "solver": ("solver", ""),
+    "method": ("method (exact: closed-form event kernel; else scipy solve_ivp)", ""),
+    "knob": ("accuracy setting varied in this run", ""),
+    "tolerance": ("value of the varied setting (root_tol, v_stick or rtol)", "1"),
+    "v_stick": ("sticking threshold of the run", "1"),
+    "t_error": ("max |impact time - reference| over visible impacts (NaN: sequence differs)", "1"),
+    "ke_error": ("|KE ratio - reference|", "1"),
+    "xmax_error": ("|x_max - reference| (dimensionless, units of L)", "1"),
+    "seconds": ("wall-clock time per run", "s"),
+    "impacts_per_second": ("impacts simulated per second of wall-clock time", "s-1"),
+    "n_impacts": ("impacts in the run", "1"),
+    "n_visible": ("visible impacts compared (|w'-| >= v_visible)", "1"),
+    "sequence_ok": ("visible impacts in the reference's order on the same walls", "1"),
+    "status": ("solver status", ""),
+}
+#: flag attributes of 0/1 variables, by variable name (flag_values int8 like the variable)
+FLAG_MEANINGS = {
+    "sequence_ok": "differs same",
+    "converged": "not_converged converged",
+    "regime_same": "regime_differs regime_same",
+}
+
+#: fixed variables and coordinates of the convergence datasets: name -> (long_name, units)
+CONVERGENCE_ATTRS = {
+    "point": ("parameter point index", "1"),
+    "label": ("parameter point", ""),
+    "t_end": ("end of the run (from rest at t = 0)", "1"),
+    "window": ("window rule index", "1"),
+    "window_rule": ("window rule: fixed length or fraction of the run", ""),
+    "window_length": ("window length t_end - t_transient (length rules)", "1"),
+    "window_fraction": ("window length as a fraction of t_end (fraction rules)", "1"),
+    "t_transient": ("start of the measurement window", "1"),
+    "converged_from_t_end": ("shortest run from which every longer run of the same window "
+                             "rule is converged", "1"),
+    "reference_t_transient": ("window start of the reference run", "1"),
+    "v_stick": ("sticking threshold on the relative velocity after an impact", "1"),
+    "run_time": ("wall-clock time of the run (time.perf_counter)", "s"),
+    "converged_below": ("largest v_stick at and below which every run is converged", "1"),
+    "resolution": ("grid points per axis", "1"),
+    "stride": ("index step of the grid in the finest grid", "1"),
+    "spacing_eta": ("grid spacing in eta", "1"),
+    "spacing_omega": ("grid spacing in omega", "1"),
+    "contour_dist_mean": ("arc-length mean distance of the contour to the finest grid's "
+                          "contour", "1"),
+    "contour_dist_max": ("max distance of the contour to the finest grid's contour "
+                         "(one-sided Hausdorff)", "1"),
+    "contour_hausdorff": ("symmetric Hausdorff distance of the contour and the finest "
+                          "grid's contour", "1"),
+    "contour_length": ("length of the contour in the (omega, eta) plane", "1"),
+    "area_fraction": ("fraction of the (eta, omega) rectangle where the KE ratio exceeds "
+                      "the level", "1"),
+    "d_area_fraction": ("area fraction minus the finest grid's", "1"),
+}
+#: the reference each convergence study compares with (in long_names and attrs)
+REFERENCES = {"window": "longest run's widest window", "vstick": "smallest v_stick"}
+TITLES = {
+    "window": "convergence of the measures with run length and window",
+    "vstick": "convergence of the measures with the sticking threshold v_stick",
+    "grid": "convergence of the KE-ratio contour with grid resolution",
+}
+#: per-run measures of the window and v_stick datasets: long_name, units from the schema
+MEASURE_ATTRS = {**BATCH_ATTRS, "xmax_m": DERIVED_ATTRS["xmax_m"]}

@@ -25,7 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..core.exact import oscillators
-from ..core.params import ModelParams, ParameterError
+from ..core.params import ModelParams, ParameterError, SolverSettings
 from .sequence import (
     SIM_T_END,
     _mirror_record,
@@ -94,9 +94,9 @@ class FamilyState:
 
 
 def _rest_records(p: ModelParams, t_end: float) -> list:
-    from ..core.simulation import simulate
-    res = simulate(p.eta, p.omega, p.F, r=p.r, d=p.d, phi=p.phi, t_end=t_end,
-                   t_transient=0.5 * t_end, max_impacts=200_000)
+    from ..core.simulation import simulate_exact
+    st = SolverSettings(t_end=t_end, t_transient=0.5 * t_end, max_impacts=200_000)
+    res = simulate_exact(p, st)
     return [res.impacts, _mirror_record(res.impacts, p.period)]
 
 

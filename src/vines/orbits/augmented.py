@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..core.params import PARAM_NAMES
 from ..core.walls import WALL_L, WALL_R
 from . import jets
 from . import shooting as sh
@@ -31,7 +32,6 @@ from . import shooting_kernels as sk
 KINDS = {"symmetric": ("fold", "symmetry-breaking", "neimark-sacker", "grazing"),
          "asymmetric": ("fold", "flip", "neimark-sacker", "grazing")}
 GRAZE_WALLS = ("start", "target", "arrival")
-PARAMS = sh.PARAMS
 # the condition codes of ``shooting_kernels.codim1`` (index) and the kinds they serve
 CONDITIONS = (("fold",), ("symmetry-breaking", "flip"), ("neimark-sacker",), ("grazing",))
 
@@ -63,7 +63,7 @@ class Codim1System:
         cols = list(range(self.nu))
         if self.has_sg:
             cols.append(self.nu + 3)
-        return cols + [self.nu + PARAMS.index(q) for q in self.free]
+        return cols + [self.nu + PARAM_NAMES.index(q) for q in self.free]
 
     def __call__(self, z):
         """(G, G_z) from the compiled kernel (``shooting_kernels.codim1``)."""

@@ -25,9 +25,11 @@ These curves are the edges of the classes of ``stability_map`` (Fig 16).
 """
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..core.params import (
     D_DEFAULT,
@@ -137,7 +139,8 @@ class _CurveTracer:
         return None if best is None else best[1]
 
 
-def trace(model, family, kind, graze, z0, F, box, step=0.01, max_points=400) -> Curve:
+def trace(model: ModelParams, family: str, kind: str, graze, z0, F: float, box,
+          step: float = 0.01, max_points: int = 400) -> Curve:
     """The curve through z0 = (u, [s_g], eta, omega) of the augmented system, both ways."""
     system = _system(model, family, kind, graze, F)
     ct = _CurveTracer(system, box, step, max_points)
@@ -189,8 +192,10 @@ def crossings(curve: Curve, model, F, omega: float) -> list:
     return out
 
 
-def boundaries(F, eta_range, omega_range, r=R_DEFAULT, d=D_DEFAULT, n_scan=5, step=0.01,
-               max_points=400, n_map=25, class_map=None) -> Boundaries:
+def boundaries(F: float, eta_range: Sequence[float], omega_range: Sequence[float],
+               r: float = R_DEFAULT, d: float = D_DEFAULT, n_scan: int = 5,
+               step: float = 0.01, max_points: int = 400, n_map: int = 25,
+               class_map: tuple | None = None) -> Boundaries:
     """Codimension-one curves of 1:1 orbits in the box eta_range x omega_range at F.
 
     ``n_scan`` scan lines per parameter seed the curves; then class changes of an
@@ -257,7 +262,7 @@ def _map_edges(model, F, box, n_map):
     return class_edges(eta, omega, cls)
 
 
-def class_edges(eta, omega, cls):
+def class_edges(eta: ArrayLike, omega: ArrayLike, cls: ArrayLike) -> list:
     """((eta, omega) of both cells, cell size, their classes) of every pair of neighbouring
     cells of a stability map (classes ``cls`` over the axes eta, omega) that differ."""
     eta, omega, cls = np.asarray(eta, float), np.asarray(omega, float), np.asarray(cls)
@@ -276,7 +281,7 @@ def _edge_seeds(model, F, edge):
     """Seeds of one-parameter continuations along a class-changing edge, from each end
     with an admissible 1:1 orbit towards the other (the event between them is the seed)."""
     from .continuation import continue_branch
-    from .periodic import find_1to1
+    from .periodic import orbits_1to1
     a, b, _, classes = edge
     k = 0 if a[0] != b[0] else 1
     param = ("eta", "omega")[k]
@@ -284,7 +289,8 @@ def _edge_seeds(model, F, edge):
         if c == 0:
             continue
         fixed = {"F": F, ("omega", "eta")[k]: float(start[1 - k])}
-        for o in find_1to1(start[0], start[1], F, r=model.r, d=model.d, simulation=False):
+        for o in orbits_1to1(ModelParams(eta=start[0], omega=start[1], F=F, r=model.r,
+                                          d=model.d), simulation=False):
             if not o.admissible:
                 continue
             kind = "symmetric" if o.symmetric else "asymmetric"
@@ -331,13 +337,14 @@ def _on_curve(curves, seed, step) -> bool:
 def _seeds(model, F, box, n_scan):
     """(family, kind, graze, z0) from one-parameter scans (module docstring, step 1)."""
     from .continuation import continue_branch
-    from .periodic import find_1to1
+    from .periodic import orbits_1to1
     (e0, e1), (w0, w1) = box
     lines = [("eta", e0, e1, {"omega": w, "F": F}) for w in np.linspace(w0, w1, n_scan)]
     lines += [("omega", w0, w1, {"eta": e, "F": F}) for e in np.linspace(e0, e1, n_scan)]
     for param, start, stop, fixed in lines:
         p = dict(fixed, **{param: start})
-        orbits = find_1to1(p["eta"], p["omega"], F, r=model.r, d=model.d, simulation=False)
+        orbits = orbits_1to1(ModelParams(eta=p["eta"], omega=p["omega"], F=F, r=model.r,
+                                         d=model.d), simulation=False)
         for kind in ("symmetric", "asymmetric"):
             cands = [o for o in orbits if o.symmetric == (kind == "symmetric")]
             for o in cands[:1 if kind == "asymmetric" else 2]:

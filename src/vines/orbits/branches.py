@@ -43,7 +43,7 @@ from ..core.params import ModelParams, ParameterError
 from ..core.walls import WALL_L, WALL_R
 from . import shooting as sh
 from .arclength import Step, Tracer
-from .branch import make_branch
+from .branch_result import make_branch
 from .maps import map_kernel
 from .periodic import PeriodicOrbit, _orbit
 

@@ -26,6 +26,8 @@ the parameter:
 """
 from __future__ import annotations
 
+from dataclasses import dataclass, field
+
 import numpy as np
 
 from ..core.params import (
@@ -45,12 +47,11 @@ from ..core.params import (
     check_step_points,
 )
 from ..core.walls import WALL_L, WALL_R
-from .branch import EVENT_TYPES, Branch, make_branch
-from .periodic import PeriodicOrbit, find_1to1, solve_orbit
+from .branch_result import EVENT_TYPES, Branch, make_branch
+from .periodic import PeriodicOrbit, orbits_1to1, solve_orbit
 
-PARAMS = PARAM_NAMES
 MIRROR = np.diag([-1.0, -1.0, -1.0, 1.0])
-__all__ = ["continue_branch", "Branch", "EVENT_TYPES"]
+__all__ = ["continue_branch", "ContinuationSettings", "Branch", "EVENT_TYPES"]
 
 
 def _n_outside(o: PeriodicOrbit) -> int:
@@ -145,96 +146,136 @@ def continue_branch(param: str, start, stop, step=None, fixed: dict | None = Non
     (arclength, symmetric branch): also continue the asymmetric branch born at every
     symmetry-breaking point (``Branch.switched``).
     """
-    args = _checked(param, start, stop, step, fixed, min_step, event_tol, max_points, method,
-                    branch, switch, max_inadmissible)
-    param, start, stop, step, others = args
-    cont = _Continuer(param, others, r, d, phi)
-    p0 = cont.params(start)                 # validates every parameter
-    cont.params(stop)
+    cs = ContinuationSettings(param=param, start=start, stop=stop, step=step,
+                              fixed=dict(fixed or {}), min_step=min_step, event_tol=event_tol,
+                              max_points=max_points, method=method, branch=branch,
+                              switch=switch, max_inadmissible=max_inadmissible)
+    cont = _Continuer(cs.param, cs.fixed, r, d, phi)
+    p0 = cont.params(cs.start)              # validates every parameter
+    cont.params(cs.stop)
     if orbit is None:
-        cands = [o for o in find_1to1(p0, None, None)
-                 if o.symmetric == (branch == "symmetric")]
+        cands = [o for o in orbits_1to1(p0)
+                 if o.symmetric == (cs.branch == "symmetric")]
         if not cands:
-            return _make_branch(param, [], [], f"no {branch} 1:1 orbit at start")
+            return _make_branch(cs.param, [], [], f"no {cs.branch} 1:1 orbit at start")
         orbit = cands[0]
     else:
-        orbit = cont.solve(start, orbit.x_L, *orbit.flight_times)
+        orbit = cont.solve(cs.start, orbit.x_L, *orbit.flight_times)
         if orbit is None:
-            return _make_branch(param, [], [], "the given orbit does not converge at start")
-    if method == "natural":
-        br = _natural(cont, start, stop, step, orbit, min_step, event_tol)
+            return _make_branch(cs.param, [], [],
+                                "the given orbit does not converge at start")
+    if cs.method == "natural":
+        br = _natural(cont, cs, orbit)
         br.family = "symmetric" if orbit.symmetric else "asymmetric"
         return br
-    return _arclength(param, start, stop, step, others, orbit, r, d, phi, min_step,
-                      max_points, branch, switch, max_inadmissible)
+    return _arclength(cs, orbit, r, d, phi)
 
 
-def _checked(param, start, stop, step, fixed, min_step, event_tol, max_points, method,
-             branch, switch, max_inadmissible):
-    """Validated (param, start, stop, step, fixed others) of ``continue_branch``."""
-    if not isinstance(param, str) or param not in PARAMS:
-        raise ParameterError("param", param, "must be one of eta, omega, F")
-    if method not in CONTINUATION_METHODS:
-        raise ParameterError("method", method, "must be one of arclength, natural")
-    if branch not in BRANCH_KINDS:
-        raise ParameterError("branch", branch, "must be one of symmetric, asymmetric")
-    if switch not in (True, False):
-        raise ParameterError("switch", switch, "must be True or False")
-    check_int("max_inadmissible", max_inadmissible, lo=1, hi=MAX_POINTS_MAX)
-    fixed = dict(fixed or {})
+@dataclass(frozen=True)
+class ContinuationSettings:
+    """How one branch is continued (the keywords of ``continue_branch``), validated once on
+    construction: ``step`` becomes the positive step (default |stop - start|/100),
+    ``fixed`` the two parameters not continued."""
+
+    param: str
+    start: float
+    stop: float
+    step: float | None = None
+    fixed: dict = field(default_factory=dict)
+    min_step: float = 1e-6
+    event_tol: float = 1e-6
+    max_points: int = MAX_POINTS_DEFAULT
+    method: str = "arclength"
+    branch: str = "symmetric"
+    switch: bool = False
+    max_inadmissible: int = MAX_INADMISSIBLE_DEFAULT
+
+    def __post_init__(self):
+        set_ = object.__setattr__
+        param = self.param
+        if not isinstance(param, str) or param not in PARAM_NAMES:
+            raise ParameterError("param", param, "must be one of eta, omega, F")
+        if self.method not in CONTINUATION_METHODS:
+            raise ParameterError("method", self.method, "must be one of arclength, natural")
+        if self.branch not in BRANCH_KINDS:
+            raise ParameterError("branch", self.branch, "must be one of symmetric, asymmetric")
+        if self.switch not in (True, False):
+            raise ParameterError("switch", self.switch, "must be True or False")
+        check_int("max_inadmissible", self.max_inadmissible, lo=1, hi=MAX_POINTS_MAX)
+        set_(self, "fixed", _fixed_others(param, self.fixed))
+        start = check_param(param, self.start)
+        try:
+            stop = check_param(param, self.stop)
+        except ParameterError as err:
+            raise ParameterError("stop", self.stop, f"{err.allowed} ({param})") from None
+        max_points = check_int("max_points", self.max_points, lo=1, hi=MAX_POINTS_MAX)
+        check_real("min_step", self.min_step, lo=1e-12, hi=1.0)
+        check_real("event_tol", self.event_tol, lo=1e-12, hi=1.0)
+        step = self.step
+        if step is None:
+            step = (stop - start) / 100.0 if stop != start else 1.0
+        step = abs(check_real("step", step))
+        if step == 0.0:
+            raise ParameterError("step", step, "must be a number != 0")
+        check_step_points(step, abs(stop - start), step, max_points)
+        set_(self, "start", start)
+        set_(self, "stop", stop)
+        set_(self, "step", step)
+
+    @property
+    def bounds(self) -> tuple[float, float]:
+        return (min(self.start, self.stop), max(self.start, self.stop))
+
+    @property
+    def sign(self) -> float:
+        """+1 when the parameter increases from start to stop, else -1."""
+        return 1.0 if self.stop >= self.start else -1.0
+
+    def tracer_options(self) -> dict:
+        """The keywords of the arclength tracer (``branches.follow``, ``switch_at``)."""
+        return dict(step=self.step, min_step=self.min_step, max_points=self.max_points,
+                    max_inadmissible=self.max_inadmissible)
+
+
+def _fixed_others(param: str, fixed: dict) -> dict:
+    """The two parameters not continued, from ``fixed`` (exactly those two)."""
     if param in fixed:
         raise ParameterError(param, fixed[param],
                              f"must not be fixed when continuing in {param} (it runs from "
-                             f"start to stop; fix only {' and '.join(q for q in PARAMS if q != param)})")
-    others = [q for q in PARAMS if q != param]
+                             f"start to stop; fix only {' and '.join(q for q in PARAM_NAMES if q != param)})")
+    others = [q for q in PARAM_NAMES if q != param]
     for q in others:
         if q not in fixed:
             raise ParameterError(q, None, f"is required when continuing in {param}")
     unknown = sorted(set(fixed) - set(others))
     if unknown:
         raise ParameterError("fixed", unknown[0], f"is not a parameter; fix only {' and '.join(others)}")
-    start = check_param(param, start)
-    try:
-        stop = check_param(param, stop)
-    except ParameterError as err:
-        raise ParameterError("stop", stop, f"{err.allowed} ({param})") from None
-    max_points = check_int("max_points", max_points, lo=1, hi=MAX_POINTS_MAX)
-    check_real("min_step", min_step, lo=1e-12, hi=1.0)
-    check_real("event_tol", event_tol, lo=1e-12, hi=1.0)
-    if step is None:
-        step = (stop - start) / 100.0 if stop != start else 1.0
-    step = abs(check_real("step", step))
-    if step == 0.0:
-        raise ParameterError("step", step, "must be a number != 0")
-    check_step_points(step, abs(stop - start), step, max_points)
-    return param, start, stop, step, {q: fixed[q] for q in others}
+    return {q: fixed[q] for q in others}
 
 
-def _arclength(param, start, stop, step, others, orbit, r, d, phi, min_step, max_points,
-               branch, switch, max_inadmissible) -> Branch:
+def _arclength(cs: ContinuationSettings, orbit: PeriodicOrbit, r: float, d: float,
+               phi: float) -> Branch:
     from . import branches as bb
     from . import shooting
     model = shooting.Model(r, d, phi)
     kind = "symmetric" if orbit.symmetric else "asymmetric"
-    bounds = (min(start, stop), max(start, stop))
-    sign = 1.0 if stop >= start else -1.0
-    kw = dict(step=step, min_step=min_step, max_points=max_points,
-              max_inadmissible=max_inadmissible)
-    br = bb.follow(model, kind, param, others, bb.start_unknowns(orbit, kind), start, bounds,
-                   sign, **kw)
-    if switch and kind == "symmetric":
+    kw = cs.tracer_options()
+    br = bb.follow(model, kind, cs.param, cs.fixed, bb.start_unknowns(orbit, kind), cs.start,
+                   cs.bounds, cs.sign, **kw)
+    if cs.switch and kind == "symmetric":
         for ev in br.events:
             if ev["type"] == "symmetry-breaking":
-                sub = bb.switch_at(model, param, others, ev["z"], bounds, **kw)
+                sub = bb.switch_at(model, cs.param, cs.fixed, ev["z"], cs.bounds, **kw)
                 if sub is not None:
                     sub.born_at = ev
                     br.switched.append(sub)
     return br
 
 
-def _natural(cont, start, stop, step, orbit, min_step, event_tol) -> Branch:
+def _natural(cont: _Continuer, cs: ContinuationSettings, orbit: PeriodicOrbit) -> Branch:
     """Natural-parameter continuation (module docstring)."""
-    sign = 1.0 if stop >= start else -1.0
+    start, stop, step, min_step = cs.start, cs.stop, cs.step, cs.min_step
+    sign = cs.sign
     param = cont.param
     pts = [(start, orbit)]
     events = []
@@ -256,7 +297,7 @@ def _natural(cont, start, stop, step, orbit, min_step, event_tol) -> Branch:
                 stopped = "fold or loss of convergence"
                 break
             continue
-        _locate_events(cont, v_prev, o_prev, v, o, events, event_tol)
+        _locate_events(cont, v_prev, o_prev, v, o, events, cs.event_tol)
         pts.append((v, o))
         h = min(step, 1.5 * h)
     events.sort(key=lambda e: sign * e["at"])

@@ -32,7 +32,7 @@ from numba import njit
 
 from ..core.exact import oscillators
 from ..core.flow import I_ARES, I_NRES, I_PC, I_PS, I_RES, I_W, flow, fundamentals
-from ..core.params import D_DEFAULT, R_DEFAULT, ModelParams
+from ..core.params import D_DEFAULT, R_DEFAULT, ModelParams, SolverSettings
 from ..core.walls import WALL_L, WALL_R, impact_velocities
 from ._lapack import lambda_max_4
 from .maps import admissible_kernel, map_kernel
@@ -439,12 +439,6 @@ class PeriodicOrbit:
         }
 
 
-def _params(eta, omega, F, r, d, phi) -> ModelParams:
-    if isinstance(eta, ModelParams):
-        return eta
-    return ModelParams(eta=eta, omega=omega, F=F, r=r, d=d, phi=phi)
-
-
 def solve_orbit(p: ModelParams, x0, s1=-1.0, s2=-1.0, osc=None):
     """Newton from x0 (flight-time guesses s1, s2, <= 0: first contact). PeriodicOrbit or None."""
     if osc is None:
@@ -526,10 +520,10 @@ def seed_orbits(p: ModelParams, osc=None, simulation=True, scan=True) -> list:
 
 
 def _simulation_seed(p: ModelParams, osc, t_end=600.0) -> list:
-    from ..core.simulation import simulate
+    from ..core.simulation import simulate_exact
     try:
-        res = simulate(p.eta, p.omega, p.F, r=p.r, d=p.d, phi=p.phi, t_end=t_end,
-                       t_transient=0.5 * t_end, max_impacts=200_000)
+        st = SolverSettings(t_end=t_end, t_transient=0.5 * t_end, max_impacts=200_000)
+        res = simulate_exact(p, st)
     except Exception:                        # pragma: no cover - a seed is optional
         return []
     imp = res.impacts
@@ -547,15 +541,20 @@ def _sort_key(o: PeriodicOrbit):
     return (not o.admissible, not o.stable, not o.symmetric, o.lambda_max)
 
 
-def find_1to1(eta, omega, F, r=R_DEFAULT, d=D_DEFAULT, phi=0.0, seeds=None,
-              simulation=True) -> list[PeriodicOrbit]:
+def find_1to1(eta: float, omega: float, F: float, r: float = R_DEFAULT, d: float = D_DEFAULT,
+              phi: float = 0.0, seeds=None, simulation: bool = True) -> list[PeriodicOrbit]:
     """Every distinct 1:1 orbit found (admissible or not), stable admissible ones first.
 
     ``seeds``: extra starting points, each an x_L = (z_m', z_b', z_b, t_L) or a pair
     (x_L, (s1, s2)) with flight-time guesses; ``simulation=False`` skips the short
     simulation seed.
     """
-    p = _params(eta, omega, F, r, d, phi)
+    p = ModelParams(eta=eta, omega=omega, F=F, r=r, d=d, phi=phi)
+    return orbits_1to1(p, seeds=seeds, simulation=simulation)
+
+
+def orbits_1to1(p: ModelParams, *, seeds=None, simulation: bool = True) -> list[PeriodicOrbit]:
+    """``find_1to1`` at the validated model ``p``."""
     osc = oscillators(p)[0]
     found = seed_orbits(p, osc, simulation=simulation)
     for sd in seeds or ():

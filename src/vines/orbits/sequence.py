@@ -37,7 +37,7 @@ from numba import njit
 
 from ..core.exact import oscillators
 from ..core.flow import flow
-from ..core.params import ModelParams, ParameterError, check_int
+from ..core.params import ModelParams, ParameterError, SolverSettings, check_int
 from ..core.walls import WALL_L, WALL_R, impact_velocities
 from .maps import admissible_kernel, map_kernel
 from .periodic import DEDUP_TOL, N_SCAN, SYM_TOL, _solve_into, asymmetric_seeds, symmetric_seeds
@@ -538,12 +538,13 @@ def record_seed(imp, walls: str):
 def simulation_seeds(p: ModelParams, walls: str, states=SIM_STATES,
                      t_end=SIM_T_END) -> list:
     """Seeds from short exact simulations from ``states`` (and their mirror images)."""
-    from ..core.simulation import simulate
+    from ..core.simulation import simulate_exact
     out = []
-    for st in states:
+    for state0 in states:
         try:
-            res = simulate(p.eta, p.omega, p.F, r=p.r, d=p.d, phi=p.phi, t_end=t_end,
-                           t_transient=0.5 * t_end, max_impacts=200_000, state0=st)
+            st = SolverSettings(t_end=t_end, t_transient=0.5 * t_end, max_impacts=200_000,
+                                state0=state0)
+            res = simulate_exact(p, st)
         except (ParameterError, RuntimeError):     # pragma: no cover - a seed is optional
             continue
         for rec in (res.impacts, _mirror_record(res.impacts, p.period)):

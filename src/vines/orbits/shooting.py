@@ -28,7 +28,7 @@ import math
 
 import numpy as np
 
-from ..core.params import ParameterError
+from ..core.params import PARAM_NAMES, ParameterError
 from ..core.walls import WALL_L, WALL_R
 from . import jets
 from . import shooting_kernels as kernels
@@ -37,7 +37,6 @@ from .tape import record
 
 FAMILIES = ("symmetric", "asymmetric")
 N_UNKNOWNS = {"symmetric": 4, "asymmetric": 5}
-PARAMS = ("eta", "omega", "F")
 MIRROR = np.diag([-1.0, -1.0, -1.0, 1.0])
 
 
@@ -123,7 +122,7 @@ def residual_jacobian(m: Model, family: str, u, par: dict, free: tuple):
     E, dE = kernels.residual_jacobian(m.tape, FAMILIES.index(family), u,
                                       float(par["eta"]), float(par["omega"]), float(par["F"]))
     n = len(u)
-    return E, dE[:, list(range(n)) + [n + PARAMS.index(q) for q in free]]
+    return E, dE[:, list(range(n)) + [n + PARAM_NAMES.index(q) for q in free]]
 
 
 def residual_jacobian_jets(m: Model, family: str, u, par: dict, free: tuple):

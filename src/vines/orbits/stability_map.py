@@ -24,10 +24,12 @@ from __future__ import annotations
 
 import math
 import os
+from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 from numba import njit
+from numpy.typing import ArrayLike
 
 from ..core.exact import oscillators
 from ..core.flow import make_osc
@@ -237,7 +239,8 @@ def _close_py(a, b, T):
     return dt <= 1e-8 * (1.0 + T) and np.all(np.abs(a.x_L[:3] - b.x_L[:3]) <= 1e-8)
 
 
-def stability_map_python(eta, omega, F, r=R_DEFAULT, d=D_DEFAULT) -> dict:
+def stability_map_python(eta: ArrayLike, omega: ArrayLike, F: float, r: float = R_DEFAULT,
+                         d: float = D_DEFAULT) -> dict:
     """``stability_map`` by the Python orbit solvers, one thread (slow reference)."""
     etas, omegas, F, r, d, out = _setup(eta, omega, F, r, d)
     for j in range(omegas.size):
@@ -279,8 +282,9 @@ def _check_conditioning(etas, omegas, F, d):
             check_conditioning(float(e), float(omegas[j]), F, d)
 
 
-def stability_map(eta, omega, F, r=R_DEFAULT, d=D_DEFAULT, n_threads=None,
-                  progress=None) -> dict:
+def stability_map(eta: ArrayLike, omega: ArrayLike, F: float, r: float = R_DEFAULT,
+                  d: float = D_DEFAULT, n_threads: int | None = None,
+                  progress: Callable[[int, int], None] | None = None) -> dict:
     """2-D arrays of shape (len(eta), len(omega)).
 
     lambda_max  |lambda_max| of the chosen admissible 1:1 orbit (nan: none)

@@ -5,7 +5,7 @@ import hashlib
 
 import numpy as np
 
-from ..core.params import PARAM_NAMES as DIMS
+from ..core.params import PARAM_NAMES
 
 
 class ConfigError(ValueError):
@@ -55,7 +55,7 @@ def _distinct(values, key: str) -> np.ndarray:
 def grid_axes(grid: dict, key: str = "grid") -> dict:
     """Axes of a grid config: swept ``axes`` and ``fixed`` values -> {dim: 1-D array}."""
     axes = {}
-    for d in DIMS:
+    for d in PARAM_NAMES:
         in_axes, in_fixed = d in grid.get("axes", {}), d in grid.get("fixed", {})
         if in_axes == in_fixed:
             raise ConfigError(f"{key}.{'axes' if in_fixed else 'fixed'}.{d}",
@@ -95,14 +95,14 @@ def grid_chunks(axes: dict, chunk_size: int) -> list[dict]:
             for v in vals:
                 rec({**prefix, d: [v]}, faster)
 
-    rec({}, list(DIMS))
-    return [{d: c[d] for d in DIMS} for c in out]
+    rec({}, list(PARAM_NAMES))
+    return [{d: c[d] for d in PARAM_NAMES} for c in out]
 
 
 def chunk_key(chunk: dict) -> str:
     """Name of a chunk: sha256 (16 hex digits) of its parameter values (exact float64)."""
     h = hashlib.sha256()
-    for d in DIMS:
+    for d in PARAM_NAMES:
         a = np.ascontiguousarray(np.asarray(chunk[d], dtype="<f8"))
         h.update(d.encode() + b":" + str(a.size).encode() + b":" + a.tobytes())
     return h.hexdigest()[:16]

@@ -12,8 +12,8 @@ from pathlib import Path
 
 PKG_DIR = Path(__file__).resolve().parents[1]
 
-#: top-level modules no dataset or figure depends on
-NOT_TRACKED = ("cli.py", "__main__.py")
+#: top-level modules and subpackages no dataset or figure depends on (the command line)
+NOT_TRACKED = ("cli", "__main__.py")
 
 #: subpackages each kind of rule depends on
 COMPUTE = ("core", "orbits", "data", "pipeline")           # every dataset stage

@@ -1,5 +1,5 @@
 """Pipeline config: YAML reading, schema validation with defaults, the physical checks of
-``vines.pipeline.checks`` and cross-key rules; every error is one line naming the key.
+``vines.pipeline.config_checks`` and cross-key rules; every error is one line naming the key.
 
 ``python -m vines.pipeline.config FILE`` checks a config file without running anything
 (Snakemake itself reports a YAML syntax error in a ``--configfile`` without its line)."""
@@ -8,8 +8,9 @@ from __future__ import annotations
 import copy
 import re
 
-from .axes import DIMS, ConfigError, axis_values, grid_axes
-from .checks import check_physical
+from ..core.params import PARAM_NAMES
+from .axes import ConfigError, axis_values, grid_axes
+from .config_checks import check_physical
 
 
 def _with_defaults(validator_class):
@@ -118,11 +119,7 @@ def validate_config(config: dict, schema: dict) -> dict:
         err = min(errors, key=lambda e: -len(e.absolute_path))
         key = ".".join(str(p) for p in err.absolute_path) or "<top level>"
         raise ConfigError(key, err.message)
-    check_physical(config)
-    sim = config["simulation"]
-    if sim["t_transient"] >= sim["t_end"]:
-        raise ConfigError("simulation.t_transient",
-                          f"{sim['t_transient']} must be < simulation.t_end = {sim['t_end']}")
+    check_physical(config)   # every value through the API's validators (t_transient < t_end)
     for name, grid in config["grids"].items():
         axes = grid_axes(grid, key=f"grids.{name}")
         for dim, vals in grid.get("sections", {}).items():
@@ -137,19 +134,15 @@ def validate_config(config: dict, schema: dict) -> dict:
     for name, sw in config["sweeps"].items():
         if sw["outer"] == sw["param"]:
             raise ConfigError(f"sweeps.{name}.outer", "must differ from param")
-        need = set(DIMS) - {sw["param"], sw["outer"]}
+        need = set(PARAM_NAMES) - {sw["param"], sw["outer"]}
         if set(sw["fixed"]) != need:
             raise ConfigError(f"sweeps.{name}.fixed", f"must give exactly {sorted(need)}")
         axis_values(sw["values"], key=f"sweeps.{name}.values")
         axis_values(sw["outer_values"], key=f"sweeps.{name}.outer_values")
     for name, br in config["branches"].items():
-        need = set(DIMS) - {br["param"]}
+        need = set(PARAM_NAMES) - {br["param"]}
         if set(br["fixed"]) != need:
             raise ConfigError(f"branches.{name}.fixed", f"must give exactly {sorted(need)}")
-    for name, case in config["work_precision"]["cases"].items():
-        if case["t_transient"] >= case["t_end"]:
-            raise ConfigError(f"work_precision.cases.{name}.t_transient",
-                              f"{case['t_transient']} must be < t_end = {case['t_end']}")
     for name, sm in config["stability_maps"].items():
         axis_values(sm["eta"], key=f"stability_maps.{name}.eta")
         axis_values(sm["omega"], key=f"stability_maps.{name}.omega")

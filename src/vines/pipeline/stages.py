@@ -1,9 +1,10 @@
 """The pipeline's compute stages: config entry in, CF dataset out.
 
-One function per stage, named as the rule, the rule file and the workflow script:
-``simulate_grid``, ``extract_measures``, ``bifurcation_sweep``, ``map_solve``,
-``stability_map``, ``boundaries``, ``timehistory``, ``robust_map``, ``basin_slice``. Each
-calls the numerics (``vines.core``, ``vines.orbits``, ``vines.attractors``), lets
+One function per stage, named as the rule, the rule file, the workflow script and the
+output folder: ``simulate_grid``, ``extract_measures``, ``bifurcation_sweep``,
+``map_solve``, ``stability_map``, ``boundaries``, ``timehistory``, ``robust_map``,
+``basin_slice``, ``work_precision``, ``convergence``. Each calls the numerics
+(``vines.core``, ``vines.orbits``, ``vines.attractors``, ``vines.studies``), lets
 ``vines.pipeline.execution`` spread independent tasks over dask, and hands plain arrays to
 ``vines.data.builders``. Results are assembled by index, so the
 numbers do not depend on workers, block size, chunk size or scheduler.
@@ -12,10 +13,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..core.params import PARAM_NAMES
 from ..data import builders
 from ..data.netcdf import read_dataset
 from ..data.provenance import provenance_attrs
-from .axes import DIMS, axis_values
+from .axes import axis_values
 from .execution import compute
 
 # ------------------------------------------------------------------ simulate-grid
@@ -33,7 +35,7 @@ def compute_chunk(chunk: dict, *, model: dict, simulation: dict, n_workers: int 
     import dask
 
     from ..core.simulation import BATCH_FIELDS
-    e, w, f = np.meshgrid(*(np.asarray(chunk[d], dtype=float) for d in DIMS), indexing="ij")
+    e, w, f = np.meshgrid(*(np.asarray(chunk[d], dtype=float) for d in PARAM_NAMES), indexing="ij")
     shape = e.shape
     e, w, f = e.ravel(), w.ravel(), f.ravel()
     kw = {**model, **simulation}
@@ -258,7 +260,7 @@ def _census_kw(model: dict, simulation: dict) -> dict:
 
 
 def _robust_block(points, F, kw):
-    from ..attractors.maps import robust_point
+    from ..attractors.census_maps import robust_point
     return [robust_point(e, w, F, n_threads=1, **kw) for e, w in points]
 
 
@@ -268,7 +270,7 @@ def robust_map(spec: dict, *, model: dict, simulation: dict, code: str, title: s
     ``spec['n']`` Sobol states (seed ``spec['seed']``) per point, in dask blocks."""
     import dask
 
-    from ..attractors.maps import ROBUST_FIELDS
+    from ..attractors.census_maps import ROBUST_FIELDS
     eta, omega = axis_values(spec["eta"]), axis_values(spec["omega"])
     points = [(e, w) for e in eta for w in omega]
     kw = {**_census_kw(model, simulation), "n": spec["n"], "seed": spec["seed"],
@@ -291,7 +293,7 @@ def basin_slice(spec: dict, *, model: dict, simulation: dict, code: str, title: 
                 n_workers: int = 1):
     """Dataset of one basin slice: the attractor reached from each (z_m(0), z_m'(0)) with
     the ball at rest in the middle of the cavity, at ``spec``'s (eta, omega, F)."""
-    from ..attractors.maps import basin_slice as solve_slice
+    from ..attractors.census_maps import basin_slice as solve_slice
     z_m0, v_m0 = axis_values(spec["z_m0"]), axis_values(spec["v_m0"])
     res = solve_slice(spec["eta"], spec["omega"], spec["F"], z_m0, v_m0,
                       n_threads=max(1, int(n_workers)), **_census_kw(model, simulation))
@@ -300,3 +302,36 @@ def basin_slice(spec: dict, *, model: dict, simulation: dict, code: str, title: 
                              settings={**model, **simulation}, code_version=code)
     attrs.update(eta=float(spec["eta"]), omega=float(spec["omega"]), F=float(spec["F"]))
     return builders.basin_slice_dataset(z_m0, v_m0, res, attrs)
+
+
+# ------------------------------------------------------------------ work-precision, convergence
+
+def work_precision(case: dict, *, settings: dict, model: dict, v_stick: float, code: str,
+                   title: str, progress=None):
+    """Dataset of one work-precision case: error and cost of every solver setting against
+    the 40-digit reference (``settings``: the ``work_precision`` section but its cases)."""
+    from ..studies.workprecision import work_precision as study
+    result = study(case["eta"], case["omega"], case["F"], t_end=case["t_end"],
+                   t_transient=case["t_transient"], r=model["r"], d=model["d"],
+                   v_stick=v_stick, v_sticks=case.get("v_sticks", []),
+                   root_tols=settings["root_tols"], rk_methods=settings["rk_methods"],
+                   rtols=settings["rtols"], dps=settings["dps"],
+                   h_sample=settings["h_sample"], v_visible=settings["v_visible"],
+                   min_time=settings["min_time"], progress=progress)
+    attrs = provenance_attrs(
+        title=title,
+        config_subset={"case": case, "settings": settings, "model": model, "v_stick": v_stick},
+        settings=model, code_version=code)
+    return builders.work_precision_dataset(result, attrs)
+
+
+def convergence(study: str, spec: dict, *, model: dict, simulation: dict, code: str,
+                title: str, n_workers: int = 1):
+    """Dataset of one convergence study (``study``: window, vstick or grid)."""
+    from ..studies.convergence import STUDIES
+    result = STUDIES[study](**spec, **simulation, **model, n_threads=n_workers)
+    attrs = provenance_attrs(
+        title=title,
+        config_subset={"spec": spec, "model": model, "simulation": simulation},
+        settings={**model, **simulation}, code_version=code)
+    return builders.convergence_dataset(study, result, attrs)

@@ -10,7 +10,7 @@
   inputs checked by :mod:`vines.studies.design_checks` (docs/design.md).
 
 The studies return plain results (numpy arrays in small dataclasses, with the settings that
-describe them); ``vines.data.studies`` builds their CF datasets.
+describe them); ``vines.data.builders`` builds their CF datasets.
 """
 from .contours import area_above, contour_distance, contour_lines, nested_axis
 from .convergence import (

@@ -8,6 +8,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 
 def nested_axis(lo: float, hi: float, n_fine: int, n: int) -> np.ndarray:
@@ -18,7 +19,7 @@ def nested_axis(lo: float, hi: float, n_fine: int, n: int) -> np.ndarray:
     return np.linspace(lo, hi, n_fine)[::(n_fine - 1) // (n - 1)]
 
 
-def contour_lines(x, y, z, level) -> list[np.ndarray]:
+def contour_lines(x: ArrayLike, y: ArrayLike, z: ArrayLike, level: float) -> list[np.ndarray]:
     """Lines of z = level (z shape (len(y), len(x))) as (k, 2) arrays of (x, y) vertices."""
     import contourpy
     gen = contourpy.contour_generator(np.asarray(x, float), np.asarray(y, float),
@@ -27,12 +28,12 @@ def contour_lines(x, y, z, level) -> list[np.ndarray]:
     return [ln for ln in gen.lines(float(level)) if len(ln) >= 2]
 
 
-def line_length(lines) -> float:
+def line_length(lines: list[np.ndarray]) -> float:
     """Total length of polylines."""
     return float(sum(np.hypot(*np.diff(p, axis=0).T).sum() for p in lines))
 
 
-def area_above(x, y, z, level) -> float:
+def area_above(x: ArrayLike, y: ArrayLike, z: ArrayLike, level: float) -> float:
     """Area of {z > level} in (x, y) units, from the filled contour (holes subtracted)."""
     import contourpy
     z = np.ma.masked_invalid(np.asarray(z, float))
@@ -83,7 +84,8 @@ def _dist_to_lines(p, lines, block=512):
     return out
 
 
-def contour_distance(lines, ref_lines, ds) -> tuple[float, float]:
+def contour_distance(lines: list[np.ndarray], ref_lines: list[np.ndarray],
+                     ds: float) -> tuple[float, float]:
     """(arc-length mean, max) distance from ``lines`` to ``ref_lines``, sampled every ``ds``.
 
     The max is the one-sided Hausdorff distance. NaN when either set of lines is empty.

@@ -1,7 +1,7 @@
 """Convergence of the measures with run length and window, sticking threshold and grid.
 
 Three studies, each returning a result object of plain numpy arrays and the settings that
-describe them (``vines.data.studies.convergence_dataset`` makes it a CF dataset):
+describe them (``vines.data.builders.convergence_dataset`` makes it a CF dataset):
 
 * :func:`window_convergence` -> :class:`WindowConvergence`: KE ratio, x_max and regime at
   named parameter points over a grid of run lengths ``t_end`` and window rules (a fixed
@@ -24,6 +24,7 @@ from __future__ import annotations
 import math
 import os
 import time
+from collections.abc import Sequence
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
@@ -236,13 +237,17 @@ def _window_starts(pts, rules, t_ends, whole_periods) -> np.ndarray:
     return t_tr
 
 
-def window_convergence(points, t_ends=(7000.0, 10000.0, 14000.0, 20000.0, 28000.0),
-                       window_lengths=(3000.0,), window_fractions=(0.5,), *,
-                       whole_periods=False, ke_tol=1e-2, xmax_rtol=1e-2,
-                       t_end=T_END_DEFAULT, t_transient=T_TRANSIENT_DEFAULT,
-                       v_stick=V_STICK_DEFAULT, r=R_DEFAULT, d=D_DEFAULT,
-                       max_impacts=MAX_IMPACTS_DEFAULT, root_tol=ROOT_TOL_DEFAULT,
-                       periodic_shortcut=True, n_threads=None) -> WindowConvergence:
+def window_convergence(points: Sequence[dict],
+                       t_ends: Sequence[float] = (7000.0, 10000.0, 14000.0, 20000.0, 28000.0),
+                       window_lengths: Sequence[float] = (3000.0,),
+                       window_fractions: Sequence[float] = (0.5,), *,
+                       whole_periods: bool = False, ke_tol: float = 1e-2,
+                       xmax_rtol: float = 1e-2, t_end: float = T_END_DEFAULT,
+                       t_transient: float = T_TRANSIENT_DEFAULT,
+                       v_stick: float = V_STICK_DEFAULT, r: float = R_DEFAULT,
+                       d: float = D_DEFAULT, max_impacts: int = MAX_IMPACTS_DEFAULT,
+                       root_tol: float = ROOT_TOL_DEFAULT, periodic_shortcut: bool = True,
+                       n_threads: int | None = None) -> WindowConvergence:
     """Measures at ``points`` (dicts eta, omega, F, optional label) over run lengths and windows.
 
     Axes: ``t_ends`` (dimensionless run lengths) x window rules: each of ``window_lengths``
@@ -297,11 +302,13 @@ def window_convergence(points, t_ends=(7000.0, 10000.0, 14000.0, 20000.0, 28000.
 
 V_STICKS_DEFAULT = tuple(10.0 ** -np.arange(3, 11))
 
-def vstick_convergence(points, v_sticks=V_STICKS_DEFAULT, *, ke_tol=1e-3,
-                       xmax_rtol=1e-2, t_end=T_END_DEFAULT, t_transient=T_TRANSIENT_DEFAULT,
-                       v_stick=V_STICK_DEFAULT, r=R_DEFAULT, d=D_DEFAULT,
-                       max_impacts=MAX_IMPACTS_DEFAULT, root_tol=ROOT_TOL_DEFAULT,
-                       periodic_shortcut=True, n_threads=None) -> VStickConvergence:
+def vstick_convergence(points: Sequence[dict], v_sticks: Sequence[float] = V_STICKS_DEFAULT,
+                       *, ke_tol: float = 1e-3, xmax_rtol: float = 1e-2,
+                       t_end: float = T_END_DEFAULT, t_transient: float = T_TRANSIENT_DEFAULT,
+                       v_stick: float = V_STICK_DEFAULT, r: float = R_DEFAULT,
+                       d: float = D_DEFAULT, max_impacts: int = MAX_IMPACTS_DEFAULT,
+                       root_tol: float = ROOT_TOL_DEFAULT, periodic_shortcut: bool = True,
+                       n_threads: int | None = None) -> VStickConvergence:
     """Measures at ``points`` (dicts eta, omega, F, optional label) against ``v_sticks``.
 
     ``v_sticks``: sticking thresholds on the relative velocity after an impact
@@ -366,11 +373,14 @@ def _contour_measures(eta, omega, ke, strides, level, area_total) -> dict:
             "area_fraction": area, "d_area_fraction": area - area[-1]}
 
 
-def grid_convergence(eta_range=(0.01, 1.0), omega_range=(0.5, 1.5), F=0.4,
-                     resolutions=(11, 21, 41, 81), level=0.5, *, t_end=T_END_DEFAULT,
-                     t_transient=T_TRANSIENT_DEFAULT, v_stick=V_STICK_DEFAULT, r=R_DEFAULT,
-                     d=D_DEFAULT, max_impacts=MAX_IMPACTS_DEFAULT, root_tol=ROOT_TOL_DEFAULT,
-                     periodic_shortcut=True, n_threads=None) -> GridConvergence:
+def grid_convergence(eta_range: Sequence[float] = (0.01, 1.0),
+                     omega_range: Sequence[float] = (0.5, 1.5), F: float = 0.4,
+                     resolutions: Sequence[int] = (11, 21, 41, 81), level: float = 0.5, *,
+                     t_end: float = T_END_DEFAULT, t_transient: float = T_TRANSIENT_DEFAULT,
+                     v_stick: float = V_STICK_DEFAULT, r: float = R_DEFAULT,
+                     d: float = D_DEFAULT, max_impacts: int = MAX_IMPACTS_DEFAULT,
+                     root_tol: float = ROOT_TOL_DEFAULT, periodic_shortcut: bool = True,
+                     n_threads: int | None = None) -> GridConvergence:
     """KE ratio = ``level`` contour over (eta, omega) at ``resolutions`` points per axis.
 
     Grids are linspace over ``eta_range`` x ``omega_range`` at fixed F; every coarse grid is

@@ -12,7 +12,7 @@ Every run of one case (a parameter point and a horizon [0, t_end], window
   measure) and impacts per second.
 
 :func:`work_precision` returns a :class:`WorkPrecisionResult` (plain arrays over the runs and
-the settings of the case); ``vines.data.studies.work_precision_dataset`` makes it a dataset.
+the settings of the case); ``vines.data.builders.work_precision_dataset`` makes it a dataset.
 
 Knobs: the exact solver's ``root_tol`` (at the case's v_stick) and ``v_stick`` (the chatter
 threshold, a model knob: these runs are compared with a reference at ``v_stick_reference``,
@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -30,13 +30,16 @@ from ..core.params import (
     D_DEFAULT,
     R_DEFAULT,
     ROOT_TOL_DEFAULT,
+    RTOL_MAX,
+    RTOL_MIN,
     V_STICK_DEFAULT,
     ModelParams,
     ParameterError,
     SolverSettings,
+    check_real,
 )
-from ..core.simulation import RK_METHODS, simulate
 from ..reference.hiprec import DPS_DEFAULT, H_SAMPLE_DEFAULT, V_STICK_REFERENCE, reference_run
+from ..solvers import RK_METHODS, run_simulation
 
 V_VISIBLE_DEFAULT = 1e-3
 
@@ -119,6 +122,17 @@ def _plan(root_tols, v_sticks, rk_methods, rtols, v_stick, ref, ref_limit) -> li
     return plan
 
 
+def _run(p: ModelParams, st: SolverSettings, *, solver: str = "exact", method: str = "DOP853",
+         rtol: float | None = None, root_tol: float | None = None,
+         v_stick: float | None = None):
+    """One run of the study (no periodic shortcut) with one knob changed from ``st``."""
+    knobs = {k: v for k, v in (("root_tol", root_tol), ("v_stick", v_stick)) if v is not None}
+    st = replace(st, **knobs) if knobs else st
+    if solver == "rk":
+        return run_simulation(p, st, solver="rk", method=method, rtol=rtol)
+    return run_simulation(p, st, periodic_shortcut=False)
+
+
 def _references(p, st, v_sticks, v_stick_reference, dps, h_sample, say):
     """The reference at st.v_stick and (with v_sticks) the one at v_stick_reference."""
     t0 = time.perf_counter()
@@ -154,15 +168,14 @@ def work_precision(eta, omega, F, *, t_end, t_transient, r=R_DEFAULT, d=D_DEFAUL
     for m in rk_methods:
         if m not in RK_METHODS:
             raise ParameterError("rk_methods", m, f"must be among {', '.join(RK_METHODS)}")
+    rtols = [check_real("rtol", tol, lo=RTOL_MIN, hi=RTOL_MAX) for tol in rtols]
     say = progress or (lambda line: None)
-    simulate(eta, omega, F, t_end=1.0, t_transient=0.0)   # load the compiled kernel first
+    run_simulation(p, SolverSettings(t_end=1.0, t_transient=0.0))   # load the kernel first
     ref, ref_limit = _references(p, st, v_sticks, v_stick_reference, dps, h_sample, say)
-    base = dict(eta=eta, omega=omega, F=F, r=r, d=d, t_end=t_end, t_transient=t_transient,
-                max_impacts=max_impacts, periodic_shortcut=False)
     rows = []
     for solver, method, knob, tol, vs, reference, kw in _plan(
             root_tols, v_sticks, rk_methods, rtols, v_stick, ref, ref_limit):
-        sec, res = timed(lambda kw=kw: simulate(**base, **kw), min_time=min_time)
+        sec, res = timed(lambda kw=kw: _run(p, st, **kw), min_time=min_time)
         e = errors(res, reference, v_visible)
         rows.append(dict(solver=solver, method=method, knob=knob, tolerance=float(tol),
                          v_stick=float(vs), seconds=sec,

@@ -1,5 +1,5 @@
 """Work-precision: error against cost per run for the exact solver and the RK solvers, one
-row per case (workprecision/<case>.nc), columns impact times, KE ratio, x_max."""
+row per case (work_precision/<case>.nc), columns impact times, KE ratio, x_max."""
 import numpy as np
 
 import vines.plotting as P

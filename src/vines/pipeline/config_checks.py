@@ -12,8 +12,8 @@ import math
 
 import numpy as np
 
-from ..core.params import STATE_MAX, ModelParams, ParameterError, SolverSettings
-from .axes import DIMS, ConfigError, axis_values
+from ..core.params import PARAM_NAMES, STATE_MAX, ModelParams, ParameterError, SolverSettings
+from .axes import ConfigError, axis_values
 
 
 def _walk_finite(node, path=""):
@@ -100,7 +100,7 @@ def _check_settings(key: str, settings: dict, limits: dict) -> None:
 
 
 def _check_point(key: str, point: dict, model: dict) -> None:
-    for name in DIMS:
+    for name in PARAM_NAMES:
         _check_param(f"{key}.{name}", name, point[name], model)
 
 

@@ -1,0 +1,152 @@
+"""``vines continue``: a 1:1 branch followed in eta, omega or F, with its events.
+
+(The module has a trailing underscore: ``continue`` is a Python keyword.)
+"""
+from __future__ import annotations
+
+import argparse
+
+from ..core.params import (
+    BRANCH_KINDS,
+    CONTINUATION_METHODS,
+    MAX_INADMISSIBLE_DEFAULT,
+    MAX_POINTS_DEFAULT,
+    MAX_POINTS_MAX,
+    PARAM_NAMES,
+    ModelParams,
+    ParameterError,
+    check_int,
+    check_real,
+    check_step_points,
+)
+from .common import VinesArgumentParser, add_model_args, emit, quiet_stdout
+
+NAME = "continue"
+
+
+def add_parser(subparsers) -> VinesArgumentParser:
+    p = subparsers.add_parser(
+        NAME,
+        help="continue a 1:1 orbit in eta, omega or F and report bifurcation events",
+        description="Pseudo-arclength continuation (through folds) of the preferred 1:1 "
+                    "orbit of the chosen --branch at --start, until the parameter leaves "
+                    "[start, stop]; events (fold, flip, neimark-sacker, admissibility-loss, "
+                    "symmetry-breaking) are located along the arclength. --method natural: "
+                    "natural-parameter continuation from --start to --stop (ends at a fold).",
+    )
+    p.add_argument("--param", choices=PARAM_NAMES, required=True,
+                   help="the parameter to vary")
+    p.allowed_values["--param"] = "one of eta, omega, F"
+    for flag, allowed, help in (
+        ("--start", "a number in the parameter's range", "first parameter value"),
+        ("--stop", "a number in the parameter's range", "last parameter value"),
+    ):
+        p.allowed_values[flag] = allowed
+        p.add_argument(flag, metavar=flag.lstrip("-").upper(), required=True,
+                       help=f"{help} [{allowed}]")
+    p.allowed_values["--step"] = "a number > 0 with |stop - start|/step <= max-points"
+    p.add_argument("--step", metavar="H", default=None,
+                   help="parameter step (natural) or largest arclength step (arclength) "
+                        "[> 0 and >= |stop - start|/max-points; default (stop - start)/100]")
+    p.add_argument("--method", choices=CONTINUATION_METHODS, default="arclength",
+                   help="arclength (default: through folds) or natural")
+    p.allowed_values["--method"] = "one of " + ", ".join(CONTINUATION_METHODS)
+    p.add_argument("--branch", choices=BRANCH_KINDS, default="symmetric",
+                   help="the orbit to start from: symmetric (default) or asymmetric")
+    p.allowed_values["--branch"] = "one of " + ", ".join(BRANCH_KINDS)
+    p.add_argument("--switch", action="store_true",
+                   help="also continue the asymmetric branch born at every symmetry-breaking "
+                        "point of the symmetric branch (JSON key switched; arclength only)")
+    p.allowed_values["--max-inadmissible"] = f"an integer >= 1 and <= {MAX_POINTS_MAX}"
+    p.add_argument("--max-inadmissible", metavar="N", default=MAX_INADMISSIBLE_DEFAULT,
+                   help="end the branch after N consecutive non-admissible points "
+                        f"(arclength) [integer >= 1 and <= {MAX_POINTS_MAX}; default "
+                        f"{MAX_INADMISSIBLE_DEFAULT}]")
+    p.allowed_values["--max-points"] = f"an integer >= 1 and <= {MAX_POINTS_MAX}"
+    p.add_argument("--max-points", metavar="N", default=MAX_POINTS_DEFAULT,
+                   help="refuse a step that needs more than N continuation points "
+                        f"[integer >= 1 and <= {MAX_POINTS_MAX}; default {MAX_POINTS_DEFAULT}]")
+    add_model_args(p, optional_group="model parameters (the two not continued are required)")
+    p.add_argument("--json", action="store_true",
+                   help="print one JSON object on stdout (keys: branch, events)")
+    p.set_defaults(_parser=p)
+    return p
+
+
+def _fixed_params(args: argparse.Namespace) -> list[str]:
+    """The two parameters not continued; refuse the continued one and missing ones."""
+    sub = args._parser
+    given = getattr(args, args.param)
+    if given is not None:
+        others = " and ".join(f"--{q}" for q in PARAM_NAMES if q != args.param)
+        sub.error(f"argument --{args.param}: invalid {args.param} = {given!r}: not allowed "
+                  f"with --param {args.param} (the continued parameter runs from --start to "
+                  f"--stop); give only {others}")
+    others = [q for q in PARAM_NAMES if q != args.param]
+    missing = [f"--{q}" for q in others if getattr(args, q) is None]
+    if missing:
+        sub.error("missing required option " + ", ".join(
+            f"{m} ({sub.allowed_values[m]})" for m in missing) + f" when --param is {args.param}")
+    return others
+
+
+def _end_points(args: argparse.Namespace, others: list[str]) -> tuple[dict, ModelParams]:
+    """Validated start and stop values (named after their flags), and the model at stop."""
+    fixed = {q: getattr(args, q) for q in others}
+    values = {}
+    for name in ("start", "stop"):
+        raw = getattr(args, name)
+        kw = dict(fixed, **{args.param: raw})
+        try:
+            params = ModelParams(eta=kw["eta"], omega=kw["omega"], F=kw["F"], r=args.r,
+                                 d=args.d)
+        except ParameterError as err:
+            if err.name == args.param:
+                raise ParameterError(name, raw, f"{err.allowed} ({args.param})") from None
+            raise
+        values[name] = getattr(params, args.param)
+    return values, params
+
+
+def run(args: argparse.Namespace) -> int:
+    others = _fixed_params(args)
+    values, params = _end_points(args, others)
+    max_points = check_int("max_points", args.max_points, lo=1, hi=MAX_POINTS_MAX)
+    step = None
+    if args.step is not None:
+        step = check_real("step", args.step, lo=0.0, lo_open=True)
+        check_step_points(args.step, abs(values["stop"] - values["start"]), step, max_points,
+                          "--max-points")
+    max_inadmissible = check_int("max_inadmissible", args.max_inadmissible, lo=1,
+                                 hi=MAX_POINTS_MAX)
+    if args.switch and (args.method != "arclength" or args.branch != "symmetric"):
+        args._parser.error(f"argument --switch: not allowed with --method {args.method} "
+                           f"--branch {args.branch} (only with --method arclength --branch "
+                           "symmetric)")
+    fixed = {q: getattr(params, q) for q in others}
+    from ..orbits.continuation import continue_branch
+
+    with quiet_stdout():
+        br = continue_branch(args.param, values["start"], values["stop"], step, fixed,
+                             r=params.r, d=params.d, max_points=max_points,
+                             method=args.method, branch=args.branch, switch=args.switch,
+                             max_inadmissible=max_inadmissible)
+    return emit(args.json, br.to_dict(), lambda d: _text(d, values))
+
+
+def _text(d: dict, values: dict, indent: str = "") -> str:
+    """Table of a ``Branch.to_dict()`` (and of the branches switched to)."""
+    param = d["param"]
+    lines = [f"{indent}{d['family']} branch in {param} from {values['start']:g} towards "
+             f"{values['stop']:g}: {len(d['branch'])} points ({d['stopped']})"]
+    for pt in d["branch"]:
+        lines.append(f"{indent}  {param} = {pt[param]:.6g}  |lambda_max| = "
+                     f"{pt['lambda_max']:.6g}  stable = {pt['stable']}  symmetric = "
+                     f"{pt['symmetric']}  admissible = {pt['admissible']}  "
+                     f"dw_L = {pt['dw_L']:.6g}")
+    for ev in d["events"]:
+        con = f" (meets the {ev['connects']} branch)" if ev.get("connects") else ""
+        lines.append(f"{indent}  event {ev['type']} at {param} = {ev['at']:.7g}{con}")
+    for sw in d["switched"]:
+        lines.append(_text(sw, values, indent + "  "))
+    return "\n".join(lines)
