@@ -7,7 +7,7 @@ Subpackages: core (simulation), orbits (periodic orbits), reference (independent
 studies (work-precision, convergence), data (datasets), pipeline, plotting; see
 docs/architecture.md.
 
-``simulate``, ``simulate_batch``, ``SimulationResult`` and ``IMPACT_DTYPE`` are imported on
+``simulate``, ``simulate_batch``, ``lyapunov``, ``SimulationResult`` and ``IMPACT_DTYPE`` are imported on
 first use, so that code which only reads datasets or draws figures does not load numba
 and the compiled kernels.
 """
@@ -27,9 +27,10 @@ except PackageNotFoundError:   # sources used without installing (not a release)
 
 #: public names loaded on first access, and their modules
 _LAZY = {"simulate": ".core.simulation", "simulate_batch": ".core.simulation",
-         "SimulationResult": ".core.result", "IMPACT_DTYPE": ".core.result"}
+         "SimulationResult": ".core.result", "IMPACT_DTYPE": ".core.result",
+         "lyapunov": ".attractors.lyapunov"}
 
-__all__ = ["simulate", "simulate_batch", "ModelParams", "SolverSettings", "ParameterError",
+__all__ = ["simulate", "simulate_batch", "lyapunov", "ModelParams", "SolverSettings", "ParameterError",
            "SimulationResult", "IMPACT_DTYPE", "D_DEFAULT", "L_HALF_M", "__version__"]
 
 
