@@ -17,8 +17,10 @@ from vines.pipeline.codeversion import (
 )
 
 KINDS = {"compute": COMPUTE, "studies": STUDIES, "attractors": ATTRACTORS, "figures": FIGURES}
+# _cli_pending: command-line code not yet wired into the CLI (no rule depends on it)
 MODULES = sorted(p.relative_to(PKG_DIR) for p in PKG_DIR.rglob("*.py")
-                 if p.name not in NOT_TRACKED or p.parent != PKG_DIR)
+                 if (p.name not in NOT_TRACKED or p.parent != PKG_DIR)
+                 and p.relative_to(PKG_DIR).parts[0] != "_cli_pending")
 
 
 @pytest.fixture(scope="module")
