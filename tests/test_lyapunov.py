@@ -217,3 +217,18 @@ def test_bad_input_names_the_argument():
                        n_batches=1000)
     with pytest.raises(TypeError):
         vines.lyapunov(0.1, 1.0, 0.1)          # keyword arguments only
+
+
+def test_tangent_run_follows_the_census_trajectory_bit_for_bit():
+    """The spectrum's run (paused every 256 periods) is the trajectory of ``run_measured``
+    (the census's runs, paused at sections by the shortcut's detector): same end state,
+    same impacts in the window."""
+    from vines.core.simulation import run_measured
+    from vines.core.variational import TangentRun
+    p = ModelParams(eta=CHAOTIC[0][0], omega=CHAOTIC[0][1], F=CHAOTIC[0][2])
+    st = SolverSettings()
+    s0 = (0.5, -0.3, 0.2, 0.4)
+    raw, m = run_measured(p, st, state0=s0)
+    tr = TangentRun(p, st, oscillators(p), s0, 0.0, np.linspace(4000.0, 7000.0, 17)).run()
+    assert np.array_equal(raw.solver_info["final_state"], tr.run_.cur[1:5])
+    assert m["n_impacts_window"] == tr.n_impacts
