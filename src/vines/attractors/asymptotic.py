@@ -153,19 +153,22 @@ def lifetime(residual: np.ndarray, escaped: np.ndarray, level: float = CI_LEVEL)
     n_esc = int(escaped.sum())
     at_risk = float(residual.sum())
     a = 1.0 - level
-    if n_esc == 0 or at_risk <= 0.0:
-        rate_lo, rate_hi, mean = 0.0, chi2.ppf(1 - a / 2, 2) / (2 * at_risk) \
-            if at_risk > 0 else math.inf, math.inf
-    else:
-        rate_lo = chi2.ppf(a / 2, 2 * n_esc) / (2 * at_risk)
+    if at_risk > 0.0:
+        # rate interval: chi2(a/2, 2 n) / (2 at_risk) .. chi2(1 - a/2, 2 n + 2) / (2 at_risk)
+        rate_lo = chi2.ppf(a / 2, 2 * n_esc) / (2 * at_risk) if n_esc > 0 else 0.0
         rate_hi = chi2.ppf(1 - a / 2, 2 * n_esc + 2) / (2 * at_risk)
-        mean = at_risk / n_esc
-    return {"mean": float(mean), "ci": [float(1.0 / rate_hi) if rate_hi > 0 else math.inf,
-                                        float(1.0 / rate_lo) if rate_lo > 0 else math.inf],
+    else:
+        rate_lo, rate_hi = 0.0, math.inf
+    return {"mean": at_risk / n_esc if n_esc > 0 else math.inf,
+            "ci": [_inverse(rate_hi), _inverse(rate_lo)],
             "escaped": n_esc, "censored": int(escaped.size - n_esc),
             "km_median_residual": _km_median(residual, escaped),
             "method": "exponential tail: escapes after t_end over the time at risk "
                       "[t_end, min(escape, t_max)], chi-square 95 % interval"}
+
+
+def _inverse(rate: float) -> float:
+    return float(1.0 / rate) if rate > 0.0 else math.inf
 
 
 def _km_median(residual: np.ndarray, escaped: np.ndarray) -> float | None:

@@ -108,9 +108,11 @@ class _WindowRecord:
         self.walls, self.times = [], []
 
     def on_chunk(self, seg, n_done, t_done):
+        """Strobe states at the section times inside the completed segments seg[:n_done]
+        (valid up to t_done)."""
         from ..core import kernel as eng
         t_lo = seg[0, 0]
-        sel = np.flatnonzero((self.ts >= t_lo) & ((self.ts < t_done) | (self.ts == t_done)))
+        sel = np.flatnonzero((self.ts >= t_lo) & (self.ts <= t_done))
         if sel.size:
             times = np.ascontiguousarray(self.ts[sel])
             idx = (np.searchsorted(seg[:n_done, 0], times, side="right") - 1).astype(np.int64)
