@@ -58,7 +58,7 @@ TRANSIENT_FACTOR = 3.0
 #: members of a motion class whose window exponent is measured
 N_LYAP = 3
 #: default t_max of the asymptotic view (see docs/attractors.md for its measured cost)
-T_MAX_DEFAULT = 1e5
+T_MAX_DEFAULT = 3e5
 CI_LEVEL = 0.95
 
 
