@@ -4,7 +4,7 @@ Run: python benchmarks/bench_census_asymptotic.py [--n 256] [--t-max 1e5] [--thr
 For each point: wall and CPU time (all threads) of the t_end view alone and with t_max,
 measured in this process, and the machine's load average (CPU time is the robust number on
 a shared machine). Points: the Fig 16 point (irregular transient), (0.13, 1, 0.1)
-(chatter transient) and a point of persistent chaos (the most expensive case: every state
+(chatter transient) and a point of lasting chaos (the most expensive case: every state
 runs to t_max).
 """
 import argparse
