@@ -1,7 +1,7 @@
 """Cost of the Lyapunov spectrum per impact, relative to ``simulate`` in the same process.
 
 Run: python benchmarks/bench_lyapunov.py [--repeat N]
-Both integrate the same trajectory to t_end (``simulate`` with periodic_shortcut=False, the
+CPU times, best of N. Both integrate the same trajectory to t_end (``simulate`` with periodic_shortcut=False, the
 spectrum's exact run with the Benettin frame and the window's regime): the ratio of the
 times is the ratio per impact. Goal of the issue: <= 3x. Prints the load average too.
 """
@@ -21,11 +21,13 @@ POINTS = (("1:1 (Fig 4a)", 0.05, 1.0, 0.05, (0.0, 0.0, 0.0, 0.0)),
 
 
 def best_of(fn, repeat):
+    """Smallest CPU time of ``repeat`` calls (single-threaded: robust to other processes
+    sharing the machine, unlike the wall time) and the last result."""
     best, out = float("inf"), None
     for _ in range(repeat):
-        t = time.perf_counter()
+        t = time.process_time()
         out = fn()
-        best = min(best, time.perf_counter() - t)
+        best = min(best, time.process_time() - t)
     return best, out
 
 
