@@ -232,3 +232,12 @@ def test_tangent_run_follows_the_census_trajectory_bit_for_bit():
     tr = TangentRun(p, st, oscillators(p), s0, 0.0, np.linspace(4000.0, 7000.0, 17)).run()
     assert np.array_equal(raw.solver_info["final_state"], tr.run_.cur[1:5])
     assert m["n_impacts_window"] == tr.n_impacts
+
+
+def test_irregular_torus_has_zero_leading_exponent():
+    """"irregular" (no strobe return) is not chaos: at (0.511, 1.26, 0.484) the motion from
+    rest has lambda_1 = 0 within its interval (quasi-periodic), the rest negative."""
+    res = vines.lyapunov(eta=0.511, omega=1.26, F=0.484, t_end=20000.0, t_transient=4000.0)
+    assert res.regime == "irregular"
+    assert res.ci[0][0] < 0.0 < res.ci[0][1] and abs(res.exponents[0]) < 1e-3
+    assert np.all(res.exponents[2:] < -0.1)
