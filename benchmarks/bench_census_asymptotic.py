@@ -31,8 +31,8 @@ def main():
     census(0.5, 0.9, 0.3077, n=2, t_max=8000.0)           # compile / load the caches
     for pt in POINTS:
         load = os.getloadavg()[0]
-        w0, c0, _ = timed(lambda: census(*pt, n=args.n, n_threads=args.threads))
-        w1, c1, c = timed(lambda: census(*pt, n=args.n, n_threads=args.threads,
+        w0, c0, _ = timed(lambda pt=pt: census(*pt, n=args.n, n_threads=args.threads))
+        w1, c1, c = timed(lambda pt=pt: census(*pt, n=args.n, n_threads=args.threads,
                                          t_max=args.t_max))
         print(f"{pt}: t_end view {w0:.1f} s wall / {c0:.1f} s CPU; with t_max = "
               f"{args.t_max:g}: {w1:.1f} s wall / {c1:.1f} s CPU (load {load:.1f} -> "

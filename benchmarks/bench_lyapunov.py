@@ -43,10 +43,10 @@ def main():
     print(f"t_end = {t_end:g}, window from {t_tr:g}; best of {args.repeat}")
     for label, eta, omega, F, s0 in POINTS:
         p = ModelParams(eta=eta, omega=omega, F=F)
-        t_sim, sim = best_of(lambda: vines.simulate(eta, omega, F, t_end=t_end,
-                                                    t_transient=t_tr, state0=s0,
-                                                    periodic_shortcut=False), args.repeat)
-        t_lya, lya = best_of(lambda: spectrum(p, st, s0), args.repeat)
+        sim_kw = dict(t_end=t_end, t_transient=t_tr, state0=s0, periodic_shortcut=False)
+        t_sim, sim = best_of(lambda p=p, kw=sim_kw: vines.simulate(p.eta, p.omega, p.F, **kw),
+                             args.repeat)
+        t_lya, lya = best_of(lambda p=p, s0=s0: spectrum(p, st, s0), args.repeat)
         n = sim.n_impacts
         print(f"{label}: {n} impacts ({sim.regime}; spectrum {lya.regime}, "
               f"{lya.n_sticks} sticks in the window)")

@@ -15,8 +15,12 @@ import vines
 from vines.attractors.lyapunov import spectrum
 from vines.core.exact import KernelRun, oscillators
 from vines.core.params import ModelParams, ParameterError, SolverSettings
-from vines.core.variational import (monodromy, saltation_impact, saltation_impact_stick,
-                                    stick_projection)
+from vines.core.variational import (
+    monodromy,
+    saltation_impact,
+    saltation_impact_stick,
+    stick_projection,
+)
 from vines.core.walls import impact_velocities
 from vines.orbits.periodic import find_1to1
 

@@ -18,8 +18,14 @@ from __future__ import annotations
 import argparse
 import math
 
-from ..core.params import D_DEFAULT, PARAM_BOUNDS, R_DEFAULT, T_END_DEFAULT, T_END_MAX, \
-    T_TRANSIENT_DEFAULT
+from ..core.params import (
+    D_DEFAULT,
+    PARAM_BOUNDS,
+    R_DEFAULT,
+    T_END_DEFAULT,
+    T_END_MAX,
+    T_TRANSIENT_DEFAULT,
+)
 
 #: flag -> allowed values (for the CLI's error messages)
 ALLOWED = {
@@ -94,6 +100,6 @@ def text(d: dict) -> str:
     lines = [f"eta = {p['eta']:g}, omega = {p['omega']:g}, F = {p['F']:g}: {d['regime']} over "
              f"[{d['settings']['t_transient']:g}, {d['settings']['t_end']:g}], "
              f"{d['n_impacts']} impacts, {d['n_sticks']} sticks"]
-    for i, (lam, (lo, hi)) in enumerate(zip(d["exponents"], d["ci"]), 1):
+    for i, (lam, (lo, hi)) in enumerate(zip(d["exponents"], d["ci"], strict=True), 1):
         lines.append(f"  lambda_{i} = {num(lam)}  [{num(lo)}, {num(hi)}]")
     return "\n".join(lines)

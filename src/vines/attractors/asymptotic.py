@@ -139,7 +139,7 @@ def continue_states(p, st, oscs, ends: list, t_max: float,
     else:
         with ThreadPoolExecutor(max_workers=n_threads) as ex:
             out = list(ex.map(work, idx))
-    return dict(zip(idx, out))
+    return dict(zip(idx, out, strict=True))
 
 
 def lifetime(residual: np.ndarray, escaped: np.ndarray, level: float = CI_LEVEL) -> dict:

@@ -306,15 +306,8 @@ def census(eta, omega, F, *, r=R_DEFAULT, d=D_DEFAULT, n=256, seed=0, box=DEFAUL
     members = np.full(len(ends), -1, dtype=np.int64)
     for j, g in enumerate(groups):
         members[g.members] = j
-<<<<<<< HEAD
-    return Census(params=p.as_dict(), settings=st.as_dict() | {"state0": None}, n=len(ends),
-                  seed=int(seed), box=dict(zip(BOX_NAMES, map(list, box), strict=False)),
-                  attractors=attractors,
-                  from_rest=groups.index(rest) if rest is not None else None,
-                  unsettled_fraction=n_unsettled / len(ends), members=members)
-=======
     out = Census(params=p.as_dict(), settings=st.as_dict() | {"state0": None}, n=len(ends),
-                 seed=int(seed), box=dict(zip(BOX_NAMES, map(list, box))),
+                 seed=int(seed), box=dict(zip(BOX_NAMES, map(list, box), strict=False)),
                  attractors=attractors,
                  from_rest=groups.index(rest) if rest is not None else None,
                  unsettled_fraction=n_unsettled / len(ends), members=members)
@@ -414,5 +407,4 @@ def _rest_asymptotic(out: Census, p, st, oscs, groups, rest, t_max) -> int | Non
                         "lyapunov_window": None}
         out.attractors.append(a)
     return j
->>>>>>> 93dc8f4 (attractors.asymptotic: census t_max view (continuations, escape times, exponential-tail lifetimes, status, leading exponents))
 

@@ -30,9 +30,19 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..core.params import (D_DEFAULT, MAX_IMPACTS_DEFAULT, R_DEFAULT, ROOT_TOL_DEFAULT,
-                           T_END_DEFAULT, T_TRANSIENT_DEFAULT, V_STICK_DEFAULT, ModelParams,
-                           ParameterError, SolverSettings, check_int)
+from ..core.params import (
+    D_DEFAULT,
+    MAX_IMPACTS_DEFAULT,
+    R_DEFAULT,
+    ROOT_TOL_DEFAULT,
+    T_END_DEFAULT,
+    T_TRANSIENT_DEFAULT,
+    V_STICK_DEFAULT,
+    ModelParams,
+    ParameterError,
+    SolverSettings,
+    check_int,
+)
 
 #: batches of the window for the batch-means confidence intervals
 N_BATCHES_DEFAULT = 16

@@ -353,7 +353,7 @@ class TangentRun:
         self.sums = np.zeros((self.edges.size - 1, 4))
         self.status = None
 
-    def run(self, on_chunk=None) -> "TangentRun":
+    def run(self, on_chunk=None) -> TangentRun:
         from . import kernel as eng
         run, p = self.run_, self.p
         sec = np.full(eng.N_SEC, math.nan)
