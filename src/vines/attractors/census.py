@@ -343,7 +343,7 @@ def _asymptotic_view(out: Census, p, st, oscs, states, ends, groups, rest, t_max
         a = _attractor(p, st, oscs, g, ends, states, n)
         a.window_regimes = {}
         out.attractors.append(a)
-    for j, (g, a) in enumerate(zip(groups, out.attractors)):
+    for j, (g, a) in enumerate(zip(groups, out.attractors, strict=True)):
         k = int(np.count_nonzero(members == j))
         view = {"basin_fraction_asymptotic": k / n, "ci_asymptotic": _wilson(k, n)}
         if g.end.kind == "motion":
@@ -365,10 +365,10 @@ def _motion_view(p, st, states, ends, g, conts, members, t_max, n_threads) -> di
     t_out = np.array([c.t_escape if c.outcome == "escaped" else t_max for c in cs])
     life = asy.lifetime(t_out - st.t_end, escaped)
     n_settled = sum(c.outcome == "settled" for c in cs)
-    dest = [int(members[i]) for i, c in zip(mem, cs) if c.outcome == "escaped"]
+    dest = [int(members[i]) for i, c in zip(mem, cs, strict=True) if c.outcome == "escaped"]
     lam_long = None
     if mem and life["escaped"] == 0 and n_settled < len(mem):
-        first = next(i for i, c in zip(mem, cs) if c.outcome == "censored")
+        first = next(i for i, c in zip(mem, cs, strict=True) if c.outcome == "censored")
         lam_long = asy.long_lambda(p, st, t_max, ends[first])
     status, horizon = asy.class_status(life, n_settled, len(mem), lam_long, st.t_end,
                                        t_max)
