@@ -9,7 +9,8 @@ docs/architecture.md.
 
 ``simulate``, ``simulate_batch``, ``SimulationResult`` and ``IMPACT_DTYPE`` are imported on
 first use, so that code which only reads datasets or draws figures does not load numba
-and the compiled kernels.
+and the compiled kernels; ``open_run`` (a finished run's datasets as one
+``xarray.DataTree``) likewise, so that ``import vines`` does not load xarray.
 """
 from importlib import import_module
 from importlib.metadata import PackageNotFoundError, version
@@ -27,10 +28,11 @@ except PackageNotFoundError:   # sources used without installing (not a release)
 
 #: public names loaded on first access, and their modules
 _LAZY = {"simulate": ".core.simulation", "simulate_batch": ".core.simulation",
-         "SimulationResult": ".core.result", "IMPACT_DTYPE": ".core.result"}
+         "SimulationResult": ".core.result", "IMPACT_DTYPE": ".core.result",
+         "open_run": ".data.run"}
 
 __all__ = ["simulate", "simulate_batch", "ModelParams", "SolverSettings", "ParameterError",
-           "SimulationResult", "IMPACT_DTYPE", "D_DEFAULT", "L_HALF_M", "__version__"]
+           "SimulationResult", "IMPACT_DTYPE", "D_DEFAULT", "L_HALF_M", "open_run", "__version__"]
 
 
 def __getattr__(name):
