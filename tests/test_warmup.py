@@ -1,6 +1,6 @@
 """The numba warm-up before a run's first job (vines.pipeline.warmup): its stamp says warm
-only for the sources, numba and CPU it was compiled for. (That the warm-up fills the
-cache is measured on the smoke run, see the report in the changelog; not a test.)"""
+only for the sources, numba and CPU it was compiled for. (What the warm-up saves is a time,
+measured by benchmarks/bench_pipeline.py on a fresh clone, cold and warm; not a test.)"""
 import pytest
 
 import vines._numba_cache as numba_cache
