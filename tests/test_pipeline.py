@@ -236,6 +236,7 @@ TINY = {
 
 def _copy_workflow(dst: Path, with_src_copy=False):
     shutil.copy(ROOT / "Snakefile", dst / "Snakefile")
+    shutil.copy(ROOT / "environment.yml", dst / "environment.yml")   # the rules' conda env
     shutil.copytree(ROOT / "workflow", dst / "workflow",
                     ignore=shutil.ignore_patterns("__pycache__"))
     shutil.copytree(ROOT / "config", dst / "config")
