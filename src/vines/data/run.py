@@ -2,9 +2,9 @@
 
 The tree mirrors the run's folders: one group per stage folder (``measures``, ``sweeps``,
 ``branches``, ...) and below it one group per dataset, named after its file without
-``.nc`` (grid chunks one level deeper, ``grid/<grid>/chunk_<key>``). Nothing is read until
-used: each dataset is opened lazily (values come from the file on first access), so opening
-a run of 50 files costs milliseconds. Example::
+``.nc`` (grid chunks one level deeper, ``grid/<grid>/chunk_<key>``). Each dataset is opened
+lazily: opening reads its metadata and coordinates, the values of a variable come from the
+file on first access (``.load()``, ``.values``, a plot). Example::
 
     >>> import vines
     >>> run = vines.open_run("results/smoke")
