@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 from vines.core.params import ModelParams, ParameterError
-from vines.orbits.periodic import find_1to1
+from vines.orbits.periodic import orbits_1to1
 from vines.orbits.sequence import (
     canonical_walls,
     family_name,
@@ -98,7 +98,7 @@ def _assert_same_spectrum(ev_maps, ev_fd, tol=1e-5):
 @pytest.mark.parametrize("simulation", [False, True])
 def test_LR_one_period_is_the_1to1_solver(eta, omega, F, simulation):
     p = ModelParams(eta=eta, omega=omega, F=F)
-    ref = find_1to1(p, None, None, simulation=simulation)
+    ref = orbits_1to1(p, simulation=simulation)
     got = find_sequence(p, "LR", 1, simulation=simulation)
     assert len(got) == len(ref) > 0
     for o, q in zip(got, ref, strict=True):
@@ -271,7 +271,7 @@ def test_pending_periodic_walls_command():
     assert all(keys <= set(s) and len(s["dw"]) == 4 for s in d["solutions"])
     assert d["solutions"][0]["stable"] and "LLRR/1" in periodic_walls.text(d)
     one = periodic_walls.run(_args(walls="lr", eta=0.55, omega=1.0))
-    ref = find_1to1(ModelParams(eta=0.55, omega=1.0, F=0.4), None, None)
+    ref = orbits_1to1(ModelParams(eta=0.55, omega=1.0, F=0.4))
     assert [s["lambda_max"] for s in one["solutions"]] == [o.lambda_max for o in ref]
     assert [s["dw"] for s in one["solutions"]] == [[o.dw_L, o.dw_R] for o in ref]
     for bad, name in (({"walls": "LQ"}, "walls"), ({"periods": "0"}, "periods"),
