@@ -24,7 +24,7 @@ def add_parser(subparsers) -> VinesArgumentParser:
         description="Run N scrambled-Sobol initial states (z_m, z_m' in [-1.5, 1.5], "
                     "w = z_m - z_b in [-1, 1], z_b' in [-1.5, 1.5], forcing phase 0) until "
                     "they settle on a periodic orbit or reach t-end, group the end states "
-                    "into attractors and report each one's basin fraction with a 95 %% "
+                    "into attractors and report each one's basin fraction with a 95 % "
                     "Wilson interval, and which one the start from rest reaches.",
     )
     add_model_args(p)

@@ -185,8 +185,15 @@ def _text(d: dict, values: dict, indent: str = "") -> str:
     """Table of a ``Branch.to_dict()`` (and of the branches switched to)."""
     param = d["param"]
     name = d.get("family") or f"{d.get('walls')}/{d.get('periods')}"
-    lines = [f"{indent}{name} branch in {param} from {values['start']:g} towards "
-             f"{values['stop']:g}: {len(d['branch'])} points ({d['stopped']})"]
+    if indent and d["branch"]:
+        # a switched branch starts where it is born, not at --start, and runs either way
+        first, last = d["branch"][0][param], d["branch"][-1][param]
+        head = (f"born at {param} = {first:.7g}, followed "
+                f"{'up' if last >= first else 'down'} to {last:.7g}")
+    else:
+        head = f"from {values['start']:g} towards {values['stop']:g}"
+    lines = [f"{indent}{name} branch in {param} {head}: {len(d['branch'])} points "
+             f"({d['stopped']})"]
     for pt in d["branch"]:
         lines.append(f"{indent}  {param} = {pt[param]:.6g}  |lambda_max| = "
                      f"{pt['lambda_max']:.6g}  stable = {pt['stable']}  symmetric = "

@@ -43,7 +43,7 @@ def add_parser(subparsers) -> VinesArgumentParser:
         help="choose a VI NES (ball mass ratio, clearance) for a frequency band and base "
              "amplitudes, against the LO alone and the optimal TMD of the same mass",
         description="Worst-case transmissibility x_max/A over the band omega = w/w0 and the "
-                    "base amplitudes, from rest and over every attractor holding >= 1 %% of "
+                    "base amplitudes, from rest and over every attractor holding >= 1 % of "
                     "a census's states, for a given design (--eta, --clearance) or the best "
                     "one with eta <= --eta-max (grid over eta and log clearance, then a "
                     "compass search). References: the LO alone and the TMD of mass ratio "
