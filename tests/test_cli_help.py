@@ -32,3 +32,14 @@ def test_switched_branch_header_names_where_it_is_born():
     assert lines[0].startswith("symmetric branch in eta from 0.12 towards 0.3")
     head = [ln for ln in lines if "asymmetric branch" in ln][0]
     assert "born at eta = 0.1496, followed down to 0.12" in head
+
+
+def test_continue_text_is_a_summary_unless_all():
+    args = ["continue", "--param", "F", "--start", "0.3", "--stop", "0.01", "--eta", "0.2",
+            "--omega", "1"]
+    short, full = run_vines(*args), run_vines(*args, "--all")
+    assert short.returncode == full.returncode == 0
+    n_short, n_full = len(short.stdout.splitlines()), len(full.stdout.splitlines())
+    assert n_short <= 40 < n_full
+    events = [ln for ln in full.stdout.splitlines() if "event " in ln]
+    assert events and all(ev in short.stdout for ev in events)

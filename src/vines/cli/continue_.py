@@ -72,6 +72,9 @@ def add_parser(subparsers) -> VinesArgumentParser:
                         f"[integer >= 1 and <= {MAX_POINTS_MAX}; default {MAX_POINTS_DEFAULT}]")
     add_model_args(p, optional_group="model parameters (the two not continued are required)")
     add_walls_args(p, "continue an orbit of this wall sequence (arclength only)")
+    p.add_argument("--all", action="store_true",
+                   help="text output: every point of every branch (default: a summary with "
+                        f"the events and {N_SAMPLES} points per branch)")
     p.add_argument("--json", action="store_true",
                    help="print one JSON object on stdout (keys: branch, events)")
     p.set_defaults(_parser=p)
@@ -130,7 +133,8 @@ def run(args: argparse.Namespace) -> int:
     others = _fixed_params(args)
     values, params = _end_points(args, others)
     if args.walls is not None:
-        return emit(args.json, _run_walls(args, values, params), lambda d: _text(d, values))
+        return emit(args.json, _run_walls(args, values, params),
+                    lambda d: _text(d, values, every=args.all))
     step, max_points, max_inadmissible = _limits(args, values)
     if args.switch and (args.method != "arclength" or args.branch != "symmetric"):
         args._parser.error(f"argument --switch: not allowed with --method {args.method} "
@@ -144,7 +148,7 @@ def run(args: argparse.Namespace) -> int:
                              r=params.r, d=params.d, max_points=max_points,
                              method=args.method, branch=args.branch, switch=args.switch,
                              max_inadmissible=max_inadmissible)
-    return emit(args.json, br.to_dict(), lambda d: _text(d, values))
+    return emit(args.json, br.to_dict(), lambda d: _text(d, values, every=args.all))
 
 
 def _run_walls(args: argparse.Namespace, values: dict, stop: ModelParams) -> dict:
@@ -181,8 +185,21 @@ def _dw(pt: dict) -> str:
     return "dw = [" + ", ".join(f"{v:.6g}" for v in pt["dw"]) + "]"
 
 
-def _text(d: dict, values: dict, indent: str = "") -> str:
-    """Table of a ``Branch.to_dict()`` (and of the branches switched to)."""
+#: points shown per branch in the default summary (first, last, evenly spaced between)
+N_SAMPLES = 5
+
+
+def _samples(points: list) -> list:
+    """At most N_SAMPLES points: the first, the last and evenly spaced ones between."""
+    if len(points) <= N_SAMPLES:
+        return points
+    idx = sorted({round(k * (len(points) - 1) / (N_SAMPLES - 1)) for k in range(N_SAMPLES)})
+    return [points[i] for i in idx]
+
+
+def _text(d: dict, values: dict, indent: str = "", every: bool = False) -> str:
+    """Summary of a ``Branch.to_dict()`` (and of the branches switched to): its ends, its
+    events and N_SAMPLES points; every point with ``every``."""
     param = d["param"]
     name = d.get("family") or f"{d.get('walls')}/{d.get('periods')}"
     if indent and d["branch"]:
@@ -194,7 +211,11 @@ def _text(d: dict, values: dict, indent: str = "") -> str:
         head = f"from {values['start']:g} towards {values['stop']:g}"
     lines = [f"{indent}{name} branch in {param} {head}: {len(d['branch'])} points "
              f"({d['stopped']})"]
-    for pt in d["branch"]:
+    pts = d["branch"] if every else _samples(d["branch"])
+    if len(pts) < len(d["branch"]):
+        lines.append(f"{indent}  {len(pts)} of the points (--all: every point, --json: "
+                     "everything)")
+    for pt in pts:
         lines.append(f"{indent}  {param} = {pt[param]:.6g}  |lambda_max| = "
                      f"{pt['lambda_max']:.6g}  stable = {pt['stable']}  symmetric = "
                      f"{pt['symmetric']}  admissible = {pt['admissible']}  {_dw(pt)}")
@@ -202,5 +223,5 @@ def _text(d: dict, values: dict, indent: str = "") -> str:
         con = f" (meets the {ev['connects']} branch)" if ev.get("connects") else ""
         lines.append(f"{indent}  event {ev['type']} at {param} = {ev['at']:.7g}{con}")
     for sw in d["switched"]:
-        lines.append(_text(sw, values, indent + "  "))
+        lines.append(_text(sw, values, indent + "  ", every))
     return "\n".join(lines)
