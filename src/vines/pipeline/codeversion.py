@@ -19,6 +19,7 @@ NOT_TRACKED = ("cli", "__main__.py")
 COMPUTE = ("core", "orbits", "data", "pipeline")           # every dataset stage
 STUDIES = COMPUTE + ("reference", "studies")               # work-precision, convergence
 ATTRACTORS = COMPUTE + ("attractors",)                     # robust-TET maps, basin slices
+DESIGN = STUDIES + ("attractors",)                         # designs (census of the attractors)
 FIGURES = ("plotting",)                                    # figure rules (+ their script)
 
 
