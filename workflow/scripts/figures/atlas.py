@@ -5,7 +5,6 @@ unstable or non-admissible orbits were found, white where no seed reached any fa
 (right) the regime the simulation from rest settles on (Fig 12's grid at the same F,
 grids.fig12_*) in the same colours. The atlas is a finite search: absent means that no
 seed reached a family, not that none exists."""
-import numpy as np
 
 import vines.plotting as P
 from vines.pipeline.jobs import run_job
