@@ -3,7 +3,7 @@
 One function per stage, named as the rule, the rule file, the workflow script and the
 output folder: ``simulate_grid``, ``extract_measures``, ``bifurcation_sweep``,
 ``map_solve``, ``stability_map``, ``boundaries``, ``timehistory``, ``robust_map``,
-``basin_slice``, ``work_precision``, ``convergence``. Each calls the numerics
+``basin_slice``, ``work_precision``, ``convergence``, ``design``, ``orbit_atlas``. Each calls the numerics
 (``vines.core``, ``vines.orbits``, ``vines.attractors``, ``vines.studies``), lets
 ``vines.pipeline.execution`` spread independent tasks over dask, and hands plain arrays to
 ``vines.data.builders``. Results are assembled by index, so the
