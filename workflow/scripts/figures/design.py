@@ -41,8 +41,13 @@ def search_panel(fig, ax, ds, i):
     L = ds["search_clearance"].values * 1e3
     eta = ds["search_eta"].values
     z = ds["search_worst_ratio"].values
-    P.contour_map(fig, ax, L, eta, z, label=r"worst $x_{\max}/A$ (from rest)", cells=True,
-                  log=bool(np.nanmin(z) > 0))
+    label = r"worst $x_{\max}/A$ (from rest)"
+    if min(z.shape) >= 2:
+        P.contour_map(fig, ax, L, eta, z, label=label, cells=True, log=bool(np.nanmin(z) > 0))
+    else:   # a one-row or one-column grid: one marker per design
+        LL, EE = np.meshgrid(L, eta)
+        sc = ax.scatter(LL, EE, c=z, s=120, marker="s", cmap=P.palette.colormap())
+        fig.colorbar(sc, ax=ax, label=label)
     ax.set_xscale("log")
     ax.plot(float(ds["vines_clearance"]) * 1e3, float(ds["vines_eta"]), "*", color="white",
             mec="black", ms=16, label="chosen design")
