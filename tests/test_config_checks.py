@@ -74,9 +74,9 @@ BAD = [  # (path to set, keys joined by '/', value, expected key in the message,
     (f"designs/{DZ}/n_eta", 10**6, f"designs.{DZ}.n_eta", ""),
     (f"designs/{DZ}/census_n", 10**6, f"designs.{DZ}", "limits.max_grid_points"),
     # orbit atlases: a stability map that exists, or a whole grid the model accepts
-    (f"orbit_atlases/{OA}/stability_map", "nope", f"orbit_atlases.{OA}.stability_map",
+    ("orbit_atlases/ref", {"stability_map": "nope"}, "orbit_atlases.ref.stability_map",
      "not a stability_maps entry"),
-    (f"orbit_atlases/{OA}/F", 0.2, f"orbit_atlases.{OA}.F", "not both"),
+    (f"orbit_atlases/{OA}/stability_map", SM, f"orbit_atlases.{OA}.eta", "not both"),
     ("orbit_atlases/own", {"eta": [0.1], "omega": [1.0]}, "orbit_atlases.own.F", "missing"),
     ("orbit_atlases/own", {"eta": [0.0, 0.1], "omega": [1.0], "F": 0.2},
      "orbit_atlases.own.eta", "eta"),
@@ -132,3 +132,13 @@ def test_yaml_syntax_error_names_file_and_line(tmp_path):
                        capture_output=True, text=True, timeout=60)
     assert r.returncode == 2 and "Traceback" not in r.stderr
     assert len(r.stderr.strip().splitlines()) == 1 and str(bad) in r.stderr
+
+
+def test_an_atlas_may_name_a_stability_map():
+    from vines.pipeline.config_checks import atlas_grid
+    cfg = copy.deepcopy(SMOKE)
+    cfg["orbit_atlases"] = {"ref": {"stability_map": SM}}
+    validate_config(cfg, SCHEMA)
+    sm = cfg["stability_maps"][SM]
+    assert atlas_grid(cfg, "ref") == {k: sm[k] for k in ("eta", "omega", "F")}
+    assert cfg["orbit_atlases"]["ref"]["sim_t_end"] == 600.0
