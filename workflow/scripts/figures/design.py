@@ -4,6 +4,7 @@ and over attractors (dashed orange), one panel per base amplitude, the worst val
 from rest marked; and the worst-case ratio from rest of every grid design over
 (L, eta) with the chosen design starred."""
 import numpy as np
+from matplotlib.colors import LogNorm
 
 import vines.plotting as P
 from vines.pipeline.jobs import run_job
@@ -34,26 +35,40 @@ def curve_panel(ax, ds, j, k):
     ax.set_xlabel(P.LABELS["omega"])
     ax.set_ylabel(r"$x_{\max}/A$")
     A, F = float(ds["amplitude"][j]), float(ds["F"][j])
-    P.panel_label(ax, k, rf"$A$ = {P.fmt(A * 1e3)} mm, $F$ = {P.fmt(F)}")
+    P.panel_label(ax, k, rf"$A$ = {P.fmt(A * 1e3)} mm, $F$ = {F:.3g}")
+
+
+def _log_edges(v):
+    """Cell edges half-way in log between values (one-value axes: a factor 1.2 around)."""
+    lv = np.log10(v)
+    mid = (lv[1:] + lv[:-1]) / 2 if lv.size > 1 else np.array([])
+    lo = 2 * lv[0] - mid[0] if mid.size else lv[0] - 0.08
+    hi = 2 * lv[-1] - mid[-1] if mid.size else lv[-1] + 0.08
+    return 10.0 ** np.concatenate([[lo], mid, [hi]])
+
+
+def _lin_edges(v):
+    mid = (v[1:] + v[:-1]) / 2 if v.size > 1 else np.array([])
+    step = (v[-1] - v[0]) / (v.size - 1) if v.size > 1 else 0.1 * v[0]
+    return np.concatenate([[v[0] - (v[1] - v[0]) / 2 if mid.size else v[0] - step / 2], mid,
+                           [v[-1] + (v[-1] - v[-2]) / 2 if mid.size else v[-1] + step / 2]])
 
 
 def search_panel(fig, ax, ds, i):
+    """One cell per search-grid design over (L, eta): L logarithmic, cells halfway in log."""
     L = ds["search_clearance"].values * 1e3
     eta = ds["search_eta"].values
     z = ds["search_worst_ratio"].values
-    label = r"worst $x_{\max}/A$ (from rest)"
-    if min(z.shape) >= 2:
-        P.contour_map(fig, ax, L, eta, z, label=label, cells=True, log=bool(np.nanmin(z) > 0))
-    else:   # a one-row or one-column grid: one marker per design
-        LL, EE = np.meshgrid(L, eta)
-        sc = ax.scatter(LL, EE, c=z, s=120, marker="s", cmap=P.palette.colormap())
-        fig.colorbar(sc, ax=ax, label=label)
+    norm = LogNorm(np.nanmin(z), np.nanmax(z)) if np.nanmin(z) > 0 else None
+    mesh = ax.pcolormesh(_log_edges(L), _lin_edges(eta), z, cmap=P.palette.colormap(),
+                         norm=norm, rasterized=True)
+    fig.colorbar(mesh, ax=ax, label=r"worst $x_{\max}/A$ from rest (log scale)")
     ax.set_xscale("log")
     ax.plot(float(ds["vines_clearance"]) * 1e3, float(ds["vines_eta"]), "*", color="white",
-            mec="black", ms=16, label="chosen design")
+            mec="black", ms=16)
     ax.set_xlabel(r"clearance $L$ (mm)")
     ax.set_ylabel(P.LABELS["eta"])
-    P.panel_label(ax, i, "search grid")
+    P.panel_label(ax, i, "search grid, star: chosen design")
 
 
 def summary(ds) -> str:
@@ -78,14 +93,15 @@ def main(sm):
             curve_panel(axes[i, j], ds, j, k)
             axes[i, j].sharey(axes[i, 0])
             k += 1
-        axes[i, 0].legend(fontsize=7, loc="lower center", frameon=False)
         if search:
             search_panel(fig, axes[i, n - 1], ds, k)
             k += 1
         for j in range(n_amp, n - int(search)):
             axes[i, j].set_visible(False)
-        axes[i, 0].annotate(summary(ds), (0, 1.13), xycoords="axes fraction", fontsize=8)
         print(summary(ds))
+    fig.suptitle("\n".join(summary(ds) for ds in designs), fontsize=9)
+    fig.legend(handles=axes[0, 0].get_legend_handles_labels()[0], loc="outside lower center",
+               ncol=5, fontsize=8, frameon=False)
     P.save(fig, sm.output.pdf, sm.output.png)
 
 
