@@ -1,7 +1,7 @@
 """CF compliance of the pipeline's datasets (docs/cf-compliance.md).
 
 Tiny datasets of every pipeline stage (grid chunk, measures, sweep, branch, stability map,
-boundary curves, time history, robust-TET map, basin slice) are built with the stage functions, written with ``write_dataset`` and checked
+boundary curves, time history, robust-TET map, basin slice, design, orbit atlas) are built with the stage functions, written with ``write_dataset`` and checked
 
 * by the IOOS compliance checker, suite ``cf:1.10``: no high- or medium-priority failure
   except the documented ones (see ``KNOWN``), no checker exception except the documented one;
@@ -42,8 +42,12 @@ BOUNDARIES = {"F": 0.3077, "eta_range": [0.05, 1.0], "omega_range": [0.7, 1.4], 
 ROBUST = {"eta": [0.1, 0.5], "omega": [0.9, 1.1], "F": 0.3077, "n": 4, "seed": 0,
           "threshold": 0.7}
 SLICE = {"eta": 0.1, "omega": 0.8, "F": 0.2, "z_m0": [-1.0, 0.0, 1.0], "v_m0": [-1.0, 1.0]}
+DESIGN = {"omega_band": [0.9, 1.1], "n_omega": 3, "amplitudes_m": [0.003], "eta_max": 0.1,
+          "n_eta": 1, "n_clearance": 2, "census_n": 2, "t_end": 200.0, "t_transient": 100.0,
+          "description": None}
+ATLAS = {"eta": [0.1, 0.5], "omega": [0.9, 1.0], "F": 0.3077}
 KINDS = ("grid_chunk", "measures", "sweep", "branch", "stability", "boundaries", "timehistory",
-         "robust", "basin_slice")
+         "robust", "basin_slice", "design", "atlas")
 RAGGED = ("sweep", "branch", "boundaries", "timehistory")
 
 #: documented findings of the IOOS checker (docs/cf-compliance.md): it recognises a DSG
@@ -76,6 +80,9 @@ def datasets(tmp_path_factory):
     put("timehistory", stages.timehistory(TIMEHISTORY, model=MODEL, simulation=SIM, **kw))
     put("robust", stages.robust_map(ROBUST, model=MODEL, simulation=SIM, **kw))
     put("basin_slice", stages.basin_slice(SLICE, model=MODEL, simulation=SIM, **kw))
+    put("design", stages.design(DESIGN, model=MODEL, simulation={"v_stick": 1e-6,
+                                "max_impacts": 10**6, "root_tol": 1e-13}, **kw))
+    put("atlas", stages.orbit_atlas(ATLAS, sim_t_end=100.0, model=MODEL, **kw))
     return out
 
 

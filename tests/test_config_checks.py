@@ -24,6 +24,7 @@ def _first(section):
 SW, BR, SM, TH = _first("sweeps"), _first("branches"), _first("stability_maps"), _first("timehistories")
 WP = sorted(SMOKE["work_precision"]["cases"])[0]
 GR, BD = _first("grids"), _first("boundaries")
+DZ, OA = _first("designs"), _first("orbit_atlases")
 
 BAD = [  # (path to set, keys joined by '/', value, expected key in the message, expected words)
     ("simulation/t_end", math.nan, "t_end", "finite"),
@@ -61,6 +62,29 @@ BAD = [  # (path to set, keys joined by '/', value, expected key in the message,
     ("convergence/grid/resolutions", [9, 5, 17], "convergence.grid.resolutions", "nest"),
     ("convergence/grid/resolutions", [5, 8, 17], "convergence.grid.resolutions", "nest"),
     ("convergence/grid/eta_range", [1.0, 0.01], "convergence.grid.eta_range", "lo < hi"),
+    # designs: the validators of vines.design, named by the config key
+    (f"designs/{DZ}/amplitudes_m", [0.003, -1.0], f"designs.{DZ}.amplitudes_m", ""),
+    (f"designs/{DZ}/omega_band", [1.2, 0.8], f"designs.{DZ}.omega_band", ""),
+    (f"designs/{DZ}/eta", 0.1, f"designs.{DZ}.eta_max", "do not give eta"),
+    (f"designs/{DZ}/clearance_range_m", [0.1, 0.01], f"designs.{DZ}.clearance_range_m", ""),
+    ("designs/both", {"amplitudes_m": [0.003], "eta_max": 0.1, "c_Ns_per_m": 2.0, "d": 0.01},
+     "designs.both.d", "not both"),
+    (f"designs/{DZ}/c_Ns_per_m", 1e9, f"designs.{DZ}.c_Ns_per_m", ""),
+    (f"designs/{DZ}/t_transient", 1e9, f"designs.{DZ}.t_transient", ""),
+    (f"designs/{DZ}/n_eta", 10**6, f"designs.{DZ}.n_eta", ""),
+    (f"designs/{DZ}/census_n", 10**6, f"designs.{DZ}", "limits.max_grid_points"),
+    # orbit atlases: a stability map that exists, or a whole grid the model accepts
+    ("orbit_atlases/ref", {"stability_map": "nope"}, "orbit_atlases.ref.stability_map",
+     "not a stability_maps entry"),
+    (f"orbit_atlases/{OA}/stability_map", SM, f"orbit_atlases.{OA}.eta", "not both"),
+    ("orbit_atlases/own", {"eta": [0.1], "omega": [1.0]}, "orbit_atlases.own.F", "missing"),
+    ("orbit_atlases/own", {"eta": [0.0, 0.1], "omega": [1.0], "F": 0.2},
+     "orbit_atlases.own.eta", "eta"),
+    ("orbit_atlases/own", {"eta": {"start": 0.01, "stop": 1, "num": 1000},
+                           "omega": {"start": 0.5, "stop": 1.5, "num": 1000}, "F": 0.2},
+     "orbit_atlases.own", "limits.max_grid_points"),
+    (f"orbit_atlases/{OA}/sim_t_end", 1e300, f"orbit_atlases.{OA}.sim_t_end",
+     "limits.max_t_end"),
 ]
 
 
@@ -137,3 +161,11 @@ def test_shipped_convergence_studies_name_the_figure_points_they_share():
             for p in cfg["convergence"][study]["points"]:
                 if "timehistory" not in p:
                     assert (p["eta"], p["omega"], p["F"]) not in histories, (name, study, p)
+def test_an_atlas_may_name_a_stability_map():
+    from vines.pipeline.config_checks import atlas_grid
+    cfg = copy.deepcopy(SMOKE)
+    cfg["orbit_atlases"] = {"ref": {"stability_map": SM}}
+    validate_config(cfg, SCHEMA)
+    sm = cfg["stability_maps"][SM]
+    assert atlas_grid(cfg, "ref") == {k: sm[k] for k in ("eta", "omega", "F")}
+    assert cfg["orbit_atlases"]["ref"]["sim_t_end"] == 600.0

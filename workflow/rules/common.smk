@@ -26,11 +26,13 @@ from vines.pipeline.axes import chunk_map, grid_axes
 from vines.pipeline.codeversion import (
     ATTRACTORS,
     COMPUTE,
+    DESIGN,
     FIGURES,
     STUDIES,
     code_version,
 )
 from vines.pipeline.config import ConfigError, load_schema, load_yaml, validate_config
+from vines.pipeline.config_checks import atlas_grid
 
 try:
     # Snakemake's YAML reading keeps the last of a key given twice: refuse that first
@@ -54,6 +56,7 @@ SIMULATION = dict(config["simulation"])
 CODE = code_version(COMPUTE)
 CODE_STUDY = code_version(STUDIES)
 CODE_ATTRACTORS = code_version(ATTRACTORS)
+CODE_DESIGN = code_version(DESIGN)
 CODE_FIGURES = code_version(FIGURES)
 
 GRIDS = config["grids"]
@@ -69,6 +72,8 @@ BASIN_SLICES = config["basin_slices"]
 WORK_PRECISION = config["work_precision"]
 WORK_PRECISION_SETTINGS = {k: v for k, v in WORK_PRECISION.items() if k != "cases"}
 CONVERGENCE = config["convergence"]
+DESIGNS = config["designs"]
+ORBIT_ATLASES = config["orbit_atlases"]
 
 # A damaged dataset (a truncated chunk, a disk error) would look finished to Snakemake:
 # stop before any job, naming the file and the command that recomputes it.
@@ -127,6 +132,8 @@ STAGE_ENTRIES = {
     "basin_slice": BASIN_SLICES,
     "work_precision": WORK_PRECISION["cases"],
     "convergence": CONVERGENCE,
+    "design": DESIGNS,
+    "orbit_atlas": ORBIT_ATLASES,
 }
 
 

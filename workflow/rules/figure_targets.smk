@@ -45,6 +45,14 @@ def _slices(p):
     return _named("basin_slice", p)
 
 
+def _designs(p):
+    return _named("design", p)
+
+
+def _atlases(p):
+    return _named("orbit_atlas", p)
+
+
 # figure -> named inputs (lists of dataset files); every list must be non-empty
 FIG_INPUTS = {
     "fig2": {"measures": _measures("fig2")},
@@ -77,6 +85,9 @@ FIG_INPUTS = {
         "boundaries": _boundaries("fig16"),
     },
     "basin_slices": {"slices": _slices("basin")},
+    # beyond the paper: absorber design against the TMD, the periodic-orbit atlas
+    "design": {"designs": _designs("design")},
+    "atlas": {"atlases": _atlases("atlas"), "measures": _measures("fig12")},
     # beyond the paper: the solver studies
     "workprecision": {
         "cases": [dataset("work_precision", c) for c in WORK_PRECISION["cases"]]

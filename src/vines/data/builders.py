@@ -23,6 +23,10 @@ import xarray as xr
 from ..core.conventions import BATCH_FIELDS
 from ..core.params import PARAM_NAMES
 from .schema import (
+    ATLAS_ATTRS,
+    ATLAS_FAMILY_ATTRS,
+    ATLAS_FLAGS,
+    ATLAS_NOTE,
     BASIN_SLICE_ATTRS,
     BATCH_ATTRS,
     BOUNDARY_CURVE_ATTRS,
@@ -32,6 +36,8 @@ from .schema import (
     COORD_ATTRS,
     COUNT_DTYPE,
     DERIVED_ATTRS,
+    DESIGN_ATTRS,
+    DESIGN_UNITS,
     FEATURE_TYPE,
     FLAG_MEANINGS,
     MEASURE_ATTRS,
@@ -506,3 +512,92 @@ def convergence_dataset(study: str, result, attrs: dict | None = None) -> xr.Dat
         raise ValueError(f"unknown convergence study {study!r}: one of "
                          f"{', '.join(CONVERGENCE_BUILDERS)}") from None
     return build(result, attrs)
+
+
+# ------------------------------------------------------------------ design, orbit atlas
+
+def _dv(name, dims, data, dtype="f8") -> xr.Variable:
+    return xr.Variable(dims, np.asarray(data, dtype=dtype),
+                       {"long_name": DESIGN_ATTRS[name], "units": DESIGN_UNITS.get(name, "1")})
+
+
+def _nan(x) -> float:
+    return float("nan") if x is None else float(x)
+
+
+def design_dataset(result, attrs: dict) -> xr.Dataset:
+    """A design (``studies.design.DesignResult``): curves over (amplitude, omega), values
+    per amplitude, the search grid (an optimisation only) and the scalars of the LO alone,
+    the optimal TMD and the VI NES design. ``attrs`` (provenance) are merged over the
+    design's own (mode, view, structure, census, run settings, how each worst case is
+    taken)."""
+    out = result.to_dict()
+    pb, vin, tmd = result.problem, out["vines"], out["tmd"]
+    A, W = ("amplitude",), ("omega",)
+    coords = {"omega": _dv("omega", W, pb.omega), "amplitude": _dv("amplitude", A, pb.amplitudes_m)}
+    data = {"lo_alone_ratio": _dv("lo_alone_ratio", W, result.lo_alone),
+            "tmd_ratio": _dv("tmd_ratio", W, result.tmd_curve),
+            "vines_ratio": _dv("vines_ratio", A + W, result.rest.curves),
+            "F": _dv("F", A, vin["F"]),
+            "vines_peak_ratio": _dv("vines_peak_ratio", A, result.rest.peak),
+            "vines_peak_omega": _dv("vines_peak_omega", A, result.rest.peak_omega)}
+    if result.vines_any_attractor is not None:
+        data["vines_ratio_any_attractor"] = _dv("vines_ratio_any_attractor", A + W,
+                                                result.vines_any_attractor)
+        data["vines_peak_ratio_any_attractor"] = _dv("vines_peak_ratio_any_attractor", A,
+                                                     result.worst_any_per_amplitude)
+    if result.search is not None:
+        g = result.search
+        coords["search_eta"] = _dv("search_eta", ("search_eta",), g["eta"])
+        coords["search_clearance"] = _dv("search_clearance", ("search_clearance",),
+                                         g["clearance_m"])
+        data["search_worst_ratio"] = _dv("search_worst_ratio",
+                                         ("search_eta", "search_clearance"), g["worst_ratio"])
+    scalars = {"lo_alone_worst_ratio": out["lo_alone"]["worst_ratio"],
+               "lo_alone_worst_omega": out["lo_alone"]["worst_omega"],
+               "tmd_eta": tmd["eta"], "tmd_frequency_ratio": tmd["frequency_ratio"],
+               "tmd_damping_ratio": tmd["damping_ratio"],
+               "tmd_worst_ratio": tmd["worst_ratio"], "tmd_worst_omega": tmd["worst_omega"],
+               "tmd_mass": tmd["mass_kg"], "tmd_stiffness": tmd["stiffness_N_per_m"],
+               "tmd_damping": tmd["damping_Ns_per_m"],
+               "vines_eta": vin["eta"], "vines_clearance": vin["clearance_m"],
+               "vines_mass": vin["mass_kg"], "vines_worst_ratio": vin["worst_ratio"],
+               "vines_worst_ratio_any_attractor": vin["worst_ratio_any_attractor"],
+               "unsettled_fraction_max": vin["unsettled_fraction_max"]}
+    data.update({k: _dv(k, (), _nan(v)) for k, v in scalars.items()})
+    own = {"Conventions": CONVENTIONS, "mode": out["inputs"].get("mode", ""),
+           "view": pb.view, "view_description": vin["view_description"] or "not evaluated "
+           "(census_n = 0)", "d": pb.model.d, "r": pb.model.r, "M_kg": pb.M_kg,
+           "k_N_per_m": pb.k_N_per_m, "c_Ns_per_m": pb.c_Ns_per_m, "census_n": pb.census_n,
+           "census_seed": pb.census_seed, "basin_min": pb.basin_min,
+           "t_end": pb.settings.t_end, "t_transient": pb.settings.t_transient,
+           **{f"worst_case_{k}": v for k, v in out["worst_case"].items()}}
+    return xr.Dataset(data, coords=coords, attrs={**own, **attrs})
+
+
+def atlas_dataset(eta, omega, families: dict, arrays: dict, attrs: dict) -> xr.Dataset:
+    """An orbit atlas over (eta, omega): per family (``families``: key -> (walls, periods,
+    paper label), in ``atlas.FAMILIES`` order) the found / admissible / stable flags and
+    lambda_max (``arrays``: f"{key}:{field}" of shape (eta, omega))."""
+    keys = list(families)
+    shape = (np.size(eta), np.size(omega))
+    D = ("family", "eta", "omega")
+    data = {}
+    for fld, (long_name, units) in ATLAS_ATTRS.items():
+        stack = np.stack([np.asarray(arrays[f"{k}:{fld}"]) for k in keys])
+        if stack.shape[1:] != shape:
+            raise ValueError(f"atlas field {fld} has shape {stack.shape[1:]}, expected {shape}")
+        extra = {} if fld == "lambda_max" else ATLAS_FLAGS
+        dtype = "f8" if fld == "lambda_max" else "i1"
+        data[fld] = xr.Variable(D, stack.astype(dtype),
+                                {"long_name": long_name, "units": units, **extra})
+    fam = ("family",)
+    per_family = {"paper_label": [families[k][2] for k in keys],
+                  "walls": [families[k][0] for k in keys],
+                  "periods": np.array([families[k][1] for k in keys], dtype="i2")}
+    for name, vals in per_family.items():
+        data[name] = xr.Variable(fam, np.asarray(vals), cf(ATLAS_FAMILY_ATTRS, name))
+    coords = {**_eta_omega_coords(eta, omega),
+              "family": xr.Variable(fam, np.asarray(keys), cf(ATLAS_FAMILY_ATTRS, "family"))}
+    own = {"Conventions": CONVENTIONS, "note": ATLAS_NOTE}
+    return xr.Dataset(data, coords=coords, attrs={**own, **attrs})

@@ -232,3 +232,70 @@ TITLES = {
 }
 #: per-run measures of the window and v_stick datasets: long_name, units from the schema
 MEASURE_ATTRS = {**BATCH_ATTRS, "xmax_m": DERIVED_ATTRS["xmax_m"]}
+
+
+# ------------------------------------------------------------------ design, orbit atlas
+
+#: design datasets (``vines.studies.design``): coordinates, curves, per-amplitude values,
+#: the search grid and the scalars of the designs compared
+DESIGN_ATTRS = {
+    "omega": COORD_ATTRS["omega"]["long_name"],
+    "amplitude": "base displacement amplitude A",
+    "search_eta": "ball-to-LO mass ratio m/M of the search grid",
+    "search_clearance": "clearance L (half the cavity length) of the search grid",
+    "lo_alone_ratio": "transmissibility x_max/A of the LO alone (closed form)",
+    "tmd_ratio": "transmissibility x_max/A with the optimal TMD (closed form)",
+    "vines_ratio": "transmissibility x_max/A of the VI NES from rest",
+    "vines_ratio_any_attractor": "largest transmissibility x_max/A over the attractors "
+                                 "holding >= basin_min of the census states and the start "
+                                 "from rest",
+    "F": "forcing amplitude F = A/L of the design",
+    "vines_peak_ratio": "largest transmissibility from rest found per amplitude (grid and "
+                        "refinement in omega)",
+    "vines_peak_omega": "forcing frequency ratio of vines_peak_ratio",
+    "vines_peak_ratio_any_attractor": "worst-case transmissibility over the attractors per "
+                                      "amplitude",
+    "search_worst_ratio": "worst-case transmissibility from rest of each grid design",
+    "lo_alone_worst_ratio": "worst-case transmissibility of the LO alone over the band (exact)",
+    "lo_alone_worst_omega": "forcing frequency ratio of lo_alone_worst_ratio",
+    "tmd_eta": "TMD mass ratio m_a/M",
+    "tmd_frequency_ratio": "TMD tuning w_a/w0",
+    "tmd_damping_ratio": "TMD damping ratio c_a/(2 m_a w_a)",
+    "tmd_worst_ratio": "worst-case transmissibility with the TMD over the band",
+    "tmd_worst_omega": "forcing frequency ratio of tmd_worst_ratio",
+    "tmd_mass": "TMD mass m_a",
+    "tmd_stiffness": "TMD spring stiffness",
+    "tmd_damping": "TMD damping coefficient",
+    "vines_eta": "ball-to-LO mass ratio m/M of the VI NES design",
+    "vines_clearance": "clearance L (half the cavity length) of the VI NES design",
+    "vines_mass": "ball mass m of the VI NES design",
+    "vines_worst_ratio": "worst-case transmissibility of the VI NES from rest",
+    "vines_worst_ratio_any_attractor": "worst-case transmissibility of the VI NES over "
+                                       "attractors",
+    "unsettled_fraction_max": "largest share of census runs that stopped early",
+}
+#: units of the design variables that are not dimensionless
+DESIGN_UNITS = {"amplitude": "m", "search_clearance": "m", "tmd_mass": "kg",
+                "tmd_stiffness": "N m-1", "tmd_damping": "N s m-1",
+                "vines_clearance": "m", "vines_mass": "kg"}
+
+#: orbit atlases (``vines.orbits.atlas``): per family, and per family and grid point
+ATLAS_FAMILY_ATTRS = {
+    "family": ("periodic orbit family (wall sequence/forcing periods, -sym/-asym; "
+               "docs/bifurcation.md)", ""),
+    "paper_label": ("the paper's p:q wording of the family (1:1, 2:2, 2:1, 3:2, 3:3, "
+                    "period-2)", ""),
+    "walls": ("wall sequence of the family's orbits, one letter per impact (L, R)", ""),
+    "periods": ("forcing periods of one orbit period", "1"),
+}
+ATLAS_ATTRS = {
+    "found": ("1 if an orbit of the family was found (admissible or not)", "1"),
+    "admissible": ("1 if an admissible orbit of the family was found", "1"),
+    "stable": ("1 if a stable admissible orbit of the family was found", "1"),
+    "lambda_max": ("least largest |eigenvalue| among the admissible orbits of the family "
+                   "found (NaN: none)", "1"),
+}
+#: flag attributes of the atlas's 0/1 variables
+ATLAS_FLAGS = {"flag_values": np.array([0, 1], dtype="i1"), "flag_meanings": "no yes"}
+ATLAS_NOTE = ("finite search: a family marked absent may exist where no seed reached it "
+              "(docs/bifurcation.md)")

@@ -172,7 +172,7 @@ def atlas_point(params: ModelParams, seeds=None, simulation=True,
 def atlas_arrays(eta, omega, F, *, r=None, d=None, simulation=True,
                  sim_t_end=SIM_T_END, progress=None) -> dict:
     """The atlas over an (eta, omega) grid at one F, swept along omega for each eta with
-    the previous point's orbits as seeds: arrays (eta, omega) per family key of
+    the previous point's orbits as seeds: arrays (eta, omega) per family key of ``found``,
     ``admissible``, ``stable`` (bool) and ``lambda_max`` (float), under keys
     f"{key}:admissible" etc."""
     eta = np.asarray(eta, float)
@@ -181,6 +181,7 @@ def atlas_arrays(eta, omega, F, *, r=None, d=None, simulation=True,
     shape = (eta.size, omega.size)
     out = {}
     for key in FAMILIES:
+        out[f"{key}:found"] = np.zeros(shape, bool)
         out[f"{key}:admissible"] = np.zeros(shape, bool)
         out[f"{key}:stable"] = np.zeros(shape, bool)
         out[f"{key}:lambda_max"] = np.full(shape, np.nan)
@@ -190,6 +191,7 @@ def atlas_arrays(eta, omega, F, *, r=None, d=None, simulation=True,
             p = ModelParams(eta=float(e), omega=float(w), F=float(F), **kw)
             fam, prev = atlas_point(p, prev, simulation, sim_t_end)
             for key, st in fam.items():
+                out[f"{key}:found"][i, j] = st.found
                 out[f"{key}:admissible"][i, j] = st.admissible
                 out[f"{key}:stable"][i, j] = st.stable
                 out[f"{key}:lambda_max"][i, j] = st.lambda_max

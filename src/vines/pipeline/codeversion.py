@@ -19,7 +19,10 @@ NOT_TRACKED = ("cli", "__main__.py")
 COMPUTE = ("core", "orbits", "data", "pipeline")           # every dataset stage
 STUDIES = COMPUTE + ("reference", "studies")               # work-precision, convergence
 ATTRACTORS = COMPUTE + ("attractors",)                     # robust-TET maps, basin slices
+DESIGN = STUDIES + ("attractors",)                         # designs (census of the attractors)
 FIGURES = ("plotting",)                                    # figure rules (+ their script)
+#: every kind above (a job's code param must be the version of one of them)
+KINDS = (COMPUTE, STUDIES, ATTRACTORS, DESIGN, FIGURES)
 
 
 def tracked_files(subpackages, pkg_dir=PKG_DIR) -> list[Path]:

@@ -269,6 +269,86 @@ def _check_nested(resolutions) -> None:
                               "of the previous n - 1, e.g. 11, 21, 41, 81)")
 
 
+#: design keywords of ``vines.design`` -> config key, where the API's ParameterError names
+#: the argument differently
+_DESIGN_KEYS = {"amplitude": "amplitudes_m", "M": "M_kg", "k": "k_N_per_m",
+                "c": "c_Ns_per_m", "clearance": "clearance_m",
+                "clearance_range": "clearance_range_m"}
+
+
+def _check_design(key: str, ds: dict, model: dict, simulation: dict, limits: dict) -> None:
+    """One ``designs`` entry through the validators of ``vines.design`` (without running)."""
+    from ..studies import design as dz
+    from ..studies import design_checks as chk
+    try:
+        chk.check_mode(ds.get("eta"), ds.get("clearance_m"), ds.get("eta_max"),
+                       ds.get("clearance_range_m"))
+        chk.check_band(ds["omega_band"])
+        chk.check_count("n_omega", ds["n_omega"], 2, dz.N_OMEGA_MAX)
+        amps = chk.check_amplitudes(ds["amplitudes_m"], dz.AMPLITUDE_MAX_M,
+                                    dz.N_AMPLITUDES_MAX)
+        chk.check_structure(ds["M_kg"], ds["k_N_per_m"], ds["c_Ns_per_m"], ds["d"])
+        if ds.get("eta_max") is None:
+            chk.check_eta("eta", ds["eta"])
+            chk.check_clearance("clearance", ds["clearance_m"], amps)
+        else:
+            chk.check_eta("eta_max", ds["eta_max"])
+            chk.check_clearance_range(ds.get("clearance_range_m"), amps,
+                                      dz.CLEARANCE_RANGE_FACTORS)
+            chk.check_count("n_eta", ds["n_eta"], 1, dz.N_GRID_MAX)
+            chk.check_count("n_clearance", ds["n_clearance"], 2, dz.N_GRID_MAX)
+    except ParameterError as err:
+        sub = _DESIGN_KEYS.get(err.name, err.name)
+        raise ConfigError(f"{key}.{sub}", f"{err.value!r}: {err.allowed}") from None
+    _check_settings(key, {"t_end": ds["t_end"], "t_transient": ds["t_transient"],
+                          **{k: simulation[k] for k in ("v_stick", "max_impacts", "root_tol")}},
+                    limits)
+    n_designs = ds["n_eta"] * ds["n_clearance"] if ds.get("eta_max") is not None else 1
+    n_runs = ds["n_omega"] * len(ds["amplitudes_m"]) * (n_designs + ds["census_n"])
+    _check_size(key, n_runs, limits, "runs (omega x amplitudes x (grid designs + census_n))")
+
+
+def check_designs(config: dict, model: dict, limits: dict) -> None:
+    for name, ds in config["designs"].items():
+        _check_design(f"designs.{name}", ds, model, config["simulation"], limits)
+
+
+def atlas_grid(config: dict, name: str) -> dict:
+    """The (eta, omega, F) of ``orbit_atlases[name]``: its own, or its stability map's."""
+    oa = config["orbit_atlases"][name]
+    ref = oa.get("stability_map")
+    src = config["stability_maps"][ref] if ref is not None else oa
+    return {k: src[k] for k in ("eta", "omega", "F")}
+
+
+def check_orbit_atlases(config: dict, model: dict, limits: dict) -> None:
+    """An atlas names a stability map or gives eta, omega and F (not both); its grid
+    passes the model's checks and limits.max_grid_points."""
+    for name, oa in config["orbit_atlases"].items():
+        key = f"orbit_atlases.{name}"
+        own = [k for k in ("eta", "omega", "F") if k in oa]
+        ref = oa.get("stability_map")
+        if ref is not None:
+            if own:
+                raise ConfigError(f"{key}.{own[0]}", "give stability_map or the grid "
+                                  "(eta, omega, F), not both")
+            if ref not in config["stability_maps"]:
+                raise ConfigError(f"{key}.stability_map", f"{ref!r} is not a "
+                                  f"stability_maps entry ({sorted(config['stability_maps'])})")
+        elif len(own) < 3:
+            missing = next(k for k in ("eta", "omega", "F") if k not in oa)
+            raise ConfigError(f"{key}.{missing}", "missing: give stability_map or all of "
+                              "eta, omega and F")
+        grid = atlas_grid(config, name)
+        where = {dim: f"{key}.stability_map" if ref is not None else f"{key}.{dim}"
+                 for dim in ("eta", "omega", "F")}
+        n = _check_axis(where["eta"], "eta", grid["eta"], model)
+        n *= _check_axis(where["omega"], "omega", grid["omega"], model)
+        _check_param(where["F"], "F", grid["F"], model)
+        _check_size(key, n, limits)
+        _check_t_end(f"{key}.sim_t_end", oa["sim_t_end"], limits)
+
+
 def check_physical(config: dict) -> None:
     """Every check of this module, in config order; raises the first ConfigError."""
     _walk_finite(config)
@@ -283,5 +363,6 @@ def check_physical(config: dict) -> None:
                                    ("t_end", "t_transient", "v_stick", "max_impacts",
                                     "root_tol")}, limits)
     for check in (check_grids, check_sweeps, check_branches, check_maps_and_points,
-                  check_attractor_maps, check_boundaries, check_studies):
+                  check_attractor_maps, check_boundaries, check_studies, check_designs,
+                  check_orbit_atlases):
         check(config, model, limits)

@@ -26,8 +26,8 @@ def check_code_version(expected: str | None) -> None:
     """
     if not expected:
         return
-    from .codeversion import ATTRACTORS, COMPUTE, FIGURES, PKG_DIR, STUDIES, code_version
-    if expected not in {code_version(kind) for kind in (COMPUTE, STUDIES, ATTRACTORS, FIGURES)}:
+    from .codeversion import KINDS, PKG_DIR, code_version
+    if expected not in {code_version(kind) for kind in KINDS}:
         raise RuntimeError(f"this job imports vines from {PKG_DIR}, whose sources differ from "
                            f"the code version {expected} the workflow computed: run the "
                            "workflow of the checkout whose sources should run")

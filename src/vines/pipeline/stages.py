@@ -3,7 +3,7 @@
 One function per stage, named as the rule, the rule file, the workflow script and the
 output folder: ``simulate_grid``, ``extract_measures``, ``bifurcation_sweep``,
 ``map_solve``, ``stability_map``, ``boundaries``, ``timehistory``, ``robust_map``,
-``basin_slice``, ``work_precision``, ``convergence``. Each calls the numerics
+``basin_slice``, ``work_precision``, ``convergence``, ``design``, ``orbit_atlas``. Each calls the numerics
 (``vines.core``, ``vines.orbits``, ``vines.attractors``, ``vines.studies``), lets
 ``vines.pipeline.execution`` spread independent tasks over dask, and hands plain arrays to
 ``vines.data.builders``. Results are assembled by index, so the
@@ -335,3 +335,65 @@ def convergence(study: str, spec: dict, *, model: dict, simulation: dict, code: 
         config_subset={"spec": spec, "model": model, "simulation": simulation},
         settings={**model, **simulation}, code_version=code)
     return builders.convergence_dataset(study, result, attrs)
+
+
+# ------------------------------------------------------------------ design
+
+#: solver settings of the design runs taken from the ``simulation`` section (run length and
+#: window are the entry's own t_end, t_transient)
+DESIGN_SETTINGS = ("v_stick", "max_impacts", "root_tol")
+
+
+def design(spec: dict, *, model: dict, simulation: dict, code: str, title: str,
+           n_workers: int = 1):
+    """Dataset of one ``designs`` entry: ``vines.design`` with the entry's keywords, the
+    model's r and the simulation section's v_stick, max_impacts, root_tol (the structure's
+    damping is the entry's: M, k, c or d, Table 1 by default)."""
+    from ..studies.design import design as solve_design
+    kw = {k: v for k, v in spec.items() if k != "description" and v is not None}
+    settings = {k: simulation[k] for k in DESIGN_SETTINGS}
+    res = solve_design(**kw, r=model["r"], **settings, n_threads=max(1, int(n_workers)))
+    cost = res.cost
+    print(f"design: {cost['n_designs']} designs, {cost['n_runs_from_rest']} runs from rest, "
+          f"{cost['n_runs_census']} census runs; wall {cost['wall_s']:.1f} s "
+          f"(search {cost['search_s']:.1f} s, census {cost['census_s']:.1f} s), "
+          f"CPU {cost['cpu_s']:.1f} s")
+    attrs = provenance_attrs(title=title, config_subset={"spec": spec, "model": model,
+                                                         "settings": settings},
+                             settings={"r": model["r"], **settings}, code_version=code)
+    return builders.design_dataset(res, attrs)
+
+
+# ------------------------------------------------------------------ orbit-atlas
+
+def _atlas_rows(eta, omega, F, kw):
+    from ..orbits.atlas import atlas_arrays
+    return atlas_arrays(eta, omega, F, **kw)
+
+
+def orbit_atlas(grid: dict, *, sim_t_end: float, model: dict, code: str, title: str,
+                n_workers: int = 1, rows_per_task: int = 1, scheduler: str | None = None):
+    """Dataset of one orbit atlas over ``grid``'s (eta, omega) at its F: every family of
+    ``orbits.atlas.FAMILIES`` found / admissible / stable at each point. Each eta row is
+    swept in omega from omega[0], seeded by the previous omega (``atlas_arrays``), so tasks
+    hold whole rows (``rows_per_task`` of them): the numbers do not depend on workers,
+    task size or scheduler."""
+    import dask
+
+    from ..orbits.atlas import FAMILIES, PAPER_LABELS
+    from ..orbits.sequence import SIM_T_END
+    eta, omega = axis_values(grid["eta"]), axis_values(grid["omega"])
+    F = float(grid["F"])
+    kw = {"r": model["r"], "d": model["d"], "simulation": sim_t_end > 0,
+          "sim_t_end": sim_t_end if sim_t_end > 0 else SIM_T_END}
+    n = max(1, int(rows_per_task))
+    starts = list(range(0, eta.size, n))
+    tasks = [dask.delayed(_atlas_rows, pure=True)(eta[i:i + n], omega, F, kw) for i in starts]
+    parts = compute(tasks, max(1, int(n_workers)), scheduler, True)
+    arrays = {k: np.concatenate([p[k] for p in parts], axis=0) for k in parts[0]}
+    families = {k: (walls, periods, PAPER_LABELS[k]) for k, (walls, periods, _) in FAMILIES.items()}
+    attrs = provenance_attrs(title=title, config_subset={"grid": grid, "sim_t_end": sim_t_end,
+                                                         "model": model},
+                             settings=model, code_version=code)
+    attrs.update(F=F, sim_t_end=float(sim_t_end))
+    return builders.atlas_dataset(eta, omega, families, arrays, attrs)

@@ -76,3 +76,16 @@ def sequence(n: int) -> list:
     series such as grid resolutions."""
     cmap = colormap()
     return [cmap(0.85 * k / max(1, n - 1)) for k in range(n)]
+
+
+#: orbit atlas: groups of periodic families (the paper's wording, 1:1 split by symmetry)
+#: -> colour; the 1:1 colours are those of the stability classes (Fig 16)
+FAMILY_GROUPS = {"1:1 symmetric": OKABE_ITO["orange"], "1:1 asymmetric": OKABE_ITO["black"],
+                 "2:2": OKABE_ITO["bluish green"], "2:1": OKABE_ITO["sky blue"],
+                 "3:2": OKABE_ITO["reddish purple"], "3:3": OKABE_ITO["yellow"],
+                 "period-2": OKABE_ITO["vermillion"]}
+#: atlas points without a stable admissible family: none found / only unstable found
+ATLAS_NONE_FOUND, ATLAS_NONE_STABLE = "white", "0.6"
+#: simulated regimes beside the atlas that no atlas family describes
+SIM_OTHER = {"no-impact": "0.85", "other periodic": OKABE_ITO["blue"],
+             "irregular": "0.45", "chatter": "0.2"}

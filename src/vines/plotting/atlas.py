@@ -1,0 +1,111 @@
+"""Orbit atlases (``orbit_atlas`` datasets) on figures: the stable family group at each
+point, the simulation's regime in the same groups, and their agreement where the two grids
+share points. Reads datasets only."""
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+
+from . import palette
+from .checks import FigureInputError, load, require
+
+#: category codes of the atlas map: 0 nothing found, 1 found but none stable, else 2 + the
+#: index of the group in palette.FAMILY_GROUPS
+NONE_FOUND, NONE_STABLE, FIRST_GROUP = 0, 1, 2
+GROUPS = list(palette.FAMILY_GROUPS)
+#: simulated regimes (``core.regime`` labels) -> atlas group (1:1 unsplit: both 1:1 groups)
+SIM_GROUPS = {"1:1": ("1:1 symmetric", "1:1 asymmetric"), "2:2": ("2:2",), "2:1": ("2:1",),
+              "3:2": ("3:2",), "3:3": ("3:3",), "period-2": ("period-2",)}
+
+
+def atlas(path) -> xr.Dataset:
+    """An orbit atlas over (eta, omega) with flags per family and the attribute F."""
+    ds = load(path)
+    require(ds, coords=("eta", "omega"), min_size=2,
+            variables=("found", "admissible", "stable", "lambda_max", "paper_label"))
+    if "F" not in ds.attrs:
+        raise FigureInputError(f"{ds.attrs['_path']}: global attribute 'F' is missing")
+    return ds
+
+
+def family_group(ds: xr.Dataset) -> list[str]:
+    """Group (key of palette.FAMILY_GROUPS) of each family of the atlas."""
+    out = []
+    for fam, label in zip(ds["family"].values, ds["paper_label"].values, strict=True):
+        if label == "1:1":
+            label = "1:1 asymmetric" if str(fam).endswith("-asym") else "1:1 symmetric"
+        out.append(str(label))
+    return out
+
+
+def stable_groups(ds: xr.Dataset) -> np.ndarray:
+    """Bool (group, eta, omega): a family of the group is stable and admissible."""
+    groups = np.array(family_group(ds))
+    st = ds["stable"].values.astype(bool)
+    return np.stack([st[groups == g].any(axis=0) for g in GROUPS])
+
+
+def atlas_codes(ds: xr.Dataset) -> tuple[np.ndarray, np.ndarray]:
+    """(codes, coexist) over (eta, omega): the group of the stable family with the smallest
+    lambda_max (NONE_FOUND / NONE_STABLE otherwise), and where >= 2 groups are stable."""
+    groups = np.array(family_group(ds))
+    lam = np.where(ds["stable"].values.astype(bool), ds["lambda_max"].values, np.inf)
+    best = np.argmin(lam, axis=0)
+    codes = FIRST_GROUP + np.array([GROUPS.index(g) for g in groups])[best]
+    codes = np.where(np.isfinite(np.min(lam, axis=0)), codes, NONE_STABLE)
+    codes = np.where(ds["found"].values.astype(bool).any(axis=0), codes, NONE_FOUND)
+    return codes, stable_groups(ds).sum(axis=0) >= 2
+
+
+def atlas_classes() -> dict:
+    """code -> (label, colour) of ``atlas_codes`` for ``draw.class_map``."""
+    out = {NONE_FOUND: ("no orbit found (finite search)", palette.ATLAS_NONE_FOUND),
+           NONE_STABLE: ("orbits found, none stable and admissible", palette.ATLAS_NONE_STABLE)}
+    out.update({FIRST_GROUP + i: (g, palette.FAMILY_GROUPS[g]) for i, g in enumerate(GROUPS)})
+    return out
+
+
+SIM_LABELS = ["1:1", "2:2", "2:1", "3:2", "3:3", "period-2", "other periodic", "irregular",
+              "chatter", "no-impact"]
+
+
+def sim_classes() -> dict:
+    """code -> (label, colour) of ``sim_codes``."""
+    colours = {"1:1": palette.FAMILY_GROUPS["1:1 symmetric"], **{
+        k: palette.FAMILY_GROUPS[k] for k in ("2:2", "2:1", "3:2", "3:3", "period-2")},
+        **palette.SIM_OTHER}
+    return {i: (lab, colours[lab]) for i, lab in enumerate(SIM_LABELS)}
+
+
+def _sim_label(regime: str) -> str:
+    if regime in SIM_LABELS:
+        return regime
+    return "other periodic" if ":" in regime or regime.startswith("period-") else "irregular"
+
+
+def sim_codes(regime: np.ndarray) -> np.ndarray:
+    """Codes of ``sim_classes`` of an array of regime labels."""
+    return np.vectorize(lambda r: SIM_LABELS.index(_sim_label(str(r))), otypes=[int])(regime)
+
+
+def agreement(ds: xr.Dataset, eta, omega, regime) -> dict:
+    """Where the simulation from rest (``regime`` over (eta, omega)) settles on a family
+    group of the atlas, at the points the two grids share: the points counted, those where
+    a family of that group is stable and admissible in the atlas, and the rest as
+    (eta, omega, regime)."""
+    ie = {round(float(v), 12): i for i, v in enumerate(ds["eta"].values)}
+    iw = {round(float(v), 12): j for j, v in enumerate(ds["omega"].values)}
+    groups = stable_groups(ds)
+    n, ok, misses = 0, 0, []
+    for a, e in enumerate(np.asarray(eta, float)):
+        for b, w in enumerate(np.asarray(omega, float)):
+            reg = str(regime[a, b])
+            i, j = ie.get(round(e, 12)), iw.get(round(w, 12))
+            if reg not in SIM_GROUPS or i is None or j is None:
+                continue
+            n += 1
+            if any(groups[GROUPS.index(g), i, j] for g in SIM_GROUPS[reg]):
+                ok += 1
+            else:
+                misses.append((e, w, reg))
+    return {"n": n, "agree": ok, "misses": misses}

@@ -1,0 +1,115 @@
+"""The design and orbit_atlas stages' figures and the atlas stage's independence of the
+number of workers: atlas categories and agreement on hand-made atlases, the figure scripts
+on tiny datasets, the same atlas with 1 or 2 workers and any rows per task."""
+import runpy
+from pathlib import Path
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from vines.core.params import D_DEFAULT
+from vines.pipeline import stages
+from vines.plotting import atlas as A
+
+ROOT = Path(__file__).resolve().parents[1]
+SCRIPTS = ROOT / "workflow" / "scripts" / "figures"
+MODEL = {"r": 0.65, "d": D_DEFAULT}
+
+
+def _atlas(stable, found=None, lam=None):
+    """Atlas of families LR/1-sym, LR/1-asym, LLRR/1-sym, LRLR/2 over 2 eta x 3 omega."""
+    fams = ["LR/1-sym", "LR/1-asym", "LLRR/1-sym", "LRLR/2"]
+    stable = np.asarray(stable, "i1")
+    found = stable if found is None else np.asarray(found, "i1")
+    lam = np.where(stable == 1, 0.5, np.nan) if lam is None else np.asarray(lam, float)
+    D = ("family", "eta", "omega")
+    return xr.Dataset({"found": (D, found), "admissible": (D, np.maximum(found, stable)),
+                       "stable": (D, stable), "lambda_max": (D, lam),
+                       "paper_label": ("family", ["1:1", "1:1", "2:2", "period-2"])},
+                      coords={"family": fams, "eta": [0.1, 0.2], "omega": [0.8, 0.9, 1.0]},
+                      attrs={"F": 0.2})
+
+
+def test_atlas_codes_pick_the_most_stable_group_and_mark_coexistence():
+    st = np.zeros((4, 2, 3), int)
+    st[0, 0, 0] = 1                        # (0.1, 0.8): 1:1 symmetric only
+    st[0, 0, 1] = st[2, 0, 1] = 1          # (0.1, 0.9): 1:1 sym and 2:2, 2:2 more stable
+    st[3, 1, 2] = 1                        # (0.2, 1.0): period-2
+    found = st.copy()
+    found[1, 1, 0] = 1                     # (0.2, 0.8): an unstable 1:1 asym found
+    lam = np.where(st == 1, 0.5, np.nan)
+    lam[2, 0, 1] = 0.3
+    codes, coexist = A.atlas_codes(_atlas(st, found, lam))
+    g = {k: A.FIRST_GROUP + A.GROUPS.index(k) for k in A.GROUPS}
+    assert codes.tolist() == [[g["1:1 symmetric"], g["2:2"], A.NONE_FOUND],
+                              [A.NONE_STABLE, A.NONE_FOUND, g["period-2"]]]
+    assert coexist.tolist() == [[False, True, False], [False, False, False]]
+
+
+def test_agreement_counts_only_shared_points_with_atlas_families():
+    st = np.zeros((4, 2, 3), int)
+    st[1, 0, 0] = 1                        # 1:1 asymmetric stable at (0.1, 0.8)
+    st[3, 1, 1] = 1                        # period-2 stable at (0.2, 0.9)
+    ds = _atlas(st)
+    eta, omega = [0.1, 0.2, 0.3], [0.8, 0.9]
+    regime = np.array([["1:1", "2:2"], ["chatter", "period-2"], ["1:1", "1:1"]])
+    agr = A.agreement(ds, eta, omega, regime)
+    # (0.3, .) is not on the atlas grid, chatter is no family: 3 points, 2 agree
+    assert (agr["n"], agr["agree"]) == (3, 2)
+    assert agr["misses"] == [(0.1, 0.9, "2:2")]
+
+
+def _run(script, tmp_path, name, **inputs):
+    out = tmp_path / "figures"
+    sm = SimpleNamespace(input=SimpleNamespace(**inputs), rule=f"fig_{name}", wildcards={},
+                         params=SimpleNamespace(colormap="viridis"),
+                         output=SimpleNamespace(pdf=str(out / f"{name}.pdf"),
+                                                png=str(out / f"{name}.png")),
+                         log=[str(tmp_path / "logs" / f"{name}.log")])
+    runpy.run_path(str(SCRIPTS / f"{script}.py"), init_globals={"snakemake": sm})
+    return out / f"{name}.png"
+
+
+def test_atlas_figure_draws_atlas_beside_the_simulation(tmp_path):
+    st = np.zeros((4, 2, 3), int)
+    st[0] = 1
+    path = tmp_path / "atlas_F0.2.nc"
+    _atlas(st).to_netcdf(path)
+    regime = np.array([["1:1", "2:2", "chatter"], ["no-impact", "irregular", "period-4"]])
+    grid = xr.Dataset({"regime": (("eta", "omega", "F"), regime[:, :, None])},
+                      coords={"eta": [0.1, 0.2], "omega": [0.8, 0.9, 1.0], "F": [0.2]})
+    gpath = tmp_path / "fig12_F0.2.nc"
+    grid.to_netcdf(gpath)
+    png = _run("atlas", tmp_path, "atlas", atlases=[str(path)], measures=[str(gpath)])
+    assert png.read_bytes()[:4] == b"\x89PNG"
+    log = (tmp_path / "logs" / "atlas.log").read_text()
+    assert "simulation on an atlas family at 2 shared points" in log
+    assert "stable and admissible in the atlas at 1;" in log
+
+
+def test_design_figure_from_a_tiny_design(tmp_path):
+    from vines.data.netcdf import write_dataset
+    spec = {"omega_band": [0.9, 1.1], "n_omega": 3, "amplitudes_m": [0.003, 0.006],
+            "eta_max": 0.1, "n_eta": 1, "n_clearance": 2, "census_n": 2, "t_end": 200.0,
+            "t_transient": 100.0}
+    ds = stages.design(spec, model=MODEL, simulation={"v_stick": 1e-6, "max_impacts": 10**6,
+                       "root_tol": 1e-13}, code="test", title="t")
+    # the chosen design is never worse than the best grid design; attractors >= from rest
+    assert float(ds["vines_worst_ratio"]) <= float(ds["search_worst_ratio"].min()) + 1e-12
+    assert np.all(ds["vines_ratio_any_attractor"].values >= ds["vines_ratio"].values)
+    path = write_dataset(ds, tmp_path / "design_x.nc")
+    png = _run("design", tmp_path, "design", designs=[str(path)])
+    assert png.read_bytes()[:4] == b"\x89PNG"
+
+
+@pytest.mark.parametrize("n_workers,rows", [(2, 1), (1, 2)])
+def test_atlas_stage_same_numbers_whatever_workers_and_rows(n_workers, rows):
+    grid = {"eta": [0.1, 0.3, 0.5], "omega": {"start": 0.8, "stop": 1.2, "num": 4}, "F": 0.3077}
+    kw = dict(sim_t_end=100.0, model=MODEL, code="t", title="t")
+    one = stages.orbit_atlas(grid, n_workers=1, rows_per_task=1, **kw)
+    other = stages.orbit_atlas(grid, n_workers=n_workers, rows_per_task=rows, **kw)
+    for k in ("found", "admissible", "stable", "lambda_max"):
+        np.testing.assert_array_equal(one[k].values, other[k].values)
+    assert one["stable"].values.any()      # the test compares something

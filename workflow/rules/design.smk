@@ -1,0 +1,21 @@
+# design: the VI NES (eta, L) for a band and base amplitudes against the LO alone and the
+# optimal TMD of the same mass (vines.design, docs/design.md).
+
+
+rule design:
+    output:
+        dataset("design"),
+    log:
+        job_log("design"),
+    benchmark:
+        job_benchmark("design")
+    conda:
+        "../../environment.yml"
+    threads: config["threads"]
+    params:
+        spec=lambda w: DESIGNS[w.name],
+        model=MODEL,
+        simulation=SIMULATION,
+        code=CODE_DESIGN,
+    script:
+        "../scripts/design.py"

@@ -1,0 +1,84 @@
+"""Orbit atlas (beyond the paper; docs/bifurcation.md): per F a row, (left) the periodic
+family group that is stable and admissible at each (eta, W) (orbit_atlas atlas_*; the
+group of the smallest lambda_max where several are stable, hatched there), grey where only
+unstable or non-admissible orbits were found, white where no seed reached any family;
+(right) the regime the simulation from rest settles on (Fig 12's grid at the same F,
+grids.fig12_*) in the same colours. The atlas is a finite search: absent means that no
+seed reached a family, not that none exists."""
+
+import vines.plotting as P
+from vines.pipeline.jobs import run_job
+from vines.plotting import atlas as A
+
+
+def atlas_panel(ax, ds, k):
+    eta, W = ds["eta"].values, ds["omega"].values
+    codes, coexist = A.atlas_codes(ds)
+    P.class_map(ax, eta, W, codes.T, A.atlas_classes())
+    P.hatch_cells(ax, eta, W, coexist.T, hatch="xx", color="0.5")
+    _axes(ax, eta, W)
+    P.panel_label(ax, k, rf"orbit atlas, $F$ = {P.fmt(float(ds.attrs['F']))}")
+    return codes
+
+
+def sim_panel(ax, grid, k):
+    eta, W = grid["eta"].values, grid["omega"].values
+    regime = grid["regime"].isel(F=0).transpose("eta", "omega").values
+    P.class_map(ax, eta, W, A.sim_codes(regime).T, A.sim_classes())
+    _axes(ax, eta, W)
+    P.panel_label(ax, k, rf"simulation from rest (Fig. 12 grid), $F$ = "
+                         rf"{P.fmt(P.fixed_value(grid, 'F'))}")
+    return regime
+
+
+def _axes(ax, eta, W):
+    ax.set_xlim(eta.min(), eta.max())
+    ax.set_ylim(W.min(), W.max())
+    ax.set_xlabel(P.LABELS["eta"])
+    ax.set_ylabel(P.LABELS["omega"])
+
+
+def report(ds, grid, regime):
+    codes, coexist = A.atlas_codes(ds)
+    F = float(ds.attrs["F"])
+    counts = {lab: int((codes == c).sum()) for c, (lab, _) in A.atlas_classes().items()}
+    print(f"F = {F}: atlas points by group {counts}; >= 2 groups stable at "
+          f"{int(coexist.sum())} of {coexist.size}")
+    if grid is not None:
+        agr = A.agreement(ds, grid["eta"].values, grid["omega"].values, regime)
+        print(f"F = {F}: simulation on an atlas family at {agr['n']} shared points, stable "
+              f"and admissible in the atlas at {agr['agree']}; others {agr['misses']}")
+
+
+def main(sm):
+    P.configure(sm)
+    atlases = sorted(map(A.atlas, sm.input.atlases), key=lambda d: float(d.attrs["F"]))
+    grids = {round(P.fixed_value(g, "F"), 9): g
+             for g in (P.load(p) for p in sm.input.measures)}
+    n = len(atlases)
+    fig, axes = P.figure(n, 2, width=9.8, height=3.5 * n + 0.6)
+    for i, ds in enumerate(atlases):
+        atlas_panel(axes[i, 0], ds, 2 * i)
+        grid = grids.get(round(float(ds.attrs["F"]), 9))
+        regime = None
+        if grid is None:
+            axes[i, 1].set_axis_off()
+            axes[i, 1].text(0.5, 0.5, "no Fig. 12 grid at this F", ha="center",
+                            transform=axes[i, 1].transAxes)
+        else:
+            regime = sim_panel(axes[i, 1], grid, 2 * i + 1)
+        report(ds, grid, regime)
+    handles = P.class_handles(A.atlas_classes())
+    handles.append(P.Patch(facecolor="white", edgecolor="0.5", hatch="xx",
+                           label="atlas: >= 2 groups stable"))
+    sim = A.sim_classes()
+    handles += [P.Patch(facecolor=sim[c][1], edgecolor="black", label=f"simulation: {sim[c][0]}")
+                for c in sorted(sim) if sim[c][0] in ("1:1", "other periodic", "irregular",
+                                                       "chatter", "no-impact")]
+    fig.legend(handles=handles, loc="outside lower center", ncol=4, fontsize=7, frameon=False)
+    fig.suptitle("atlas: finite search (absent = no seed reached the family); "
+                 "simulation: finite-time regime from rest", fontsize=8)
+    P.save(fig, sm.output.pdf, sm.output.png)
+
+
+run_job(snakemake, lambda: main(snakemake))  # noqa: F821  (injected by Snakemake)
