@@ -49,6 +49,8 @@ def _slices(p):
 FIG_INPUTS = {
     "fig2": {"measures": _measures("fig2")},
     "fig3": {"sweep": _sweeps("fig3")},
+    # beyond the paper: the leading Lyapunov exponent under the Fig 3 diagrams
+    "fig3_lyapunov": {"sweep": _sweeps("fig3"), "lyapunov": _named("lyapunov", "fig3")},
     "fig4": {"th": _th("fig4")},
     "fig5": {"th": _th("fig5")},
     "fig6": {"sweep": _sweeps("fig3"), "branches": _branches("fig6")},

@@ -34,6 +34,7 @@ from .schema import (
     DERIVED_ATTRS,
     FEATURE_TYPE,
     FLAG_MEANINGS,
+    LYAPUNOV_SWEEP_ATTRS,
     MEASURE_ATTRS,
     REFERENCES,
     ROBUST_ATTRS,
@@ -176,6 +177,32 @@ def sweep_dataset(sweep: dict, param: str, outer: str, attrs: dict) -> xr.Datase
     samples = {k: (sweep[k], *SWEEP_SAMPLE_ATTRS[k]) for k in SWEEP_SAMPLE_ATTRS}
     return ragged_dataset(inst, samples, sweep["row_size"], instance_dim="point",
                           sample_dim="impact", attrs=attrs, coordinates=("value", "outer_value"))
+
+
+def lyapunov_sweep_dataset(res: dict, param: str, outer: str, attrs: dict) -> xr.Dataset:
+    """Lyapunov exponents along sweep lines (``pipeline.stages.lyapunov`` assembly): per
+    point the spectrum, its intervals, the leading exponent, regime and event counts."""
+    P = ("point",)
+    inst = {"value": (res["value"], f"swept parameter {param}: "
+                      + COORD_ATTRS[param]["long_name"], "1"),
+            "outer_value": (res["outer_value"], f"outer parameter {outer}: "
+                            + COORD_ATTRS[outer]["long_name"], "1")}
+    inst.update({k: (res[k], *SWEEP_INSTANCE_ATTRS[k]) for k in ("direction", "line", "phi",
+                                                                  "status")})
+    data = {k: xr.Variable(P, np.asarray(v), {"long_name": ln, "units": u})
+            for k, (v, ln, u) in inst.items()}
+    a = LYAPUNOV_SWEEP_ATTRS
+    data["exponents"] = xr.Variable(("point", "exponent"), np.asarray(res["exponents"], "f8"),
+                                    cf(a, "exponents"))
+    data["exponents_ci"] = xr.Variable(("point", "exponent", "bound"),
+                                       np.asarray(res["ci"], "f8"), cf(a, "exponents_ci"))
+    data["lambda_1"] = xr.Variable(P, np.asarray(res["exponents"], "f8")[:, 0],
+                                   cf(a, "lambda_1"))
+    data["regime"] = xr.Variable(P, np.asarray(res["regime"], "U16"), cf(a, "regime"))
+    for k in ("n_impacts", "n_sticks"):
+        data[k] = xr.Variable(P, np.asarray(res[k], "i4"), cf(a, k))
+    coords = {k: data.pop(k) for k in ("value", "outer_value")}
+    return xr.Dataset(data, coords=coords, attrs=attrs)
 
 
 def timehistory_dataset(points: list[dict], th: dict, attrs: dict) -> xr.Dataset:

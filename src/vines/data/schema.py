@@ -71,6 +71,17 @@ SWEEP_SAMPLE_ATTRS = {
     "wall": ("wall hit (+1 left end L, -1 right end R)", "1"),
 }
 
+#: Lyapunov exponents along a sweep (``vines.attractors.lyapunov_sweep``), one per point
+LYAPUNOV_SWEEP_ATTRS = {
+    "exponents": ("Lyapunov exponents of the point's window, descending (-inf: direction "
+                  "removed by sticking)", "1"),
+    "exponents_ci": ("95 % batch-means interval of the Lyapunov exponents", "1"),
+    "lambda_1": ("leading Lyapunov exponent of the point's window", "1"),
+    "regime": ("regime of the point's window", ""),
+    "n_impacts": ("impacts in the point's window", "1"),
+    "n_sticks": ("sticking phases started in the point's window", "1"),
+}
+
 #: 1:1 branches (map-solve)
 BRANCH_ATTRS = {
     "lambda_max": ("largest |eigenvalue| of the 1:1 map", "1"),

@@ -128,6 +128,22 @@ def check_sweeps(config: dict, model: dict, limits: dict) -> None:
         _check_recorded_periods(key, sw)
 
 
+def check_lyapunov_sweeps(config: dict, model: dict, limits: dict) -> None:
+    """Each lyapunov_sweeps entry names a sweeps entry, and its window fits in the shortest
+    run of a point (t_step; the first point runs t_settle + the recorded periods)."""
+    for name, ly in config["lyapunov_sweeps"].items():
+        key = f"lyapunov_sweeps.{name}"
+        sw = config["sweeps"].get(ly["sweep"])
+        if sw is None:
+            raise ConfigError(f"{key}.sweep", f"{ly['sweep']!r} is not a sweeps entry "
+                              f"({sorted(config['sweeps'])})")
+        shortest = min(sw["t_step"], sw["t_settle"])
+        if ly["t_window"] > shortest:
+            raise ConfigError(f"{key}.t_window", f"{ly['t_window']:g} must not exceed the "
+                              f"shortest run of a point of sweep {ly['sweep']!r} "
+                              f"(min(t_settle, t_step) = {shortest:g})")
+
+
 def check_branches(config: dict, model: dict, limits: dict) -> None:
     for name, br in config["branches"].items():
         key = f"branches.{name}"
@@ -282,6 +298,6 @@ def check_physical(config: dict) -> None:
     _check_settings("simulation", {k: config["simulation"][k] for k in
                                    ("t_end", "t_transient", "v_stick", "max_impacts",
                                     "root_tol")}, limits)
-    for check in (check_grids, check_sweeps, check_branches, check_maps_and_points,
-                  check_attractor_maps, check_boundaries, check_studies):
+    for check in (check_grids, check_sweeps, check_lyapunov_sweeps, check_branches,
+                  check_maps_and_points, check_attractor_maps, check_boundaries, check_studies):
         check(config, model, limits)

@@ -2,8 +2,8 @@
 
 One function per stage, named as the rule, the rule file, the workflow script and the
 output folder: ``simulate_grid``, ``extract_measures``, ``bifurcation_sweep``,
-``map_solve``, ``stability_map``, ``boundaries``, ``timehistory``, ``robust_map``,
-``basin_slice``, ``work_precision``, ``convergence``. Each calls the numerics
+``lyapunov``, ``map_solve``, ``stability_map``, ``boundaries``, ``timehistory``,
+``robust_map``, ``basin_slice``, ``work_precision``, ``convergence``. Each calls the numerics
 (``vines.core``, ``vines.orbits``, ``vines.attractors``, ``vines.studies``), lets
 ``vines.pipeline.execution`` spread independent tasks over dask, and hands plain arrays to
 ``vines.data.builders``. Results are assembled by index, so the
@@ -165,6 +165,48 @@ def bifurcation_sweep(spec: dict, *, model: dict, code: str, title: str, n_worke
     attrs.update(swept_parameter=spec["param"], outer_parameter=spec["outer"],
                  fixed=", ".join(f"{k}={v!r}" for k, v in sorted(spec["fixed"].items())))
     return builders.sweep_dataset(sweep, spec["param"], spec["outer"], attrs)
+
+
+# ------------------------------------------------------------------ lyapunov
+
+def _lyapunov_line(param, values, fixed, kw):
+    from ..attractors.lyapunov_sweep import sweep_exponents
+    return sweep_exponents(param, values, **fixed, **kw)
+
+
+def lyapunov(spec: dict, sweep: dict, *, model: dict, code: str, title: str,
+             periodic_shortcut: bool = True, n_workers: int = 1, scheduler: str | None = None):
+    """Dataset of the Lyapunov exponents along the sweep entry ``sweep`` (the config's
+    ``sweeps[spec['sweep']]``, with defaults): every line (outer value, direction), every
+    point, over the last ``spec['t_window']`` of the point's run (one dask task per line)."""
+    import dask
+    kw = dict(t_settle=sweep["t_settle"], t_step=sweep["t_step"], n_record=sweep["n_record"],
+              v_stick=sweep["v_stick"], periodic_shortcut=periodic_shortcut,
+              t_window=spec["t_window"], n_batches=spec["n_batches"], **model)
+    lines = _sweep_lines(sweep)
+    tasks = [dask.delayed(_lyapunov_line, pure=True)(sweep["param"], vals, fixed, kw)
+             for (_, _, vals, fixed) in lines]
+    res = compute(tasks, max(1, int(n_workers)), scheduler, True)
+    cat = {k: np.concatenate([r[k] for r in res]) for k in res[0]}
+    cat["outer_value"] = np.concatenate([np.full(r["value"].size, ov)
+                                         for (ov, _, _, _), r in zip(lines, res, strict=True)])
+    cat["direction"] = np.concatenate([np.full(r["value"].size, 1 if dr == "up" else -1, "i1")
+                                       for (_, dr, _, _), r in zip(lines, res, strict=True)])
+    cat["line"] = np.concatenate([np.full(r["value"].size, i, "i4")
+                                  for i, r in enumerate(res)])
+    settings = {**model, **{k: sweep[k] for k in ("t_settle", "t_step", "n_record", "v_stick")},
+                "periodic_shortcut": bool(periodic_shortcut), "t_window": spec["t_window"],
+                "n_batches": spec["n_batches"]}
+    attrs = provenance_attrs(title=title, config_subset={"spec": spec, "sweep": sweep,
+                                                         "model": model,
+                                                         "periodic_shortcut": bool(periodic_shortcut)},
+                             settings=settings, code_version=code)
+    attrs.update(swept_parameter=sweep["param"], outer_parameter=sweep["outer"],
+                 sweep=spec["sweep"],
+                 fixed=", ".join(f"{k}={v!r}" for k, v in sorted(sweep["fixed"].items())),
+                 window=f"last t_window = {spec['t_window']:g} of each point's run "
+                        "(finite-time exponents)")
+    return builders.lyapunov_sweep_dataset(cat, sweep["param"], sweep["outer"], attrs)
 
 
 # ------------------------------------------------------------------ map-solve, stability-map
