@@ -37,6 +37,7 @@ from .schema import (
     LYAPUNOV_SWEEP_ATTRS,
     MEASURE_ATTRS,
     REFERENCES,
+    ROBUST_ASYMPTOTIC_ATTRS,
     ROBUST_ATTRS,
     STABILITY_ATTRS,
     STABILITY_CLASS_FLAGS,
@@ -344,6 +345,10 @@ def robust_dataset(eta, omega, fields: dict, attrs: dict) -> xr.Dataset:
             raise ValueError(f"robust map field {k} has shape {arr.shape}, expected {shape}")
         dtype = "i4" if k in ("n_attractors", "from_rest_efficient") else "f8"
         data[k] = xr.Variable(D, arr.astype(dtype), cf(ROBUST_ATTRS, k))
+    for k in [k for k in ROBUST_ASYMPTOTIC_ATTRS if k in fields]:   # with t_max only
+        dtype = "i4" if k == "from_rest_efficient_asymptotic" else "f8"
+        data[k] = xr.Variable(D, np.asarray(fields[k]).astype(dtype).reshape(shape),
+                              cf(ROBUST_ASYMPTOTIC_ATTRS, k))
     return xr.Dataset(data, coords=_eta_omega_coords(eta, omega), attrs=attrs)
 
 
@@ -360,6 +365,15 @@ def basin_slice_dataset(z_m0, v_m0, res: dict, attrs: dict) -> xr.Dataset:
                   ("basin_fraction", "f8")):
         data[k] = xr.Variable(("attractor_index",), np.asarray(table[k], dt).reshape(n_att),
                               cf(a, k))
+    if "attractor_asymptotic" in res:                          # with t_max only
+        data["attractor_asymptotic"] = xr.Variable(
+            ("z_m0", "v_m0"), np.asarray(res["attractor_asymptotic"], "i4"),
+            cf(a, "attractor_asymptotic"))
+        data["from_rest_asymptotic"] = xr.Variable((), np.int32(res["from_rest_asymptotic"]),
+                                                   cf(a, "from_rest_asymptotic"))
+        for k, dt in (("basin_fraction_asymptotic", "f8"), ("status", "U16")):
+            data[k] = xr.Variable(("attractor_index",),
+                                  np.asarray(table[k], dt).reshape(n_att), cf(a, k))
     coords = {"z_m0": xr.Variable(("z_m0",), np.asarray(z_m0, float), cf(a, "z_m0")),
               "v_m0": xr.Variable(("v_m0",), np.asarray(v_m0, float), cf(a, "v_m0"))}
     return xr.Dataset(data, coords=coords, attrs=attrs)

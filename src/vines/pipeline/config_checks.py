@@ -12,7 +12,14 @@ import math
 
 import numpy as np
 
-from ..core.params import PARAM_NAMES, STATE_MAX, ModelParams, ParameterError, SolverSettings
+from ..core.params import (
+    PARAM_NAMES,
+    STATE_MAX,
+    T_END_MAX,
+    ModelParams,
+    ParameterError,
+    SolverSettings,
+)
 from .axes import ConfigError, axis_values
 
 
@@ -191,10 +198,20 @@ def _check_timehistory(key: str, th: dict, simulation: dict, limits: dict) -> No
                           "section if this is intended)")
 
 
+def _check_t_max(key: str, t_max, simulation: dict) -> None:
+    """The asymptotic view's horizon lies beyond the window view's end."""
+    if t_max is not None and not simulation["t_end"] < t_max <= T_END_MAX:
+        raise ConfigError(key, f"{t_max:g} must be > simulation.t_end = "
+                          f"{simulation['t_end']:g} and <= {T_END_MAX:g}")
+
+
 def check_attractor_maps(config: dict, model: dict, limits: dict) -> None:
     """Robust-TET maps and basin slices: parameters the model accepts, sizes (grid points
     times initial states) within limits.max_grid_points, slice states within the bound of
     an initial state (|z_m(0)|, |z_m'(0)| <= STATE_MAX)."""
+    for section in ("robust_maps", "basin_slices"):
+        for name, entry in config[section].items():
+            _check_t_max(f"{section}.{name}.t_max", entry.get("t_max"), config["simulation"])
     for name, rm in config["robust_maps"].items():
         key = f"robust_maps.{name}"
         n = _check_axis(f"{key}.eta", "eta", rm["eta"], model)

@@ -301,6 +301,14 @@ def _census_kw(model: dict, simulation: dict) -> dict:
             **{k: simulation[k] for k in CENSUS_SETTINGS if k in simulation}}
 
 
+def _views(spec: dict) -> dict:
+    """Global attributes naming the views a census dataset holds."""
+    if spec.get("t_max") is None:
+        return {"views": "window (state at t_end)"}
+    return {"views": "window (state at t_end) and asymptotic (*_asymptotic: state at t_max)",
+            "t_max": float(spec["t_max"])}
+
+
 def _robust_block(points, F, kw):
     from ..attractors.census_maps import robust_point
     return [robust_point(e, w, F, n_threads=1, **kw) for e, w in points]
@@ -312,22 +320,22 @@ def robust_map(spec: dict, *, model: dict, simulation: dict, code: str, title: s
     ``spec['n']`` Sobol states (seed ``spec['seed']``) per point, in dask blocks."""
     import dask
 
-    from ..attractors.census_maps import ROBUST_FIELDS
+    from ..attractors.census_maps import ROBUST_ASYMPTOTIC_FIELDS, ROBUST_FIELDS
     eta, omega = axis_values(spec["eta"]), axis_values(spec["omega"])
     points = [(e, w) for e in eta for w in omega]
     kw = {**_census_kw(model, simulation), "n": spec["n"], "seed": spec["seed"],
-          "threshold": spec["threshold"]}
+          "threshold": spec["threshold"], "t_max": spec.get("t_max")}
     bs = max(1, int(block_size))
     tasks = [dask.delayed(_robust_block, pure=True)(points[i:i + bs], float(spec["F"]), kw)
              for i in range(0, len(points), bs)]
     rows = [r for part in compute(tasks, max(1, int(n_workers)), scheduler, True) for r in part]
-    fields = {k: np.array([r[k] for r in rows]).reshape(len(eta), len(omega))
-              for k in ROBUST_FIELDS}
+    names = ROBUST_FIELDS + (ROBUST_ASYMPTOTIC_FIELDS if kw["t_max"] is not None else ())
+    fields = {k: np.array([r[k] for r in rows]).reshape(len(eta), len(omega)) for k in names}
     attrs = provenance_attrs(title=title, config_subset={"spec": spec, "model": model,
                                                          "simulation": simulation},
                              settings={**model, **simulation}, code_version=code)
     attrs.update(F=float(spec["F"]), threshold=float(spec["threshold"]),
-                 n_states=int(spec["n"]), seed=int(spec["seed"]))
+                 n_states=int(spec["n"]), seed=int(spec["seed"]), **_views(spec))
     return builders.robust_dataset(eta, omega, fields, attrs)
 
 
@@ -338,11 +346,13 @@ def basin_slice(spec: dict, *, model: dict, simulation: dict, code: str, title: 
     from ..attractors.census_maps import basin_slice as solve_slice
     z_m0, v_m0 = axis_values(spec["z_m0"]), axis_values(spec["v_m0"])
     res = solve_slice(spec["eta"], spec["omega"], spec["F"], z_m0, v_m0,
-                      n_threads=max(1, int(n_workers)), **_census_kw(model, simulation))
+                      n_threads=max(1, int(n_workers)), t_max=spec.get("t_max"),
+                      **_census_kw(model, simulation))
     attrs = provenance_attrs(title=title, config_subset={"spec": spec, "model": model,
                                                          "simulation": simulation},
                              settings={**model, **simulation}, code_version=code)
-    attrs.update(eta=float(spec["eta"]), omega=float(spec["omega"]), F=float(spec["F"]))
+    attrs.update(eta=float(spec["eta"]), omega=float(spec["omega"]), F=float(spec["F"]),
+                 **_views(spec))
     return builders.basin_slice_dataset(z_m0, v_m0, res, attrs)
 
 
