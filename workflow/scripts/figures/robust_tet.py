@@ -43,7 +43,7 @@ def mark_changed(ax, rob):
     """A cross on every cell whose efficient fraction at t_max differs from the window's."""
     window = P.grid2d(rob, "efficient_fraction", "eta", "omega")
     late = P.grid2d(rob, ASYMPTOTIC, "eta", "omega")
-    e, w = np.meshgrid(rob["eta"].values, rob["omega"].values, indexing="ij")
+    e, w = np.meshgrid(rob["eta"].values, rob["omega"].values)   # as grid2d: (omega, eta)
     changed = np.abs(late - window) > 1e-12
     ax.plot(e[changed], w[changed], "x", color="black", ms=5, mew=1.6)
     ax.plot(e[changed], w[changed], "x", color="white", ms=4, mew=0.7)
