@@ -66,6 +66,22 @@ def fig3(res):
     return out
 
 
+def fig3_lyapunov(res):
+    out = []
+    for p in _files(res, "lyapunov", "fig3"):
+        ly = P.load(p)
+        ci = ly["exponents_ci"].values[:, 0, :]
+        for o in np.unique(ly["outer_value"].values):
+            for d, name in ((1, "up"), (-1, "down")):
+                sel = np.isclose(ly["outer_value"].values, o) & (ly["direction"].values == d)
+                pos, neg = sel & (ci[:, 0] > 0), sel & (ci[:, 1] < 0)
+                out.append(f"F = {P.fmt(o)} ({name}): lambda_1 > 0 at {int(pos.sum())}, < 0 at "
+                           f"{int(neg.sum())}, interval containing 0 at "
+                           f"{int((sel & ~pos & ~neg).sum())} of {int(sel.sum())} points; "
+                           f"lambda_1 {_interval(ly['lambda_1'].values[sel])}")
+    return out
+
+
 def timehistories(res, name):
     out = []
     for p in _files(res, "timehistories", name):
@@ -183,10 +199,17 @@ def robust(res):
                    f"{int((ef >= 0.5).sum())}, efficient from rest at "
                    f"{int(r['from_rest_efficient'].values.sum())}; a 95 % Wilson interval "
                    f"wider than {P.fmt(WIDE_INTERVAL)} ({n} states) at {int(wide.sum())} points")
+        if "efficient_fraction_asymptotic" in r:
+            late = r["efficient_fraction_asymptotic"].values
+            out.append(f"F = {P.fmt(float(r.attrs['F']))}, t_max = {_g(float(r.attrs['t_max']))}:"
+                       f" efficient basin >= 0.5 at {int((late >= 0.5).sum())} points, the "
+                       f"efficient fraction differs from the window's at "
+                       f"{int((np.abs(late - ef) > 1e-12).sum())}, states escaped at "
+                       f"{int((r['escaped_fraction'].values > 0).sum())} points")
     return out
 
 
-SECTIONS = (("Fig 2", fig2), ("Fig 3", fig3),
+SECTIONS = (("Fig 2", fig2), ("Fig 3", fig3), ("fig3_lyapunov", fig3_lyapunov),
             ("Fig 4", lambda r: timehistories(r, "fig4")),
             ("Fig 5", lambda r: timehistories(r, "fig5")), ("Fig 6", lambda r: zoom(r, "fig6")),
             ("Fig 7", fig7), ("Fig 9", lambda r: timehistories(r, "fig9")),

@@ -63,6 +63,7 @@ GRIDS = config["grids"]
 AXES = {name: grid_axes(g, key=f"grids.{name}") for name, g in GRIDS.items()}
 CHUNKS = {name: chunk_map(AXES[name], config["chunk_size"]) for name in GRIDS}
 SWEEPS = config["sweeps"]
+LYAPUNOV_SWEEPS = config["lyapunov_sweeps"]
 BRANCHES = config["branches"]
 STABILITY_MAPS = config["stability_maps"]
 BOUNDARIES = config["boundaries"]
@@ -124,6 +125,7 @@ def boundaries_seed_map(wildcards):
 STAGE_ENTRIES = {
     "extract_measures": GRIDS,
     "bifurcation_sweep": SWEEPS,
+    "lyapunov": LYAPUNOV_SWEEPS,
     "map_solve": BRANCHES,
     "stability_map": STABILITY_MAPS,
     "boundaries": BOUNDARIES,

@@ -57,6 +57,8 @@ def _atlases(p):
 FIG_INPUTS = {
     "fig2": {"measures": _measures("fig2")},
     "fig3": {"sweep": _sweeps("fig3")},
+    # beyond the paper: the leading Lyapunov exponent under the Fig 3 diagrams
+    "fig3_lyapunov": {"sweep": _sweeps("fig3"), "lyapunov": _named("lyapunov", "fig3")},
     "fig4": {"th": _th("fig4")},
     "fig5": {"th": _th("fig5")},
     "fig6": {"sweep": _sweeps("fig3"), "branches": _branches("fig6")},
@@ -72,9 +74,8 @@ FIG_INPUTS = {
     },
     "fig13": {"measures": _measures("fig12")},
     "fig14": {"sweeps": _sweeps("fig14")},
-    "fig14_regimes": {
-        "sweeps": _sweeps("fig14")
-    },  # companion of Fig 14 (not in the paper)
+    # companion of Fig 14 (not in the paper); irregular split by the exponents
+    "fig14_regimes": {"sweeps": _sweeps("fig14"), "lyapunov": _named("lyapunov", "fig14")},
     "fig15": {"sweep": _sweeps("fig15"), "branches": _branches("fig15")},
     "fig16": {"stability": _smaps("fig16"), "boundaries": _boundaries("fig16")},
     # beyond the paper: coexisting attractors (robust-TET maps beside Fig 12, basin slices)

@@ -13,7 +13,7 @@ Contract (see the README and the project specification, section 7):
 * Unexpected internal errors are not caught: they keep their traceback.
 
 One module per command (``simulate``, ``periodic``, ``continue_``, ``boundaries``,
-``attractors``, ``design``); what they share (the argument parser, the model arguments, the error
+``attractors``, ``lyapunov``, ``design``); what they share (the argument parser, the model arguments, the error
 messages, the JSON-or-text output) is in ``common``.
 
 Adding a command: a module ``vines/cli/<name>.py`` defining ``NAME``,
@@ -35,7 +35,8 @@ from ..core.params import ParameterError
 from .common import PROG, VinesArgumentParser, flag_for
 
 #: the commands' modules, in the order of ``vines --help``
-COMMANDS = ("simulate", "periodic", "continue_", "boundaries", "attractors", "design")
+COMMANDS = ("simulate", "periodic", "continue_", "boundaries", "attractors", "lyapunov",
+            "design")
 
 __all__ = ["main", "build_parser", "COMMANDS", "VinesArgumentParser"]
 

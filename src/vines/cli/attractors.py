@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import argparse
 
+from ..attractors.asymptotic import T_MAX_DEFAULT
 from ..attractors.sampling import N_MAX, SEED_MAX
 from ..core.params import T_END_DEFAULT, T_END_MAX, T_TRANSIENT_DEFAULT, ModelParams, check_int
 from .common import (
@@ -37,10 +38,16 @@ def add_parser(subparsers) -> VinesArgumentParser:
     add_value(p, "--t-transient", "a number >= 0 and < t-end", "start of the window of "
               f"the non-periodic measures (default {T_TRANSIENT_DEFAULT:g})",
               default=T_TRANSIENT_DEFAULT)
+    add_value(p, "--t-max", f"a number > t-end and <= {T_END_MAX:g}", "also the asymptotic "
+              "view: states not settled at t-end run on until they settle on a periodic orbit "
+              f"or reach T_MAX (default without a value: {T_MAX_DEFAULT:g})", nargs="?",
+              const=T_MAX_DEFAULT, default=None)
     add_value(p, "--threads", "an integer >= 1", "threads (default: all cores)",
               default=None)
     p.add_argument("--json", action="store_true", help="print one JSON object on stdout "
-                   "(keys: attractors, from_rest, unsettled_fraction)")
+                   "(keys: attractors, from_rest, unsettled_fraction; with --t-max also "
+                   "t_max, from_rest_asymptotic and per attractor basin_fraction_asymptotic, "
+                   "ci_asymptotic, status, lyapunov_max, lifetime, escape_to)")
     return p
 
 
@@ -53,7 +60,7 @@ def run(args: argparse.Namespace) -> int:
     with quiet_stdout():
         res = census(params.eta, params.omega, params.F, r=params.r, d=params.d, n=n,
                      seed=seed, t_end=args.t_end, t_transient=args.t_transient,
-                     n_threads=threads)
+                     n_threads=threads, t_max=args.t_max)
     return emit(args.json, res.to_dict(), lambda d: _text(d, params))
 
 
@@ -65,5 +72,28 @@ def _text(d: dict, params: ModelParams) -> str:
         rest = "  <- from rest" if i == d["from_rest"] else ""
         lines.append(f"  {i}: {a['regime']:10s} basin {a['basin_fraction']:.3f} "
                      f"[{a['ci'][0]:.3f}, {a['ci'][1]:.3f}]  KE ratio {a['ke_ratio']:.4f}"
-                     f"  x_max {1e3 * a['xmax_m']:.4g} mm{rest}")
+                     f"  x_max {1e3 * a['xmax_m']:.4g} mm{rest}{_asymptotic_text(a)}")
+    if d.get("t_max") is not None:
+        lines.append(f"asymptotic view to t = {d['t_max']:g}; from rest at t_max: "
+                     f"{d['from_rest_asymptotic']}")
     return "\n".join(lines)
+
+
+def _asymptotic_text(a: dict) -> str:
+    """The asymptotic columns of one attractor (empty without --t-max)."""
+    if "status" not in a:
+        return ""
+    ci = a["ci_asymptotic"]
+    out = (f"  -> {a['status']}, asymptotic basin {a['basin_fraction_asymptotic']:.3f} "
+           f"[{ci[0]:.3f}, {ci[1]:.3f}]")
+    life = a.get("lifetime")
+    if life:
+        g = _fmt
+        out += f", lifetime {g(life['mean'])} [{g(life['ci'][0])}, {g(life['ci'][1])}]"
+    if a.get("escape_to"):
+        out += f", escapes to {a['escape_to']}"
+    return out
+
+
+def _fmt(x) -> str:
+    return "inf" if x is None or x == float("inf") else f"{x:.3g}"

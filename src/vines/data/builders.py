@@ -40,8 +40,10 @@ from .schema import (
     DESIGN_UNITS,
     FEATURE_TYPE,
     FLAG_MEANINGS,
+    LYAPUNOV_SWEEP_ATTRS,
     MEASURE_ATTRS,
     REFERENCES,
+    ROBUST_ASYMPTOTIC_ATTRS,
     ROBUST_ATTRS,
     STABILITY_ATTRS,
     STABILITY_CLASS_FLAGS,
@@ -184,6 +186,32 @@ def sweep_dataset(sweep: dict, param: str, outer: str, attrs: dict) -> xr.Datase
                           sample_dim="impact", attrs=attrs, coordinates=("value", "outer_value"))
 
 
+def lyapunov_sweep_dataset(res: dict, param: str, outer: str, attrs: dict) -> xr.Dataset:
+    """Lyapunov exponents along sweep lines (``pipeline.stages.lyapunov`` assembly): per
+    point the spectrum, its intervals, the leading exponent, regime and event counts."""
+    P = ("point",)
+    inst = {"value": (res["value"], f"swept parameter {param}: "
+                      + COORD_ATTRS[param]["long_name"], "1"),
+            "outer_value": (res["outer_value"], f"outer parameter {outer}: "
+                            + COORD_ATTRS[outer]["long_name"], "1")}
+    inst.update({k: (res[k], *SWEEP_INSTANCE_ATTRS[k]) for k in ("direction", "line", "phi",
+                                                                  "status")})
+    data = {k: xr.Variable(P, np.asarray(v), {"long_name": ln, "units": u})
+            for k, (v, ln, u) in inst.items()}
+    a = LYAPUNOV_SWEEP_ATTRS
+    data["exponents"] = xr.Variable(("point", "exponent"), np.asarray(res["exponents"], "f8"),
+                                    cf(a, "exponents"))
+    data["exponents_ci"] = xr.Variable(("point", "exponent", "bound"),
+                                       np.asarray(res["ci"], "f8"), cf(a, "exponents_ci"))
+    data["lambda_1"] = xr.Variable(P, np.asarray(res["exponents"], "f8")[:, 0],
+                                   cf(a, "lambda_1"))
+    data["regime"] = xr.Variable(P, np.asarray(res["regime"], "U16"), cf(a, "regime"))
+    for k in ("n_impacts", "n_sticks"):
+        data[k] = xr.Variable(P, np.asarray(res[k], "i4"), cf(a, k))
+    coords = {k: data.pop(k) for k in ("value", "outer_value")}
+    return xr.Dataset(data, coords=coords, attrs=attrs)
+
+
 def timehistory_dataset(points: list[dict], th: dict, attrs: dict) -> xr.Dataset:
     """Time histories (``core.measures.time_histories``) of ``points``: samples of the last
     periods per point (incomplete multidimensional array over (point, sample)), samples of
@@ -323,6 +351,10 @@ def robust_dataset(eta, omega, fields: dict, attrs: dict) -> xr.Dataset:
             raise ValueError(f"robust map field {k} has shape {arr.shape}, expected {shape}")
         dtype = "i4" if k in ("n_attractors", "from_rest_efficient") else "f8"
         data[k] = xr.Variable(D, arr.astype(dtype), cf(ROBUST_ATTRS, k))
+    for k in [k for k in ROBUST_ASYMPTOTIC_ATTRS if k in fields]:   # with t_max only
+        dtype = "i4" if k == "from_rest_efficient_asymptotic" else "f8"
+        data[k] = xr.Variable(D, np.asarray(fields[k]).astype(dtype).reshape(shape),
+                              cf(ROBUST_ASYMPTOTIC_ATTRS, k))
     return xr.Dataset(data, coords=_eta_omega_coords(eta, omega), attrs=attrs)
 
 
@@ -339,6 +371,15 @@ def basin_slice_dataset(z_m0, v_m0, res: dict, attrs: dict) -> xr.Dataset:
                   ("basin_fraction", "f8")):
         data[k] = xr.Variable(("attractor_index",), np.asarray(table[k], dt).reshape(n_att),
                               cf(a, k))
+    if "attractor_asymptotic" in res:                          # with t_max only
+        data["attractor_asymptotic"] = xr.Variable(
+            ("z_m0", "v_m0"), np.asarray(res["attractor_asymptotic"], "i4"),
+            cf(a, "attractor_asymptotic"))
+        data["from_rest_asymptotic"] = xr.Variable((), np.int32(res["from_rest_asymptotic"]),
+                                                   cf(a, "from_rest_asymptotic"))
+        for k, dt in (("basin_fraction_asymptotic", "f8"), ("status", "U16")):
+            data[k] = xr.Variable(("attractor_index",),
+                                  np.asarray(table[k], dt).reshape(n_att), cf(a, k))
     coords = {"z_m0": xr.Variable(("z_m0",), np.asarray(z_m0, float), cf(a, "z_m0")),
               "v_m0": xr.Variable(("v_m0",), np.asarray(v_m0, float), cf(a, "v_m0"))}
     return xr.Dataset(data, coords=coords, attrs=attrs)

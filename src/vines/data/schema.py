@@ -71,6 +71,17 @@ SWEEP_SAMPLE_ATTRS = {
     "wall": ("wall hit (+1 left end L, -1 right end R)", "1"),
 }
 
+#: Lyapunov exponents along a sweep (``vines.attractors.lyapunov_sweep``), one per point
+LYAPUNOV_SWEEP_ATTRS = {
+    "exponents": ("Lyapunov exponents of the point's window, descending (-inf: direction "
+                  "removed by sticking)", "1"),
+    "exponents_ci": ("95 % batch-means interval of the Lyapunov exponents", "1"),
+    "lambda_1": ("leading Lyapunov exponent of the point's window", "1"),
+    "regime": ("regime of the point's window", ""),
+    "n_impacts": ("impacts in the point's window", "1"),
+    "n_sticks": ("sticking phases started in the point's window", "1"),
+}
+
 #: 1:1 branches (map-solve)
 BRANCH_ATTRS = {
     "lambda_max": ("largest |eigenvalue| of the 1:1 map", "1"),
@@ -146,6 +157,18 @@ ROBUST_ATTRS = {
     "from_rest_ke_ratio": ("KE ratio of the attractor reached from rest", "1"),
 }
 
+#: the asymptotic view of a robust-TET map (``robust_point`` with t_max)
+ROBUST_ASYMPTOTIC_ATTRS = {
+    "efficient_fraction_asymptotic": ("basin fraction of attractors with KE ratio above the "
+                                      "threshold, states followed to t_max", "1"),
+    "stable_1to1_fraction_asymptotic": ("basin fraction of the stable 1:1 orbit, states "
+                                        "followed to t_max", "1"),
+    "escaped_fraction": ("fraction of initial states on another attractor at t_max than at "
+                         "t_end (escaped from a transient)", "1"),
+    "from_rest_efficient_asymptotic": ("1 where the start from rest is on an attractor with "
+                                       "KE ratio above the threshold at t_max", "1"),
+}
+
 #: basin slices (``vines.attractors.census_maps.basin_slice``): per slice point, per attractor
 BASIN_SLICE_ATTRS = {
     "z_m0": ("initial LO displacement z_m(0) (units of L)", "1"),
@@ -157,6 +180,13 @@ BASIN_SLICE_ATTRS = {
     "xmax_m": DERIVED_ATTRS["xmax_m"],
     "basin_fraction": ("fraction of the slice's points reaching the attractor", "1"),
     "from_rest": ("index of the attractor reached from rest (-1: stopped early)", "1"),
+    "attractor_asymptotic": ("index of the attractor the point is on at t_max (-1: run "
+                             "stopped early)", "1"),
+    "basin_fraction_asymptotic": ("fraction of the slice's points on the attractor at t_max",
+                                  "1"),
+    "status": ("persistent, transient or unresolved (states followed to t_max)", ""),
+    "from_rest_asymptotic": ("index of the attractor the start from rest is on at t_max "
+                             "(-1: stopped early)", "1"),
 }
 
 

@@ -12,7 +12,14 @@ import math
 
 import numpy as np
 
-from ..core.params import PARAM_NAMES, STATE_MAX, ModelParams, ParameterError, SolverSettings
+from ..core.params import (
+    PARAM_NAMES,
+    STATE_MAX,
+    T_END_MAX,
+    ModelParams,
+    ParameterError,
+    SolverSettings,
+)
 from .axes import ConfigError, axis_values
 
 
@@ -128,6 +135,22 @@ def check_sweeps(config: dict, model: dict, limits: dict) -> None:
         _check_recorded_periods(key, sw)
 
 
+def check_lyapunov_sweeps(config: dict, model: dict, limits: dict) -> None:
+    """Each lyapunov_sweeps entry names a sweeps entry, and its window fits in the shortest
+    run of a point (t_step; the first point runs t_settle + the recorded periods)."""
+    for name, ly in config["lyapunov_sweeps"].items():
+        key = f"lyapunov_sweeps.{name}"
+        sw = config["sweeps"].get(ly["sweep"])
+        if sw is None:
+            raise ConfigError(f"{key}.sweep", f"{ly['sweep']!r} is not a sweeps entry "
+                              f"({sorted(config['sweeps'])})")
+        shortest = min(sw["t_step"], sw["t_settle"])
+        if ly["t_window"] > shortest:
+            raise ConfigError(f"{key}.t_window", f"{ly['t_window']:g} must not exceed the "
+                              f"shortest run of a point of sweep {ly['sweep']!r} "
+                              f"(min(t_settle, t_step) = {shortest:g})")
+
+
 def check_branches(config: dict, model: dict, limits: dict) -> None:
     for name, br in config["branches"].items():
         key = f"branches.{name}"
@@ -175,10 +198,20 @@ def _check_timehistory(key: str, th: dict, simulation: dict, limits: dict) -> No
                           "section if this is intended)")
 
 
+def _check_t_max(key: str, t_max, simulation: dict) -> None:
+    """The asymptotic view's horizon lies beyond the window view's end."""
+    if t_max is not None and not simulation["t_end"] < t_max <= T_END_MAX:
+        raise ConfigError(key, f"{t_max:g} must be > simulation.t_end = "
+                          f"{simulation['t_end']:g} and <= {T_END_MAX:g}")
+
+
 def check_attractor_maps(config: dict, model: dict, limits: dict) -> None:
     """Robust-TET maps and basin slices: parameters the model accepts, sizes (grid points
     times initial states) within limits.max_grid_points, slice states within the bound of
     an initial state (|z_m(0)|, |z_m'(0)| <= STATE_MAX)."""
+    for section in ("robust_maps", "basin_slices"):
+        for name, entry in config[section].items():
+            _check_t_max(f"{section}.{name}.t_max", entry.get("t_max"), config["simulation"])
     for name, rm in config["robust_maps"].items():
         key = f"robust_maps.{name}"
         n = _check_axis(f"{key}.eta", "eta", rm["eta"], model)
@@ -362,7 +395,7 @@ def check_physical(config: dict) -> None:
     _check_settings("simulation", {k: config["simulation"][k] for k in
                                    ("t_end", "t_transient", "v_stick", "max_impacts",
                                     "root_tol")}, limits)
-    for check in (check_grids, check_sweeps, check_branches, check_maps_and_points,
-                  check_attractor_maps, check_boundaries, check_studies, check_designs,
-                  check_orbit_atlases):
+    for check in (check_grids, check_sweeps, check_lyapunov_sweeps, check_branches,
+                  check_maps_and_points, check_attractor_maps, check_boundaries, check_studies,
+                  check_designs, check_orbit_atlases):
         check(config, model, limits)

@@ -2,8 +2,9 @@
 
 One function per stage, named as the rule, the rule file, the workflow script and the
 output folder: ``simulate_grid``, ``extract_measures``, ``bifurcation_sweep``,
-``map_solve``, ``stability_map``, ``boundaries``, ``timehistory``, ``robust_map``,
-``basin_slice``, ``work_precision``, ``convergence``, ``design``, ``orbit_atlas``. Each calls the numerics
+``lyapunov``, ``map_solve``, ``stability_map``, ``boundaries``, ``timehistory``,
+``robust_map``, ``basin_slice``, ``work_precision``, ``convergence``, ``design``,
+``orbit_atlas``. Each calls the numerics
 (``vines.core``, ``vines.orbits``, ``vines.attractors``, ``vines.studies``), lets
 ``vines.pipeline.execution`` spread independent tasks over dask, and hands plain arrays to
 ``vines.data.builders``. Results are assembled by index, so the
@@ -167,6 +168,48 @@ def bifurcation_sweep(spec: dict, *, model: dict, code: str, title: str, n_worke
     return builders.sweep_dataset(sweep, spec["param"], spec["outer"], attrs)
 
 
+# ------------------------------------------------------------------ lyapunov
+
+def _lyapunov_line(param, values, fixed, kw):
+    from ..attractors.lyapunov_sweep import sweep_exponents
+    return sweep_exponents(param, values, **fixed, **kw)
+
+
+def lyapunov(spec: dict, sweep: dict, *, model: dict, code: str, title: str,
+             periodic_shortcut: bool = True, n_workers: int = 1, scheduler: str | None = None):
+    """Dataset of the Lyapunov exponents along the sweep entry ``sweep`` (the config's
+    ``sweeps[spec['sweep']]``, with defaults): every line (outer value, direction), every
+    point, over the last ``spec['t_window']`` of the point's run (one dask task per line)."""
+    import dask
+    kw = dict(t_settle=sweep["t_settle"], t_step=sweep["t_step"], n_record=sweep["n_record"],
+              v_stick=sweep["v_stick"], periodic_shortcut=periodic_shortcut,
+              t_window=spec["t_window"], n_batches=spec["n_batches"], **model)
+    lines = _sweep_lines(sweep)
+    tasks = [dask.delayed(_lyapunov_line, pure=True)(sweep["param"], vals, fixed, kw)
+             for (_, _, vals, fixed) in lines]
+    res = compute(tasks, max(1, int(n_workers)), scheduler, True)
+    cat = {k: np.concatenate([r[k] for r in res]) for k in res[0]}
+    cat["outer_value"] = np.concatenate([np.full(r["value"].size, ov)
+                                         for (ov, _, _, _), r in zip(lines, res, strict=True)])
+    cat["direction"] = np.concatenate([np.full(r["value"].size, 1 if dr == "up" else -1, "i1")
+                                       for (_, dr, _, _), r in zip(lines, res, strict=True)])
+    cat["line"] = np.concatenate([np.full(r["value"].size, i, "i4")
+                                  for i, r in enumerate(res)])
+    settings = {**model, **{k: sweep[k] for k in ("t_settle", "t_step", "n_record", "v_stick")},
+                "periodic_shortcut": bool(periodic_shortcut), "t_window": spec["t_window"],
+                "n_batches": spec["n_batches"]}
+    attrs = provenance_attrs(title=title, config_subset={"spec": spec, "sweep": sweep,
+                                                         "model": model,
+                                                         "periodic_shortcut": bool(periodic_shortcut)},
+                             settings=settings, code_version=code)
+    attrs.update(swept_parameter=sweep["param"], outer_parameter=sweep["outer"],
+                 sweep=spec["sweep"],
+                 fixed=", ".join(f"{k}={v!r}" for k, v in sorted(sweep["fixed"].items())),
+                 window=f"last t_window = {spec['t_window']:g} of each point's run "
+                        "(finite-time exponents)")
+    return builders.lyapunov_sweep_dataset(cat, sweep["param"], sweep["outer"], attrs)
+
+
 # ------------------------------------------------------------------ map-solve, stability-map
 
 #: parameter tolerance of the events of a stored branch (the smallest continue_branch
@@ -259,6 +302,14 @@ def _census_kw(model: dict, simulation: dict) -> dict:
             **{k: simulation[k] for k in CENSUS_SETTINGS if k in simulation}}
 
 
+def _views(spec: dict) -> dict:
+    """Global attributes naming the views a census dataset holds."""
+    if spec.get("t_max") is None:
+        return {"views": "window (state at t_end)"}
+    return {"views": "window (state at t_end) and asymptotic (*_asymptotic: state at t_max)",
+            "t_max": float(spec["t_max"])}
+
+
 def _robust_block(points, F, kw):
     from ..attractors.census_maps import robust_point
     return [robust_point(e, w, F, n_threads=1, **kw) for e, w in points]
@@ -270,22 +321,22 @@ def robust_map(spec: dict, *, model: dict, simulation: dict, code: str, title: s
     ``spec['n']`` Sobol states (seed ``spec['seed']``) per point, in dask blocks."""
     import dask
 
-    from ..attractors.census_maps import ROBUST_FIELDS
+    from ..attractors.census_maps import ROBUST_ASYMPTOTIC_FIELDS, ROBUST_FIELDS
     eta, omega = axis_values(spec["eta"]), axis_values(spec["omega"])
     points = [(e, w) for e in eta for w in omega]
     kw = {**_census_kw(model, simulation), "n": spec["n"], "seed": spec["seed"],
-          "threshold": spec["threshold"]}
+          "threshold": spec["threshold"], "t_max": spec.get("t_max")}
     bs = max(1, int(block_size))
     tasks = [dask.delayed(_robust_block, pure=True)(points[i:i + bs], float(spec["F"]), kw)
              for i in range(0, len(points), bs)]
     rows = [r for part in compute(tasks, max(1, int(n_workers)), scheduler, True) for r in part]
-    fields = {k: np.array([r[k] for r in rows]).reshape(len(eta), len(omega))
-              for k in ROBUST_FIELDS}
+    names = ROBUST_FIELDS + (ROBUST_ASYMPTOTIC_FIELDS if kw["t_max"] is not None else ())
+    fields = {k: np.array([r[k] for r in rows]).reshape(len(eta), len(omega)) for k in names}
     attrs = provenance_attrs(title=title, config_subset={"spec": spec, "model": model,
                                                          "simulation": simulation},
                              settings={**model, **simulation}, code_version=code)
     attrs.update(F=float(spec["F"]), threshold=float(spec["threshold"]),
-                 n_states=int(spec["n"]), seed=int(spec["seed"]))
+                 n_states=int(spec["n"]), seed=int(spec["seed"]), **_views(spec))
     return builders.robust_dataset(eta, omega, fields, attrs)
 
 
@@ -296,11 +347,13 @@ def basin_slice(spec: dict, *, model: dict, simulation: dict, code: str, title: 
     from ..attractors.census_maps import basin_slice as solve_slice
     z_m0, v_m0 = axis_values(spec["z_m0"]), axis_values(spec["v_m0"])
     res = solve_slice(spec["eta"], spec["omega"], spec["F"], z_m0, v_m0,
-                      n_threads=max(1, int(n_workers)), **_census_kw(model, simulation))
+                      n_threads=max(1, int(n_workers)), t_max=spec.get("t_max"),
+                      **_census_kw(model, simulation))
     attrs = provenance_attrs(title=title, config_subset={"spec": spec, "model": model,
                                                          "simulation": simulation},
                              settings={**model, **simulation}, code_version=code)
-    attrs.update(eta=float(spec["eta"]), omega=float(spec["omega"]), F=float(spec["F"]))
+    attrs.update(eta=float(spec["eta"]), omega=float(spec["omega"]), F=float(spec["F"]),
+                 **_views(spec))
     return builders.basin_slice_dataset(z_m0, v_m0, res, attrs)
 
 

@@ -65,6 +65,8 @@ from .layouts import ZOOM_PAD, time_history_figure, zoom_figure, zoom_legend, zo
 from .stable_region import reaches_1to1, region_counts, stability_margin, stable_at
 from .sweep_regimes import (
     REGIME_ASYM,
+    REGIME_CHAOTIC,
+    REGIME_QUASIPERIODIC,
     REGIME_SYM,
     REGIMES,
     point_regime,
@@ -92,7 +94,7 @@ __all__ = [
     # stable_region
     "reaches_1to1", "region_counts", "stability_margin", "stable_at",
     # sweep_regimes
-    "REGIME_ASYM", "REGIME_SYM", "REGIMES", "point_regime", "regime_grid", "sweep_regimes",
+    "REGIME_ASYM", "REGIME_CHAOTIC", "REGIME_QUASIPERIODIC", "REGIME_SYM", "REGIMES", "point_regime", "regime_grid", "sweep_regimes",
 ]
 
 

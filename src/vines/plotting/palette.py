@@ -36,6 +36,11 @@ REGIMES = {0: ("no impact", "0.85"), 1: ("1:1 symmetric", OKABE_ITO["orange"]),
            3: ("other periodic", OKABE_ITO["bluish green"]),
            4: ("irregular", OKABE_ITO["sky blue"]),
            5: ("chatter", OKABE_ITO["reddish purple"])}
+#: REGIMES with "irregular" split by the leading Lyapunov exponent (``sweep_regimes``):
+#: irregular stays for the points whose lambda_1 is below 0 beyond its interval
+REGIMES_SPLIT = {**REGIMES, 4: (r"irregular, $\lambda_1$ < 0", OKABE_ITO["sky blue"]),
+                 6: (r"chaotic ($\lambda_1$ > 0)", OKABE_ITO["vermillion"]),
+                 7: (r"quasi-periodic ($\lambda_1$ = 0)", OKABE_ITO["blue"])}
 #: stability classes (value of ``cls`` in the stability maps) -> (label, colour); the
 #: paper's orange / black / white, grey where it leaves points without a 1:1 orbit white
 CLASSES = {0: ("no admissible 1:1", "0.6"), 1: ("symmetric stable 1:1", OKABE_ITO["orange"]),

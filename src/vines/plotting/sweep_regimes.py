@@ -14,6 +14,11 @@ which classifies the grid runs from their stroboscopic section):
   other periodic the impact sequence repeats after k impacts (to ``PERIOD_TOL``), at least
                  twice in the record, and is not 1:1 (a:b with a != b, period-p)
   irregular      none of these
+
+With a ``lyapunov`` dataset of the same sweep (``regime_grid(..., lyapunov=...)``), irregular
+points are split by their leading exponent lambda_1 and its 95 % interval: chaotic (the
+interval above 0), quasi-periodic (the interval contains 0: motion on a torus) and
+irregular (below 0: a long period or a motion still settling) (``palette.REGIMES_SPLIT``).
 """
 from __future__ import annotations
 
@@ -27,7 +32,7 @@ from . import palette
 #: regime codes -> (label, colour): the one regime palette (``vines.plotting.palette``)
 REGIMES = palette.REGIMES
 (REGIME_NONE, REGIME_SYM, REGIME_ASYM, REGIME_PERIODIC, REGIME_IRREGULAR,
- REGIME_CHATTER) = range(6)
+ REGIME_CHATTER, REGIME_CHAOTIC, REGIME_QUASIPERIODIC) = range(8)
 #: relative tolerance of a repeating impact sequence (dw and phase, scaled by max(1, |dw|))
 PERIOD_TOL = 1e-3
 #: tolerance (rad) of the half-period phase difference of a symmetric 1:1 orbit
@@ -72,12 +77,35 @@ def sweep_regimes(ds: xr.Dataset) -> np.ndarray:
     return np.array([point_regime(d, p, w, n_record) for d, p, w in zip(*rows, strict=False)], dtype=int)
 
 
-def regime_grid(ds: xr.Dataset, direction: int):
+def split_irregular(codes: np.ndarray, ly: xr.Dataset) -> np.ndarray:
+    """``codes`` of a sweep's points with irregular split by the exponents of ``ly`` (a
+    lyapunov dataset of the same sweep, same points in the same order)."""
+    ci = ly["exponents_ci"].values[:, 0, :]
+    out = codes.copy()
+    irregular = codes == REGIME_IRREGULAR
+    out[irregular & (ci[:, 0] > 0.0)] = REGIME_CHAOTIC
+    out[irregular & (ci[:, 0] <= 0.0) & (ci[:, 1] >= 0.0)] = REGIME_QUASIPERIODIC
+    return out
+
+
+def _same_points(ds: xr.Dataset, ly: xr.Dataset) -> bool:
+    return all(ds[k].shape == ly[k].shape and np.array_equal(ds[k].values, ly[k].values)
+               for k in ("value", "outer_value", "direction", "phi"))
+
+
+def regime_grid(ds: xr.Dataset, direction: int, lyapunov: xr.Dataset | None = None):
     """(values, outer values, codes (len(outer), len(values))) of the points of one sweep
-    direction (+1 up, -1 down); -1 where a (value, outer) pair has no point."""
+    direction (+1 up, -1 down); -1 where a (value, outer) pair has no point. With
+    ``lyapunov`` (the same sweep's exponents) irregular is split (``split_irregular``)."""
     sel = ds["direction"].values == direction
     val, out = ds["value"].values[sel], ds["outer_value"].values[sel]
-    codes = sweep_regimes(ds)[sel]
+    codes = sweep_regimes(ds)
+    if lyapunov is not None:
+        if not _same_points(ds, lyapunov):
+            raise ValueError("the lyapunov dataset's points (value, outer_value, direction, "
+                             "phi) differ from the sweep's")
+        codes = split_irregular(codes, lyapunov)
+    codes = codes[sel]
     xs, ys = np.unique(val), np.unique(out)
     grid = np.full((ys.size, xs.size), -1, dtype=int)
     grid[np.searchsorted(ys, out), np.searchsorted(xs, val)] = codes

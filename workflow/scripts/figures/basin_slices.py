@@ -1,6 +1,10 @@
 """Basin slices: the attractor reached from each initial (z_m(0), z_m'(0)) with the ball at
 rest in the middle of the cavity, one panel per slice (basins basin_*), each attractor in
-its own colour (legend: regime, KE ratio, share of the slice), the start from rest marked."""
+its own colour (legend: regime, KE ratio, share of the slice), the start from rest marked.
+Top row: the window view (the attractor the state is on at t_end); with the asymptotic view
+in the datasets (config t_max) a second row: the attractor the same state is on at t_max,
+in the same colours, the legend giving each attractor's status (persistent / transient /
+unresolved)."""
 import numpy as np
 from matplotlib.colors import BoundaryNorm, ListedColormap
 
@@ -28,8 +32,15 @@ def mirror_notes(ds, shown: int) -> list:
     return notes
 
 
-def draw(ax, ds):
-    idx = ds["attractor"].values
+#: view -> (attractor map, basin fraction, from-rest index) variables
+VIEWS = {"window": ("attractor", "basin_fraction", "from_rest"),
+         "asymptotic": ("attractor_asymptotic", "basin_fraction_asymptotic",
+                        "from_rest_asymptotic")}
+
+
+def draw(ax, ds, view="window"):
+    var_map, var_frac, var_rest = VIEWS[view]
+    idx = ds[var_map].values
     n_att = ds.sizes["attractor_index"]
     shown = min(n_att, len(COLOURS))
     codes = np.where(idx >= shown, shown, idx)      # beyond the palette: one "other" colour
@@ -40,14 +51,15 @@ def draw(ax, ds):
     ax.plot(0.0, 0.0, marker="*", ms=13, mfc="white", mec="black", ls="none",
             label="start from rest")
     handles = [ax.lines[-1]]
-    rest = int(ds["from_rest"].values)
+    rest = int(ds[var_rest].values)
     notes = mirror_notes(ds, shown)
     for k in range(shown):
-        frac = float(ds["basin_fraction"].values[k])
+        frac = float(ds[var_frac].values[k])
         mark = " (from rest)" if k == rest else ""
+        status = f", {ds['status'].values[k]}" if view == "asymptotic" else ""
         handles.append(ax.fill_between([], [], color=COLOURS[k], label=(
             f"{k + 1}: {ds['regime'].values[k]}, KE {float(ds['ke_ratio'].values[k]):.3f}, "
-            f"{100 * frac:.1f} %{notes[k]}{mark}")))
+            f"{100 * frac:.1f} %{status}{notes[k]}{mark}")))
     ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.14), fontsize=7,
               frameon=False, ncol=1)
     ax.set_xlabel(r"initial LO displacement $z_m(0)$")
@@ -58,12 +70,20 @@ def draw(ax, ds):
 def main(sm):
     P.configure(sm)
     slices = [P.basin_slice(p) for p in sm.input.slices]
-    fig, axes = P.figure(1, len(slices), width=4.8 * len(slices), height=6.4)
-    for j, ds in enumerate(slices):
-        draw(axes[0, j], ds)
-        a = ds.attrs
-        P.panel_label(axes[0, j], j, rf"$\eta$ = {P.fmt(a['eta'])}, $\Omega$ = "
-                                     rf"{P.fmt(a['omega'])}, $F$ = {P.fmt(a['F'])}")
+    views = ["window"] + (["asymptotic"] if all("attractor_asymptotic" in ds for ds in slices)
+                          else [])
+    n = len(slices)
+    fig, axes = P.figure(len(views), n, width=4.8 * n, height=6.4 * len(views))
+    for i, view in enumerate(views):
+        for j, ds in enumerate(slices):
+            draw(axes[i, j], ds, view)
+            a = ds.attrs
+            when = (rf"window view, state at $t$ = {P.fmt(a['solver_t_end'])}"
+                    if view == "window" else
+                    rf"asymptotic view, state at $t$ = {P.fmt(a['t_max'])}")
+            P.panel_label(axes[i, j], i * n + j,
+                          rf"$\eta$ = {P.fmt(a['eta'])}, $\Omega$ = {P.fmt(a['omega'])}, "
+                          rf"$F$ = {P.fmt(a['F'])}" + "\n" + when)
     P.save(fig, sm.output.pdf, sm.output.png)
 
 

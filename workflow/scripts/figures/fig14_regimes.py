@@ -1,8 +1,12 @@
 """Companion of Fig 14 (not in the paper): the regime of every swept point over (eta, W),
 one panel per F, from the same sweeps (fig14_*) and the same classification
 (vines.plotting.sweep_regimes). Cells: the upward sweep in eta; a white dot where the
-downward sweep ends in another regime (hysteresis). The eta range of the 1:1 window at
-W = 1 is written in each panel."""
+downward sweep ends in another regime (hysteresis). Irregular points are split by their
+leading Lyapunov exponent (lyapunov datasets fig14_*, same sweeps): chaotic, quasi-periodic,
+or irregular with lambda_1 < 0. The eta range of the 1:1 window at W = 1 is written in each
+panel."""
+from pathlib import Path
+
 import numpy as np
 from matplotlib.lines import Line2D
 
@@ -28,14 +32,24 @@ def window_text(xs, ys, grid) -> str:
 def main(sm):
     P.configure(sm)
     sweeps = sorted((P.sweep(p) for p in sm.input.sweeps), key=lambda s: P.sweep_fixed(s, "F"))
+    exponents = {}
+    for path in sm.input.lyapunov:
+        ly = P.load(path)
+        exponents[ly.attrs["sweep"]] = ly
     n = len(sweeps)
-    fig, axes = P.figure(1, n, width=4.2 * n + 1.8, height=4.2)
-    keys = sorted(P.REGIMES)
+    fig, axes = P.figure(1, n, width=4.2 * n + 2.4, height=4.2)
+    regimes = P.palette.REGIMES_SPLIT
+    keys = sorted(regimes)
     for j, s in enumerate(sweeps):
         ax = axes[0, j]
-        xs, ys, up = P.regime_grid(s, +1)
-        P.class_map(ax, xs, ys, up, P.REGIMES)
-        xd, yd, down = P.regime_grid(s, -1)
+        name = Path(s.attrs["_path"]).stem
+        ly = exponents.get(name)
+        if ly is None:
+            raise P.FigureInputError(f"no lyapunov dataset of sweep {name!r} "
+                                     f"(have {sorted(exponents)})")
+        xs, ys, up = P.regime_grid(s, +1, lyapunov=ly)
+        P.class_map(ax, xs, ys, up, regimes)
+        xd, yd, down = P.regime_grid(s, -1, lyapunov=ly)
         if down.shape == up.shape and np.allclose(xd, xs) and np.allclose(yd, ys):
             jj, ii = np.nonzero((down != up) & (down >= 0) & (up >= 0))
             ax.plot(xs[ii], ys[jj], ".", color="white", ms=1.5, mec="none")
@@ -46,8 +60,8 @@ def main(sm):
         ax.text(0.02, 0.02, window_text(xs, ys, up), transform=ax.transAxes, fontsize=7,
                 color="black", bbox={"facecolor": "white", "alpha": 0.8, "lw": 0})
         print(f"{s.attrs.get('fixed')}: {window_text(xs, ys, up)}; up-sweep regime counts "
-              f"{ {P.REGIMES[k][0]: int((up == k).sum()) for k in keys} }")
-    handles = P.class_handles(P.REGIMES) + [Line2D([], [], ls="", marker="o", ms=3, mfc="white", mec="0.5",
+              f"{ {regimes[k][0]: int((up == k).sum()) for k in keys} }")
+    handles = P.class_handles(regimes) + [Line2D([], [], ls="", marker="o", ms=3, mfc="white", mec="0.5",
                        label="down sweep differs"),
                 Line2D([], [], color="red", ls="--", lw=0.8, label=r"$\Omega$ = 1")]
     fig.legend(handles=handles, loc="outside right center", fontsize=8, frameon=False)

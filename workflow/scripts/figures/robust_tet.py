@@ -3,8 +3,12 @@ run from rest (Fig 12 (d-f); points without impacts a grey class, no data left b
 (d-f) the basin fraction of efficient motion (attractors with KE ratio above the map's
 threshold) and (g-i) the basin fraction of the stable 1:1 orbit, from a census of Sobol
 initial states per grid point (robust maps robust_*), hatched where the 95 % Wilson interval
-of the fraction is wider than 0.2. Each row one colour bar. On every panel the edge of the
-stable 1:1 region of Fig 16 (|lambda_max| = 1)."""
+of the fraction is wider than 0.2. When the robust maps carry the asymptotic view (config
+t_max), (j-l) the efficient basin fraction of the same states at t_max, a cross where it
+differs from the window fraction (d-f). Each row one colour bar. On every panel the edge of
+the stable 1:1 region of Fig 16 (|lambda_max| = 1)."""
+import numpy as np
+
 import vines.plotting as P
 from vines.pipeline.jobs import run_job
 from vines.plotting.uncertainty import WIDE_INTERVAL, wilson_width
@@ -14,9 +18,17 @@ def _by_F(datasets):
     return {round(float(d.attrs["F"]), 9): d for d in datasets}
 
 
+ASYMPTOTIC = "efficient_fraction_asymptotic"
+
+
 def panels(ds, rob, thr):
-    """(source, values, label, no-impact mask) of the three rows at one F."""
+    """(source, values, label, no-impact mask) of the rows at one F (three, or four with
+    the asymptotic view)."""
     silent = P.grid2d(ds, "n_impacts", "eta", "omega") == 0
+    asymptotic = []
+    if ASYMPTOTIC in rob:
+        asymptotic = [(rob, P.grid2d(rob, ASYMPTOTIC, "eta", "omega"),
+                       f"basin fraction, KE ratio > {P.fmt(thr)}, at t_max", None)]
     return [
         (ds, P.grid2d(ds, "ke_ratio", "eta", "omega"), P.LABELS["ke_ratio"] + " from rest",
          silent),
@@ -24,7 +36,18 @@ def panels(ds, rob, thr):
          f"basin fraction, KE ratio > {P.fmt(thr)}", None),
         (rob, P.grid2d(rob, "stable_1to1_fraction", "eta", "omega"),
          "basin fraction of the stable 1:1 orbit", None),
-    ]
+    ] + asymptotic
+
+
+def mark_changed(ax, rob):
+    """A cross on every cell whose efficient fraction at t_max differs from the window's."""
+    window = P.grid2d(rob, "efficient_fraction", "eta", "omega")
+    late = P.grid2d(rob, ASYMPTOTIC, "eta", "omega")
+    e, w = np.meshgrid(rob["eta"].values, rob["omega"].values)   # as grid2d: (omega, eta)
+    changed = np.abs(late - window) > 1e-12
+    ax.plot(e[changed], w[changed], "x", color="black", ms=5, mew=1.6)
+    ax.plot(e[changed], w[changed], "x", color="white", ms=4, mew=0.7)
+    return int(changed.sum())
 
 
 def main(sm):
@@ -34,8 +57,9 @@ def main(sm):
     maps = _by_F(map(P.stability, sm.input.stability))
     robust = _by_F(map(P.robust_map, sm.input.robust))
     n = len(grids)
-    fig, axes = P.figure(3, n, width=4.0 * n + 1.0, height=10.4)
-    mappables = [None] * 3
+    n_rows = 4 if all(ASYMPTOTIC in r for r in robust.values()) else 3
+    fig, axes = P.figure(n_rows, n, width=4.0 * n + 1.0, height=3.47 * n_rows)
+    mappables = [None] * n_rows
     for j, ds in enumerate(grids):
         F = P.fixed_value(ds, "F")
         smap, rob = maps.get(round(F, 9)), robust.get(round(F, 9))
@@ -51,6 +75,9 @@ def main(sm):
                                          cells=i > 0, colorbar=False, no_impact=silent)
             if i > 0:
                 P.hatch_cells(ax, eta, W, wilson_width(z, n_states) > WIDE_INTERVAL)
+            if i == 3:
+                print(f"F = {F}: efficient fraction at t_max differs at "
+                      f"{mark_changed(ax, rob)} of {z.size} points")
             P.stable_edge(ax, smap)
             # only the computed grid: no data is not zero
             ax.set_xlim(eta.min(), eta.max())
@@ -65,10 +92,16 @@ def main(sm):
     n_states = int(robust[min(robust)].attrs["n_states"])
     handles = [P.stable_edge_handle(), P.no_impact_handle("(a-c) no impact from rest"),
                P.Patch(facecolor="0.55", edgecolor="white", hatch="////",
-                       label=f"(d-i) 95 % Wilson interval wider than {P.fmt(WIDE_INTERVAL)} "
-                             f"({n_states} states)")]
-    fig.legend(handles=handles, loc="outside lower center", ncol=3, fontsize=8, frameon=False,
-               title=f"(d-i): {n_states} Sobol initial states per grid point", title_fontsize=8)
+                       label=f"(d-{'l' if n_rows == 4 else 'i'}) 95 % Wilson interval wider "
+                             f"than {P.fmt(WIDE_INTERVAL)} ({n_states} states)")]
+    title = f"(d-i): {n_states} Sobol initial states per grid point, state at t_end (window view)"
+    if n_rows == 4:
+        t_max = float(robust[min(robust)].attrs["t_max"])
+        handles.append(P.Line2D([], [], ls="none", marker="x", color="black", ms=5, mew=1.6,
+                                label="(j-l) differs from the window fraction (d-f)"))
+        title += f"; (j-l): the same states at t_max = {P.fmt(t_max)} (asymptotic view)"
+    fig.legend(handles=handles, loc="outside lower center", ncol=2, fontsize=8, frameon=False,
+               title=title, title_fontsize=8)
     P.save(fig, sm.output.pdf, sm.output.png)
 
 
