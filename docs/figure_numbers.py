@@ -41,7 +41,7 @@ def _interval(x) -> str:
 
 def fig2(res):
     out = []
-    for p in _files(res, "measures", "fig2"):
+    for p in _files(res, "extract_measures", "fig2"):
         ds = P.measures(p, axes=("eta",), fixed=("omega", "F"))
         eta, ke, xm = ds["eta"].values, ds["ke_ratio"].values.ravel(), ds["xmax_m"].values.ravel()
         k, j = int(np.argmax(ke)), int(np.argmin(xm))
@@ -58,7 +58,7 @@ def _one_to_one(sw, outer, direction):
 
 def fig3(res):
     out = []
-    for p in _files(res, "sweeps", "fig3"):
+    for p in _files(res, "bifurcation_sweep", "fig3"):
         sw = P.sweep(p)
         for o in np.unique(sw["outer_value"].values):
             out.append(f"F = {P.fmt(o)}: 1:1 for eta {_interval(_one_to_one(sw, o, 1))} (up "
@@ -84,7 +84,7 @@ def fig3_lyapunov(res):
 
 def timehistories(res, name):
     out = []
-    for p in _files(res, "timehistories", name):
+    for p in _files(res, "timehistory", name):
         ds = P.timehistory(p)
         for i in range(ds.sizes["point"]):
             fig, ax = P.figure(1, 1)
@@ -101,7 +101,7 @@ def timehistories(res, name):
 
 def zoom(res, name):
     out = []
-    for p in _files(res, "branches", name):
+    for p in _files(res, "map_solve", name):
         br = P.branch(p)
         main = B.continued_branches([br])[0]
         adm = main["admissible"].values.astype(bool)
@@ -119,7 +119,7 @@ def zoom(res, name):
 def fig7(res):
     out = []
     grids = P.sorted_by_fixed([P.measures(p, axes=("eta", "F"), fixed=("omega",))
-                               for p in _files(res, "measures", "fig7")], "omega")
+                               for p in _files(res, "extract_measures", "fig7")], "omega")
     for ds in grids:
         xm = P.grid2d(ds, "xmax_m", "eta", "F")
         j, i = np.unravel_index(np.argmax(xm), xm.shape)
@@ -132,7 +132,7 @@ def fig7(res):
 
 def fig11(res):
     out = []
-    for p in _files(res, "measures", "fig11"):
+    for p in _files(res, "extract_measures", "fig11"):
         ds = P.measures(p, axes=("omega",), fixed=("F",), min_size=3)
         F, d = P.fixed_value(ds, "F"), float(ds.attrs["solver_d"])
         for k in range(ds.sizes["eta"]):
@@ -148,13 +148,13 @@ def fig11(res):
 
 
 def _maps(res):
-    return {round(float(m.attrs["F"]), 9): m for m in map(P.stability, _files(res, "stability",
+    return {round(float(m.attrs["F"]), 9): m for m in map(P.stability, _files(res, "stability_map",
                                                                                   "fig16"))}
 
 
 def fig12(res):
     out, maps = [], _maps(res)
-    for p in _files(res, "measures", "fig12"):
+    for p in _files(res, "extract_measures", "fig12"):
         ds = P.measures(p, axes=("eta", "omega"), fixed=("F",))
         F = P.fixed_value(ds, "F")
         c = P.region_counts(ds, maps[round(F, 9)])
@@ -168,7 +168,7 @@ def fig12(res):
 
 def fig14(res):
     out = []
-    for p in _files(res, "sweeps", "fig14"):
+    for p in _files(res, "bifurcation_sweep", "fig14"):
         sw = P.sweep(p)
         W = np.unique(sw["outer_value"].values)
         one = W[np.isclose(W, 1.0)]
@@ -189,7 +189,7 @@ def fig16(res):
 
 def robust(res):
     out = []
-    for p in _files(res, "robust", "robust"):
+    for p in _files(res, "robust_map", "robust"):
         r = P.robust_map(p)
         n = int(r.attrs["n_states"])
         st, ef = r["stable_1to1_fraction"].values, r["efficient_fraction"].values

@@ -283,7 +283,7 @@ def test_every_figure_has_a_caption_stating_start_and_window():
         assert any(w in text for w in ("window", "periods recorded", "forcing periods")), name
 
 
-@pytest.mark.skipif(not (SMOKE / "measures").is_dir(), reason="no smoke datasets")
+@pytest.mark.skipif(not (SMOKE / "extract_measures").is_dir(), reason="no smoke datasets")
 def test_docs_numbers_are_generated_from_the_datasets():
     # docs/figure_numbers.py measures every section on a run's datasets (here the smoke run)
     spec = importlib.util.spec_from_file_location("figure_numbers",

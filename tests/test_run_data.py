@@ -64,7 +64,7 @@ def test_damage_check_accepts_a_user_block_and_classic_netcdf(tmp_path):
 
 # ------------------------------------------------------------------ open_run
 
-@pytest.mark.skipif(not (SMOKE / "measures").is_dir(), reason="no smoke datasets")
+@pytest.mark.skipif(not (SMOKE / "extract_measures").is_dir(), reason="no smoke datasets")
 def test_open_run_holds_every_dataset_of_the_smoke_run_lazily():
     files = sorted(p for p in SMOKE.rglob("*.nc") if not p.name.startswith("."))
     with vines.open_run(SMOKE) as run:
@@ -72,7 +72,7 @@ def test_open_run_holds_every_dataset_of_the_smoke_run_lazily():
         assert groups == {p.relative_to(SMOKE).with_suffix("").as_posix() for p in files}
         assert set(run.children) == {p.relative_to(SMOKE).parts[0] for p in files}
         # nothing read before use
-        name = next(g for g in sorted(groups) if g.startswith("measures/"))
+        name = next(g for g in sorted(groups) if g.startswith("extract_measures/"))
         data_vars = run[name].data_vars
         assert data_vars and not any(v.variable._in_memory for v in data_vars.values())
         for p in files[:: max(1, len(files) // 8)]:   # values and attrs as in the file

@@ -2,7 +2,7 @@
 
 The tree mirrors the run's folders: one group per stage folder (``measures``, ``sweeps``,
 ``branches``, ...) and below it one group per dataset, named after its file without
-``.nc`` (grid chunks one level deeper, ``grid/<grid>/chunk_<key>``). Each dataset is opened
+``.nc`` (grid chunks one level deeper, ``simulate_grid/<grid>/chunk_<key>``). Each dataset is opened
 lazily: opening reads its metadata and coordinates, the values of a variable come from the
 file on first access (``.load()``, ``.values``, a plot). Example::
 
