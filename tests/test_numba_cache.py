@@ -51,3 +51,32 @@ def test_every_module_with_numba_code_is_in_a_compiled_subpackage():
     assert compiled, "no numba functions found: the pattern is wrong"
     outside = [str(f) for f in compiled if f.parts[0] not in COMPILED_SUBPACKAGES]
     assert not outside, f"numba code outside {COMPILED_SUBPACKAGES}: {outside}"
+
+
+
+def test_unchanged_sources_are_not_read_again_and_a_touch_keeps_the_cache(tmp_path, monkeypatch):
+    """Once stamped, an import only stats the sources (no hashing); a touched file whose
+    content is unchanged (a checkout) renews the stamp and keeps the compiled code. Sources
+    modified in the last RACY_NS are hashed at every import (``test_cache_kept_...``)."""
+    import os
+
+    import vines._numba_cache as nc
+    cache = _pkg(tmp_path)
+    for f in tmp_path.rglob("*.py"):          # sources older than RACY_NS: fingerprint trusted
+        os.utime(f, ns=(f.stat().st_atime_ns, f.stat().st_mtime_ns - 10 * nc.RACY_NS))
+    refresh(tmp_path)
+    (cache / "maps.f-10.py311.nbi").write_bytes(b"compiled")
+    real_hash, hashed = nc.sources_hash, []
+
+    def counting_hash(pkg_dir):
+        hashed.append(pkg_dir)
+        return real_hash(pkg_dir)
+
+    monkeypatch.setattr(nc, "sources_hash", counting_hash)
+    assert refresh(tmp_path) is False and not hashed          # fingerprint matches: no read
+    flow = tmp_path / "core" / "flow.py"
+    st = flow.stat()
+    os.utime(flow, ns=(st.st_atime_ns, st.st_mtime_ns + nc.RACY_NS))  # touch, same content
+    assert refresh(tmp_path) is False
+    assert len(hashed) == 1 and (cache / "maps.f-10.py311.nbi").exists()
+    assert refresh(tmp_path) is False and len(hashed) == 1    # the renewed stamp matches

@@ -13,18 +13,12 @@ figures does not load numba and the compiled kernels; ``open_run`` (a finished r
 datasets as one ``xarray.DataTree``) likewise, so that ``import vines`` does not load xarray.
 """
 from importlib import import_module
-from importlib.metadata import PackageNotFoundError, version
 
 from ._numba_cache import refresh as _refresh_numba_cache
 
 _refresh_numba_cache()   # before any jitted function is loaded from the cache
 
 from .core.params import D_DEFAULT, L_HALF_M, ModelParams, ParameterError, SolverSettings  # noqa: E402
-
-try:   # one version: pyproject.toml's, as installed
-    __version__ = version("vines")
-except PackageNotFoundError:   # sources used without installing (not a release)
-    __version__ = "0+unknown"
 
 #: public names loaded on first access, and their modules
 _LAZY = {"simulate": ".solvers", "simulate_batch": ".core.simulation",
@@ -37,7 +31,20 @@ __all__ = ["simulate", "simulate_batch", "design", "lyapunov", "open_run", "Mode
            "L_HALF_M", "__version__"]
 
 
+def _version() -> str:
+    """One version: pyproject.toml's, as installed (read on first use: importlib.metadata
+    costs more than the rest of ``import vines``)."""
+    from importlib.metadata import PackageNotFoundError, version
+    try:
+        return version("vines")
+    except PackageNotFoundError:   # sources used without installing (not a release)
+        return "0+unknown"
+
+
 def __getattr__(name):
+    if name == "__version__":
+        value = globals()["__version__"] = _version()
+        return value
     if name in _LAZY:
         value = getattr(import_module(_LAZY[name], __name__), name)
         globals()[name] = value
@@ -46,4 +53,4 @@ def __getattr__(name):
 
 
 def __dir__():
-    return sorted(set(globals()) | set(_LAZY))
+    return sorted(set(globals()) | set(_LAZY) | {"__version__"})

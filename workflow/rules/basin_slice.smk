@@ -16,5 +16,6 @@ rule basin_slice:
         model=MODEL,
         simulation=SIMULATION,
         code=CODE_ATTRACTORS,
+        script=script_of("basin_slice.py"),
     script:
         "../scripts/basin_slice.py"

@@ -18,5 +18,6 @@ rule bifurcation_sweep:
         model=MODEL,
         periodic_shortcut=SIMULATION["periodic_shortcut"],
         code=CODE,
+        script=script_of("bifurcation_sweep.py"),
     script:
         "../scripts/bifurcation_sweep.py"

@@ -17,5 +17,6 @@ rule boundaries:
         spec=lambda w: BOUNDARIES[w.name],
         model=MODEL,
         code=CODE,
+        script=script_of("boundaries.py"),
     script:
         "../scripts/boundaries.py"

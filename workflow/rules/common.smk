@@ -30,6 +30,7 @@ from vines.pipeline.codeversion import (
     FIGURES,
     STUDIES,
     code_version,
+    script_version,
 )
 from vines.pipeline.config import ConfigError, load_schema, load_yaml, validate_config
 from vines.pipeline.config_checks import atlas_grid
@@ -58,6 +59,15 @@ CODE_STUDY = code_version(STUDIES)
 CODE_ATTRACTORS = code_version(ATTRACTORS)
 CODE_DESIGN = code_version(DESIGN)
 CODE_FIGURES = code_version(FIGURES)
+SCRIPTS = os.path.join(workflow.basedir, "workflow", "scripts")
+
+
+def script_of(script):
+    """A rule's script param: the hash of the contents of workflow/scripts/<script>, so that
+    an edit reruns its jobs and a touch or checkout does not (the profile's rerun-triggers
+    leave out Snakemake's script-mtime check; docs/pipeline.md)."""
+    return script_version(os.path.join(SCRIPTS, script))
+
 
 GRIDS = config["grids"]
 AXES = {name: grid_axes(g, key=f"grids.{name}") for name, g in GRIDS.items()}

@@ -20,5 +20,6 @@ rule convergence:
         model=MODEL,
         simulation=SIMULATION,
         code=CODE_STUDY,
+        script=script_of("convergence.py"),
     script:
         "../scripts/convergence.py"

@@ -17,5 +17,6 @@ rule design:
         model=MODEL,
         simulation=SIMULATION,
         code=CODE_DESIGN,
+        script=script_of("design.py"),
     script:
         "../scripts/design.py"

@@ -18,5 +18,6 @@ rule extract_measures:
         sections=lambda w: GRIDS[w.name]["sections"],
         model=MODEL,
         code=CODE,
+        script=script_of("extract_measures.py"),
     script:
         "../scripts/extract_measures.py"

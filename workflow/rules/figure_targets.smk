@@ -162,6 +162,7 @@ def figure_rule_for(fig):
             "../../environment.yml"
         params:
             code=CODE_FIGURES,
+            script=script_of(f"figures/{figure_script(fig)}.py"),
             colormap=config["figures"]["colormap"],
         script:
             f"../scripts/figures/{figure_script(fig)}.py"

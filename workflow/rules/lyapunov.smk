@@ -18,5 +18,6 @@ rule lyapunov:
         model=MODEL,
         periodic_shortcut=SIMULATION["periodic_shortcut"],
         code=CODE_ATTRACTORS,
+        script=script_of("lyapunov.py"),
     script:
         "../scripts/lyapunov.py"

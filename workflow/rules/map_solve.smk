@@ -14,5 +14,6 @@ rule map_solve:
         spec=lambda w: BRANCHES[w.name],
         model=MODEL,
         code=CODE,
+        script=script_of("map_solve.py"),
     script:
         "../scripts/map_solve.py"

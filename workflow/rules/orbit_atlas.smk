@@ -17,5 +17,6 @@ rule orbit_atlas:
         sim_t_end=lambda w: ORBIT_ATLASES[w.name]["sim_t_end"],
         model=MODEL,
         code=CODE,
+        script=script_of("orbit_atlas.py"),
     script:
         "../scripts/orbit_atlas.py"

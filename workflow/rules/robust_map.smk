@@ -17,5 +17,6 @@ rule robust_map:
         model=MODEL,
         simulation=SIMULATION,
         code=CODE_ATTRACTORS,
+        script=script_of("robust_map.py"),
     script:
         "../scripts/robust_map.py"

@@ -19,5 +19,6 @@ rule simulate_grid:
         model=MODEL,
         simulation=SIMULATION,
         code=CODE,
+        script=script_of("simulate_grid.py"),
     script:
         "../scripts/simulate_grid.py"

@@ -15,5 +15,6 @@ rule stability_map:
         spec=lambda w: STABILITY_MAPS[w.name],
         model=MODEL,
         code=CODE,
+        script=script_of("stability_map.py"),
     script:
         "../scripts/stability_map.py"

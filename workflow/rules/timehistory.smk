@@ -16,5 +16,6 @@ rule timehistory:
         model=MODEL,
         simulation=SIMULATION,
         code=CODE,
+        script=script_of("timehistory.py"),
     script:
         "../scripts/timehistory.py"

@@ -24,5 +24,6 @@ rule work_precision:
         model=MODEL,
         v_stick=SIMULATION["v_stick"],
         code=CODE_STUDY,
+        script=script_of("work_precision.py"),
     script:
         "../scripts/work_precision.py"

@@ -39,13 +39,15 @@ from ..core.params import (
     ModelParams,
     ParameterError,
     SolverSettings,
+    as_float_array,
+    check_int,
     check_real,
 )
 from ..core.shortcut import rel_diff
 from . import asymptotic as asy
 from .endstate import EndState, settle, settle_states
 from .orbit import one_period, section_of_1to1
-from .sampling import BOX_NAMES, DEFAULT_BOX, check_box, sample_states
+from .sampling import BOX_NAMES, DEFAULT_BOX, N_MAX, SEED_MAX, check_box, sample_states
 
 #: end states closer than this (relative) are the same periodic orbit
 GROUP_TOL = 1e-6
@@ -264,7 +266,7 @@ def _place_from_rest(groups: list, rest: EndState, T: float) -> _Group | None:
 
 def _check_states(states) -> np.ndarray:
     """Given initial states as an (n, 4) array, each a valid ``state0``."""
-    arr = np.asarray(states, dtype=float)
+    arr = as_float_array("states", states)
     if arr.ndim != 2 or arr.shape[1] != 4 or arr.shape[0] == 0:
         raise ParameterError("states", f"shape {arr.shape}", "must be an (n, 4) array, n >= 1")
     for row in arr:
@@ -295,6 +297,8 @@ def census(eta, omega, F, *, r=R_DEFAULT, d=D_DEFAULT, n=256, seed=0, box=DEFAUL
     if t_max is not None:
         t_max = check_real("t_max", t_max, lo=st.t_end, lo_open=True, hi=T_END_MAX)
     box = check_box(box)
+    n = check_int("n", n, lo=1, hi=N_MAX)
+    seed = check_int("seed", seed, lo=0, hi=SEED_MAX)
     states = sample_states(n, seed, box) if states is None else _check_states(states)
     ends = settle_states(p, st, states, n_threads)
     groups, n_unsettled = _group(ends, p.period)

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..core.params import STATE_MAX, check_real, check_reals
 from .census import census
 
 #: what ``robust_point`` returns, in this order
@@ -33,6 +34,7 @@ def robust_point(eta, omega, F, *, threshold: float, **census_kw) -> dict:
     fractions of the attractors with ke_ratio > threshold and of stable 1:1 orbits; with
     ``t_max`` in census_kw also ROBUST_ASYMPTOTIC_FIELDS (the same at t_max, the share of
     states that changed attractor between t_end and t_max)."""
+    threshold = check_real("threshold", threshold)
     c = census(eta, omega, F, **census_kw)
     eff = sum(a.basin_fraction for a in c.attractors if a.ke_ratio > threshold)
     one = sum(a.basin_fraction for a in c.attractors if _stable_1to1(a))
@@ -65,7 +67,8 @@ def _asymptotic_fields(c, threshold: float) -> dict:
 def slice_states(z_m0, v_m0) -> np.ndarray:
     """States (len(z_m0) * len(v_m0), 4) of the slice, z_m0 varying slowest: LO at
     (z_m0, v_m0), ball at rest in the middle of the cavity (z_b = z_m0, z_b' = 0)."""
-    zm, vm = np.meshgrid(np.asarray(z_m0, float), np.asarray(v_m0, float), indexing="ij")
+    zm, vm = np.meshgrid(check_reals("z_m0", z_m0, lo=-STATE_MAX, hi=STATE_MAX),
+                         check_reals("v_m0", v_m0, lo=-STATE_MAX, hi=STATE_MAX), indexing="ij")
     zm, vm = zm.ravel(), vm.ravel()
     return np.stack([zm, vm, zm, np.zeros_like(zm)], axis=1)
 

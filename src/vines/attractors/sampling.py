@@ -27,7 +27,7 @@ def check_box(box) -> tuple:
     """``box`` as 4 (lo, hi) float pairs in BOX_NAMES order (lo <= hi, |w| <= 1); raises
     ParameterError naming the bad entry. A mapping {name: (lo, hi)} is accepted too."""
     if isinstance(box, dict):
-        unknown = sorted(set(box) - set(BOX_NAMES))
+        unknown = [k for k in box if k not in BOX_NAMES]
         if unknown:
             raise ParameterError("box", unknown[0], f"must be one of {', '.join(BOX_NAMES)}")
         box = tuple(box.get(k, DEFAULT_BOX[i]) for i, k in enumerate(BOX_NAMES))

@@ -169,6 +169,63 @@ def check_bool(name, value) -> bool:
     raise ParameterError(name, value, "must be true or false")
 
 
+def check_choice(name, value, choices) -> str:
+    """``value`` if it is one of the strings ``choices``; else ParameterError naming ``name``."""
+    if not isinstance(value, str) or value not in choices:
+        raise ParameterError(name, value, f"must be one of {', '.join(choices)}")
+    return value
+
+
+def as_float_array(name, values):
+    """``values`` (a number or an array-like of numbers, any shape) as a float array, else
+    ParameterError naming ``name``; the values themselves are checked by the caller."""
+    import numpy as np  # here: ``import vines`` loads the parameter containers only
+
+    if isinstance(values, (str, bytes, dict, set)) or values is None:
+        raise ParameterError(name, values, "must be a number or an array of numbers")
+    try:
+        return np.asarray(values, dtype=float)
+    except (TypeError, ValueError, OverflowError):
+        raise ParameterError(name, values, "must be a number or an array of numbers") from None
+
+
+def check_reals(name, values, *, lo=None, hi=None, lo_open=False, min_size=1,
+                max_size=None):
+    """A scalar or sequence of finite numbers in [lo, hi] as a flat float array, else ParameterError.
+
+    At least ``min_size`` and at most ``max_size`` values; the first bad value is named.
+    """
+    import numpy as np
+
+    arr = as_float_array(name, values).ravel()
+    if arr.size < min_size or (max_size is not None and arr.size > max_size):
+        what = f"at least {min_size}" + (f" and at most {max_size}" if max_size is not None else "")
+        raise ParameterError(name, values, f"must hold {what} values")
+    with np.errstate(invalid="ignore"):
+        bad = ~np.isfinite(arr)
+        if lo is not None:
+            bad |= (arr <= lo) if lo_open else (arr < lo)
+        if hi is not None:
+            bad |= arr > hi
+    if bad.any():
+        check_real(name, float(arr[bad][0]), lo=lo, hi=hi, lo_open=lo_open)
+    return arr
+
+
+def check_callable(name, value):
+    """``value`` if it is None or callable; else ParameterError naming ``name``."""
+    if value is not None and not callable(value):
+        raise ParameterError(name, value, "must be a function or None")
+    return value
+
+
+def check_params_arg(name, value) -> ModelParams:
+    """``value`` if it is a ``ModelParams``; else ParameterError naming ``name``."""
+    if not isinstance(value, ModelParams):
+        raise ParameterError(name, value, "must be a vines.ModelParams")
+    return value
+
+
 def check_conditioning(eta: float, omega: float, F: float, d: float) -> None:
     """Refuse weakly damped near-resonant points that the exact solver cannot resolve.
 

@@ -20,8 +20,11 @@ from .params import (
     T_TRANSIENT_DEFAULT,
     V_STICK_DEFAULT,
     ModelParams,
+    ParameterError,
     SolverSettings,
+    as_float_array,
     check_bool,
+    check_callable,
     check_conditioning,
     check_int,
     check_param,
@@ -118,8 +121,13 @@ def simulate_batch(eta, omega, F, *, r=R_DEFAULT, d=D_DEFAULT, phi=0.0, t_end=T_
     st = SolverSettings(t_end=t_end, t_transient=t_transient, v_stick=v_stick,
                         max_impacts=max_impacts, root_tol=root_tol, state0=(0.0, 0.0, 0.0, 0.0))
     shortcut = check_bool("periodic_shortcut", periodic_shortcut)
-    e, w, f = np.broadcast_arrays(np.asarray(eta, float), np.asarray(omega, float),
-                                  np.asarray(F, float))
+    progress = check_callable("progress", progress)
+    arrays = [as_float_array(name, v) for name, v in (("eta", eta), ("omega", omega), ("F", F))]
+    try:
+        e, w, f = np.broadcast_arrays(*arrays)
+    except ValueError:
+        raise ParameterError("omega", omega, f"must broadcast with eta (shape {arrays[0].shape}) "
+                             f"and F (shape {arrays[2].shape})") from None
     shape = e.shape
     e, w, f = e.ravel(), w.ravel(), f.ravel()
     n = e.size

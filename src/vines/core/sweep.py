@@ -20,15 +20,21 @@ import numpy as np
 from .exact import run_exact
 from .params import (
     D_DEFAULT,
+    MAX_IMPACTS_MAX,
+    PARAM_BOUNDS,
     PARAM_NAMES,
     R_DEFAULT,
+    T_END_MAX,
     V_STICK_DEFAULT,
     ModelParams,
     ParameterError,
     SolverSettings,
     check_bool,
+    check_choice,
     check_int,
+    check_param,
     check_real,
+    check_reals,
 )
 
 
@@ -87,17 +93,23 @@ def bifurcation_sweep(param, values, *, eta=None, omega=None, F=None, r=R_DEFAUL
     next point starts from the periodic orbit's state at the end of the run (equal to the
     full run's to ~1e-10; a chaotic point amplifies such differences).
     """
-    if param not in PARAM_NAMES:
-        raise ParameterError("param", param, f"must be one of {', '.join(PARAM_NAMES)}")
+    param = check_choice("param", param, PARAM_NAMES)
     fixed = {"eta": eta, "omega": omega, "F": F}
     for name in PARAM_NAMES:
         if name != param and fixed[name] is None:
             raise ParameterError(name, None, f"must be given when sweeping {param}")
-    values = np.asarray(values, dtype=float).ravel()
-    t_settle = check_real("t_settle", t_settle, lo=0.0, lo_open=True)
-    t_step = check_real("t_step", t_step, lo=0.0, lo_open=True)
+        if name != param:
+            fixed[name] = check_param(name, fixed[name])
+    lo, lo_open, hi = PARAM_BOUNDS[param]
+    values = check_reals("values", values, lo=lo, lo_open=lo_open, hi=hi, min_size=0)
+    t_settle = check_real("t_settle", t_settle, lo=0.0, lo_open=True, hi=T_END_MAX)
+    t_step = check_real("t_step", t_step, lo=0.0, lo_open=True, hi=T_END_MAX)
     n_record = check_int("n_record", n_record, lo=1)
+    max_impacts_per_period = check_real("max_impacts_per_period", max_impacts_per_period,
+                                        lo=0.0, lo_open=True)
     shortcut = check_bool("periodic_shortcut", periodic_shortcut)
+    _check_run_lengths(param, values, fixed["omega"], t_settle, t_step, n_record,
+                       max_impacts_per_period)
     state = (0.0, 0.0, 0.0, 0.0)
     theta = 0.0           # forcing phase omega t + phi carried from point to point
     dws, phases, walls = [], [], []
@@ -127,6 +139,28 @@ def bifurcation_sweep(param, values, *, eta=None, omega=None, F=None, r=R_DEFAUL
     return {"value": values, "row_size": row_size, "phi": phis, "status": status,
             "shortcut_time": shortcut_time, "dw": cat(dws, float),
             "phase": cat(phases, float), "wall": cat(walls, np.int8)}
+
+
+def _check_run_lengths(param, values, omega, t_settle, t_step, n_record,
+                       max_impacts_per_period) -> None:
+    """Refuse a sweep whose runs (t_settle for the first point, t_step for the others, plus
+    n_record forcing periods) exceed T_END_MAX or may need more than MAX_IMPACTS_MAX
+    impacts (``sweep_point``)."""
+    if values.size == 0:
+        return
+    omegas = values if param == "omega" else np.full(values.size, omega)
+    with np.errstate(invalid="ignore", over="ignore"):
+        period = 2.0 * math.pi / omegas
+        t_run = np.where(np.arange(values.size) == 0, t_settle, t_step) + n_record * period
+        impacts = max_impacts_per_period * t_run / period + 100
+    k = int(np.argmax(~(t_run <= T_END_MAX))) if not np.all(t_run <= T_END_MAX) else None
+    if k is not None:
+        raise ParameterError("n_record", n_record,
+                             f"needs runs of t_settle (or t_step) + n_record forcing periods "
+                             f"<= {T_END_MAX:g}; at {param} = {values[k]:g}: {t_run[k]:.3g}")
+    if not np.all(impacts <= MAX_IMPACTS_MAX):
+        raise ParameterError("max_impacts_per_period", max_impacts_per_period,
+                             f"allows {np.max(impacts):.3g} impacts per run > {MAX_IMPACTS_MAX}")
 
 
 def bifurcation_sweeps(param, values, outer, outer_values, *, n_threads=None, progress=None,

@@ -25,11 +25,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..core.exact import oscillators
-from ..core.params import ModelParams, ParameterError, SolverSettings
+from ..core.params import ModelParams, ParameterError, SolverSettings, check_bool
 from .sequence import (
     SIM_T_END,
+    SequenceOrbit,
     _mirror_record,
     affine_seeds,
+    check_sim_t_end,
     flip_seeds,
     paper_label,
     pitchfork_seeds,
@@ -159,12 +161,29 @@ def classify_families(orbits: dict) -> dict:
     return out
 
 
+def _check_atlas_seeds(seeds) -> dict:
+    """None or {walls: [SequenceOrbit, ...]} (as ``atlas_point`` returns its orbits)."""
+    allowed = "must be None or a dict {walls: [SequenceOrbit, ...]} as atlas_point returns"
+    if seeds is None:
+        return {}
+    if not isinstance(seeds, dict):
+        raise ParameterError("seeds", seeds, allowed)
+    for orbits in seeds.values():
+        if not isinstance(orbits, (list, tuple)) or not all(
+                isinstance(o, SequenceOrbit) for o in orbits):
+            raise ParameterError("seeds", seeds, allowed)
+    return seeds
+
+
 def atlas_point(params: ModelParams, seeds=None, simulation=True,
                 sim_t_end=SIM_T_END) -> tuple[dict, dict]:
     """(families, orbits): ``classify_families`` of the point and the orbits found (pass
     them as ``seeds`` to the next point of a sweep)."""
     if not isinstance(params, ModelParams):
         raise ParameterError("params", params, "must be a ModelParams")
+    seeds = _check_atlas_seeds(seeds)
+    simulation = check_bool("simulation", simulation)
+    sim_t_end = check_sim_t_end(sim_t_end)
     orbits = sequence_orbits(params, seeds, simulation, sim_t_end)
     return classify_families(orbits), orbits
 

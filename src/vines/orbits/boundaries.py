@@ -36,9 +36,11 @@ from ..core.params import (
     R_DEFAULT,
     ModelParams,
     ParameterError,
+    as_float_array,
     check_int,
     check_param,
     check_real,
+    check_reals,
 )
 from . import augmented as ag
 from . import shooting as sh
@@ -209,7 +211,9 @@ def boundaries(F: float, eta_range: Sequence[float], omega_range: Sequence[float
     step = check_real("step", step, lo=1e-5, hi=1.0)
     max_points = check_int("max_points", max_points, lo=1, hi=100_000)
     n_map = check_int("n_map", n_map, lo=0, hi=1000)
-    model = sh.Model(r, d)
+    class_map = _check_class_map(class_map)
+    p = ModelParams(eta=1.0, omega=1.0, F=F, r=r, d=d)     # validates r and d
+    model = sh.Model(p.r, p.d)
     traced = _Traced(model, F, box, step, max_points)
     for seed in _seeds(model, F, box, n_scan):
         traced.add(seed)
@@ -306,6 +310,28 @@ def _in_box(point, box) -> bool:
     """(eta, omega) = point lies in the box ((eta_lo, eta_hi), (omega_lo, omega_hi))."""
     (e0, e1), (w0, w1) = box
     return e0 <= point[0] <= e1 and w0 <= point[1] <= w1
+
+
+def _check_class_map(class_map):
+    """None or (eta, omega, cls): increasing axes of >= 2 values and integer classes of
+    shape (len(eta), len(omega)), as ``stability_map`` returns them."""
+    allowed = ("must be None or (eta, omega, cls) of a stability map: increasing axes of >= 2 "
+               "values, classes of shape (len(eta), len(omega))")
+    if class_map is None:
+        return None
+    if not isinstance(class_map, (list, tuple)) or len(class_map) != 3:
+        raise ParameterError("class_map", class_map, allowed)
+    try:
+        eta = check_reals("class_map", class_map[0], min_size=2)
+        omega = check_reals("class_map", class_map[1], min_size=2)
+        cls = as_float_array("class_map", class_map[2])
+    except ParameterError:
+        raise ParameterError("class_map", class_map, allowed) from None
+    if (np.any(np.diff(eta) <= 0) or np.any(np.diff(omega) <= 0)
+            or cls.shape != (eta.size, omega.size) or not np.all(np.isfinite(cls))
+            or np.any(cls != np.round(cls))):
+        raise ParameterError("class_map", class_map, allowed)
+    return class_map
 
 
 def _range(name, value) -> tuple:

@@ -41,6 +41,8 @@ from ..core.params import (
     R_DEFAULT,
     ModelParams,
     ParameterError,
+    check_bool,
+    check_choice,
     check_int,
     check_param,
     check_real,
@@ -147,9 +149,11 @@ def continue_branch(param: str, start, stop, step=None, fixed: dict | None = Non
     symmetry-breaking point (``Branch.switched``).
     """
     cs = ContinuationSettings(param=param, start=start, stop=stop, step=step,
-                              fixed=dict(fixed or {}), min_step=min_step, event_tol=event_tol,
+                              fixed=_check_fixed(fixed), min_step=min_step, event_tol=event_tol,
                               max_points=max_points, method=method, branch=branch,
                               switch=switch, max_inadmissible=max_inadmissible)
+    if orbit is not None and not isinstance(orbit, PeriodicOrbit):
+        raise ParameterError("orbit", orbit, "must be None or a PeriodicOrbit (find_1to1)")
     cont = _Continuer(cs.param, cs.fixed, r, d, phi)
     p0 = cont.params(cs.start)              # validates every parameter
     cont.params(cs.stop)
@@ -169,6 +173,15 @@ def continue_branch(param: str, start, stop, step=None, fixed: dict | None = Non
         br.family = "symmetric" if orbit.symmetric else "asymmetric"
         return br
     return _arclength(cs, orbit, r, d, phi)
+
+
+def _check_fixed(fixed) -> dict:
+    """``fixed`` of ``continue_branch`` as a new dict (None: empty)."""
+    if fixed is None:
+        return {}
+    if not isinstance(fixed, dict):
+        raise ParameterError("fixed", fixed, "must be a dict of the two parameters not continued")
+    return dict(fixed)
 
 
 @dataclass(frozen=True)
@@ -195,13 +208,11 @@ class ContinuationSettings:
         param = self.param
         if not isinstance(param, str) or param not in PARAM_NAMES:
             raise ParameterError("param", param, "must be one of eta, omega, F")
-        if self.method not in CONTINUATION_METHODS:
-            raise ParameterError("method", self.method, "must be one of arclength, natural")
-        if self.branch not in BRANCH_KINDS:
-            raise ParameterError("branch", self.branch, "must be one of symmetric, asymmetric")
-        if self.switch not in (True, False):
-            raise ParameterError("switch", self.switch, "must be True or False")
-        check_int("max_inadmissible", self.max_inadmissible, lo=1, hi=MAX_POINTS_MAX)
+        set_(self, "method", check_choice("method", self.method, CONTINUATION_METHODS))
+        set_(self, "branch", check_choice("branch", self.branch, BRANCH_KINDS))
+        set_(self, "switch", check_bool("switch", self.switch))
+        set_(self, "max_inadmissible", check_int("max_inadmissible", self.max_inadmissible,
+                                                 lo=1, hi=MAX_POINTS_MAX))
         set_(self, "fixed", _fixed_others(param, self.fixed))
         start = check_param(param, self.start)
         try:
@@ -209,8 +220,9 @@ class ContinuationSettings:
         except ParameterError as err:
             raise ParameterError("stop", self.stop, f"{err.allowed} ({param})") from None
         max_points = check_int("max_points", self.max_points, lo=1, hi=MAX_POINTS_MAX)
-        check_real("min_step", self.min_step, lo=1e-12, hi=1.0)
-        check_real("event_tol", self.event_tol, lo=1e-12, hi=1.0)
+        set_(self, "max_points", max_points)
+        set_(self, "min_step", check_real("min_step", self.min_step, lo=1e-12, hi=1.0))
+        set_(self, "event_tol", check_real("event_tol", self.event_tol, lo=1e-12, hi=1.0))
         step = self.step
         if step is None:
             step = (stop - start) / 100.0 if stop != start else 1.0
@@ -247,7 +259,7 @@ def _fixed_others(param: str, fixed: dict) -> dict:
     for q in others:
         if q not in fixed:
             raise ParameterError(q, None, f"is required when continuing in {param}")
-    unknown = sorted(set(fixed) - set(others))
+    unknown = [k for k in fixed if k not in others]
     if unknown:
         raise ParameterError("fixed", unknown[0], f"is not a parameter; fix only {' and '.join(others)}")
     return {q: fixed[q] for q in others}

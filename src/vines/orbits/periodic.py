@@ -32,7 +32,15 @@ from numba import njit
 
 from ..core.exact import oscillators
 from ..core.flow import I_ARES, I_NRES, I_PC, I_PS, I_RES, I_W, flow, fundamentals
-from ..core.params import D_DEFAULT, R_DEFAULT, ModelParams, SolverSettings
+from ..core.params import (
+    D_DEFAULT,
+    R_DEFAULT,
+    ModelParams,
+    ParameterError,
+    SolverSettings,
+    check_bool,
+    check_reals,
+)
 from ..core.walls import WALL_L, WALL_R, impact_velocities
 from ._lapack import lambda_max_4
 from .maps import admissible_kernel, map_kernel
@@ -550,7 +558,34 @@ def find_1to1(eta: float, omega: float, F: float, r: float = R_DEFAULT, d: float
     simulation seed.
     """
     p = ModelParams(eta=eta, omega=omega, F=F, r=r, d=d, phi=phi)
-    return orbits_1to1(p, seeds=seeds, simulation=simulation)
+    return orbits_1to1(p, seeds=check_seeds(seeds),
+                       simulation=check_bool("simulation", simulation))
+
+
+SEEDS_ALLOWED = ("must be None or a list of seeds, each a PeriodicOrbit, an x_L = "
+                 "(z_m', z_b', z_b, t_L) of 4 finite numbers or a pair (x_L, (s1, s2))")
+
+
+def check_seeds(seeds) -> list:
+    """The seeds of ``find_1to1`` as a list of PeriodicOrbit or (x_L, (s1, s2)) (s <= 0: first
+    contact, as ``solve_orbit``); ParameterError naming ``seeds`` otherwise."""
+    if seeds is None:
+        return []
+    if isinstance(seeds, (str, bytes, dict)) or not hasattr(seeds, "__iter__"):
+        raise ParameterError("seeds", seeds, SEEDS_ALLOWED)
+    out = []
+    for sd in seeds:
+        if isinstance(sd, PeriodicOrbit):
+            out.append(sd)
+            continue
+        try:
+            pair = len(sd) == 2 and not isinstance(sd, str)
+            x_L, flights = (sd[0], sd[1]) if pair else (sd, (-1.0, -1.0))
+            out.append((check_reals("seeds", x_L, min_size=4, max_size=4),
+                        tuple(check_reals("seeds", flights, min_size=2, max_size=2))))
+        except (TypeError, ParameterError):
+            raise ParameterError("seeds", seeds, SEEDS_ALLOWED) from None
+    return out
 
 
 def orbits_1to1(p: ModelParams, *, seeds=None, simulation: bool = True) -> list[PeriodicOrbit]:
@@ -560,7 +595,7 @@ def orbits_1to1(p: ModelParams, *, seeds=None, simulation: bool = True) -> list[
     for sd in seeds or ():
         if isinstance(sd, PeriodicOrbit):
             found.append(solve_orbit(p, sd.x_L, *sd.flight_times, osc=osc))
-        elif len(sd) == 2:
+        elif len(sd) == 2:      # (x_L, (s1, s2)), as ``check_seeds`` returns them
             found.append(solve_orbit(p, sd[0], sd[1][0], sd[1][1], osc))
         else:
             found.append(solve_orbit(p, sd, osc=osc))

@@ -37,7 +37,17 @@ from numba import njit
 
 from ..core.exact import oscillators
 from ..core.flow import flow
-from ..core.params import ModelParams, ParameterError, SolverSettings, check_int
+from ..core.params import (
+    T_END_MAX,
+    ModelParams,
+    ParameterError,
+    SolverSettings,
+    check_bool,
+    check_int,
+    check_params_arg,
+    check_real,
+    check_reals,
+)
 from ..core.walls import WALL_L, WALL_R, impact_velocities
 from .maps import admissible_kernel, map_kernel
 from .periodic import DEDUP_TOL, N_SCAN, SYM_TOL, _solve_into, asymmetric_seeds, symmetric_seeds
@@ -568,9 +578,12 @@ def find_sequence(params: ModelParams, walls: str, periods: int = 1, *, seeds=No
     short simulations from ``sim_states`` (for "LR", 1: from rest only, as ``find_1to1``).
     Raises ParameterError on a bad ``walls`` or ``periods``.
     """
+    p = check_params_arg("params", params)
     walls = check_walls(walls)
     periods = check_periods(periods)
-    p = params
+    seeds = check_sequence_seeds(seeds, walls)
+    simulation = check_bool("simulation", simulation)
+    sim_states = check_states("sim_states", sim_states)
     osc = oscillators(p)[0]
     if p.F == 0.0:
         return []
@@ -583,6 +596,51 @@ def find_sequence(params: ModelParams, walls: str, periods: int = 1, *, seeds=No
         else:
             starts += simulation_seeds(p, walls, sim_states)
     return solve_seeds(p, osc, walls, periods, starts, seeds)
+
+
+def _check_list(name, values) -> list:
+    """``values`` as a list (None: empty); ParameterError if it is not a list or tuple."""
+    if values is None:
+        return []
+    if not isinstance(values, (list, tuple)):
+        raise ParameterError(name, values, "must be a list or tuple")
+    return list(values)
+
+
+def check_sequence_seeds(seeds, walls: str) -> list:
+    """The seeds of ``find_sequence``: SequenceOrbits or pairs (x_0, flight times) with x_0
+    4 finite numbers and one flight time per wall of ``walls``; ParameterError otherwise."""
+    allowed = ("must be None or a list of seeds, each a SequenceOrbit or a pair (x_0, flight "
+               f"times): x_0 4 finite numbers, {len(walls)} finite flight times")
+    out = []
+    for sd in _check_list("seeds", seeds):
+        if isinstance(sd, SequenceOrbit):
+            out.append(sd)
+            continue
+        if not isinstance(sd, (list, tuple)) or len(sd) != 2:
+            raise ParameterError("seeds", seeds, allowed)
+        try:
+            out.append((check_reals("seeds", sd[0], min_size=4, max_size=4),
+                        check_reals("seeds", sd[1], min_size=len(walls), max_size=len(walls))))
+        except ParameterError:
+            raise ParameterError("seeds", seeds, allowed) from None
+    return out
+
+
+def check_states(name, states) -> list:
+    """Initial states (z_m, z_m', z_b, z_b') as ``SolverSettings.state0`` accepts them."""
+    out = []
+    for s0 in _check_list(name, states):
+        try:
+            out.append(SolverSettings(t_end=1.0, t_transient=0.0, state0=s0).state0)
+        except ParameterError as err:
+            raise ParameterError(name, states, f"each state {err.allowed}") from None
+    return out
+
+
+def check_sim_t_end(value) -> float:
+    """Length of a seeding simulation (0 < sim_t_end <= T_END_MAX)."""
+    return check_real("sim_t_end", value, lo=0.0, lo_open=True, hi=T_END_MAX)
 
 
 def solve_seeds(p: ModelParams, osc, walls: str, periods: int, starts, seeds=()) -> list:

@@ -38,8 +38,11 @@ from ..core.params import (
     PARAM_NAMES,
     ModelParams,
     ParameterError,
+    check_bool,
+    check_choice,
     check_int,
     check_param,
+    check_params_arg,
     check_real,
 )
 from .arclength import Tracer
@@ -189,9 +192,9 @@ def continue_sequence(params: ModelParams, walls: str, periods: int, param: str,
     step (default |stop - start|/100). Ends when the parameter leaves [start, stop], after
     ``max_points`` points, ``max_inadmissible`` consecutive non-admissible points, or when
     the step cannot be corrected."""
+    params = check_params_arg("params", params)
     walls, periods = check_walls(walls), check_periods(periods)
-    if not isinstance(param, str) or param not in PARAM_NAMES:
-        raise ParameterError("param", param, "must be one of eta, omega, F")
+    param = check_choice("param", param, PARAM_NAMES)
     start = getattr(params, param)
     try:
         stop = check_param(param, stop)
@@ -203,8 +206,11 @@ def continue_sequence(params: ModelParams, walls: str, periods: int, param: str,
         else abs(stop - start) / 100.0
     max_points = check_int("max_points", max_points, lo=2, hi=MAX_POINTS_MAX)
     max_inadmissible = check_int("max_inadmissible", max_inadmissible, lo=1, hi=MAX_POINTS_MAX)
-    if switch not in (True, False):
-        raise ParameterError("switch", switch, "must be true or false")
+    switch = check_bool("switch", switch)
+    if orbit is not None and not (isinstance(orbit, SequenceOrbit)
+                                  and len(orbit.flight_times) == len(walls)):
+        raise ParameterError("orbit", orbit, f"must be None or a SequenceOrbit of {walls}/"
+                             f"{periods} (find_sequence)")
     if orbit is None:
         found = find_sequence(params, walls, periods)
         if not found:

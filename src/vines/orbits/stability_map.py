@@ -39,6 +39,8 @@ from ..core.params import (
     R_DEFAULT,
     ModelParams,
     ParameterError,
+    as_float_array,
+    check_callable,
     check_conditioning,
     check_int,
 )
@@ -253,8 +255,8 @@ def stability_map_python(eta: ArrayLike, omega: ArrayLike, F: float, r: float = 
 
 def _setup(eta, omega, F, r, d):
     """Validated axes and parameters (as floats) and the NaN/zero-filled output arrays."""
-    etas = np.atleast_1d(np.asarray(eta, dtype=float))
-    omegas = np.atleast_1d(np.asarray(omega, dtype=float))
+    etas = np.atleast_1d(as_float_array("eta", eta))
+    omegas = np.atleast_1d(as_float_array("omega", omega))
     if etas.ndim != 1 or omegas.ndim != 1:
         raise ParameterError("eta/omega", None, "must be 1-D arrays")
     for e in etas:
@@ -296,6 +298,7 @@ def stability_map(eta: ArrayLike, omega: ArrayLike, F: float, r: float = R_DEFAU
     it. ``progress(done, total)`` is called after every column.
     """
     etas, omegas, F, r, d, out = _setup(eta, omega, F, r, d)
+    progress = check_callable("progress", progress)
     n_threads = check_int("n_threads", n_threads if n_threads is not None
                           else (os.cpu_count() or 1), lo=1)
     arrays = (out["lambda_max"], out["cls"], out["dw_L"], out["symmetric"])

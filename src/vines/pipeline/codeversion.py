@@ -1,9 +1,12 @@
 """Code versions of the pipeline's rules: sha256 of the vines subpackages a rule depends on.
 
-Snakemake tracks a rule's script but not the modules it imports, so every rule gets the
-code version of the subpackages its numbers (or drawings) come from as a param: editing one
-of them reruns exactly the rules that depend on it. The package's top-level modules other
-than the command line (``__init__``, the numba cache guard) count for every rule.
+Snakemake tracks a rule's script by its modification time only and not the modules it
+imports, so every rule gets as params the code version of the subpackages its numbers (or
+drawings) come from and the hash of its own script (``script_version``): editing one of them
+reruns exactly the rules that depend on it, while touching or checking out an unchanged file reruns
+nothing (the default profile turns Snakemake's mtime-based ``code`` trigger off; see
+docs/pipeline.md). The package's top-level modules other than the command line
+(``__init__``, the numba cache guard) count for every rule.
 """
 from __future__ import annotations
 
@@ -42,3 +45,8 @@ def code_version(subpackages, pkg_dir=PKG_DIR) -> str:
     for f in tracked_files(subpackages, pkg_dir):
         h.update(f.relative_to(pkg_dir).as_posix().encode() + b"\0" + f.read_bytes() + b"\0")
     return h.hexdigest()[:16]
+
+
+def script_version(path) -> str:
+    """sha256 (16 hex digits) of the contents of one workflow script."""
+    return hashlib.sha256(Path(path).read_bytes()).hexdigest()[:16]

@@ -30,7 +30,7 @@ from dataclasses import dataclass, field
 import mpmath as mp
 import numpy as np
 
-from ..core.params import ModelParams, SolverSettings
+from ..core.params import ModelParams, ParameterError, SolverSettings
 from ..core.result import IMPACT_DTYPE
 
 DPS_DEFAULT = 40
@@ -133,6 +133,21 @@ class Reference:
     n_intervals: int = 0
 
 
+def check_reference_params(p: ModelParams) -> None:
+    """Refuse the two cases the reference's closed form does not handle, for the free LO
+    (mass 1) and the stuck body (mass 1 + eta): critical damping d^2 = 4 m and undamped
+    resonance (d ~ 0, m omega^2 = 1), each to a few round-off units of the double inputs."""
+    eps = 2.220446049250313e-16
+    for m in (1.0, 1.0 + p.eta):
+        if abs(p.d * p.d - 4.0 * m) <= 16.0 * eps * 4.0 * m:
+            raise ParameterError("d", p.d, f"is critical damping 2 sqrt(m) for m = {m:g}: "
+                                           "not handled by the reference")
+        if p.d * p.omega <= 1e-24 and abs(1.0 - m * p.omega * p.omega) <= 16.0 * eps:
+            raise ParameterError("omega", p.omega, f"is the undamped resonance 1/sqrt(m) for "
+                                                   f"m = {m:g} (d ~ 0): not handled by the "
+                                                   "reference")
+
+
 def reference_run(params: ModelParams, settings: SolverSettings, *, dps: int = DPS_DEFAULT,
                   h_sample: float = H_SAMPLE_DEFAULT, v_stick: float | None = None,
                   max_events: int = 200_000) -> Reference:
@@ -141,6 +156,7 @@ def reference_run(params: ModelParams, settings: SolverSettings, *, dps: int = D
     ``v_stick`` (default settings.v_stick) is the sticking threshold of the reference.
     The start state must lie strictly inside the cavity (|w0| < 1).
     """
+    check_reference_params(params)
     with mp.workdps(dps):
         return _run(params, settings, h_sample, settings.v_stick if v_stick is None else v_stick,
                     max_events)

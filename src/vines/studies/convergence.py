@@ -37,8 +37,18 @@ from ..core.params import (
     R_DEFAULT,
     ROOT_TOL_DEFAULT,
     T_END_DEFAULT,
+    T_END_MAX,
     T_TRANSIENT_DEFAULT,
     V_STICK_DEFAULT,
+    V_STICK_MAX,
+    ModelParams,
+    ParameterError,
+    SolverSettings,
+    check_bool,
+    check_int,
+    check_param,
+    check_real,
+    check_reals,
 )
 from ..core.simulation import BATCH_FIELDS, simulate_batch
 from .contours import area_above, contour_distance, contour_lines, line_length, nested_axis
@@ -134,18 +144,34 @@ class GridConvergence:
 # ------------------------------------------------------------------ shared helpers
 
 def _check_points(points) -> list[dict]:
+    """The parameter points (dicts eta, omega, F, optional label), each value checked."""
+    if not isinstance(points, (list, tuple)) or not points:
+        raise ParameterError("points", points, "must be a non-empty list of dicts with eta, "
+                                               "omega, F (and optionally label)")
     out = []
     for i, p in enumerate(points):
-        try:
-            q = {k: float(p[k]) for k in ("eta", "omega", "F")}
-        except (KeyError, TypeError, ValueError) as err:
-            raise ValueError(f"point {i} ({p!r}) needs numbers eta, omega, F") from err
+        if not isinstance(p, dict) or not all(k in p for k in ("eta", "omega", "F")):
+            raise ParameterError(f"points[{i}]", p, "needs numbers eta, omega, F")
+        q = {k: check_param(k, p[k]) for k in ("eta", "omega", "F")}
         q["label"] = str(p.get("label", "")) or (
             f"eta={q['eta']:g} omega={q['omega']:g} F={q['F']:g}")
         out.append(q)
-    if not out:
-        raise ValueError("no parameter points given")
     return out
+
+
+def _check_solver(*, t_end, t_transient, v_stick, r, d, max_impacts, root_tol,
+                  periodic_shortcut, n_threads) -> None:
+    """The settings shared by every run of a study (each raises ParameterError)."""
+    SolverSettings(t_end=t_end, t_transient=t_transient, v_stick=v_stick,
+                   max_impacts=max_impacts, root_tol=root_tol)
+    ModelParams(eta=1.0, omega=1.0, F=0.0, r=r, d=d)
+    check_bool("periodic_shortcut", periodic_shortcut)
+    if n_threads is not None:
+        check_int("n_threads", n_threads, lo=1)
+
+
+def _check_tols(ke_tol, xmax_rtol) -> tuple[float, float]:
+    return (check_real("ke_tol", ke_tol, lo=0.0), check_real("xmax_rtol", xmax_rtol, lo=0.0))
 
 
 def _run_cases(cases: list[dict], settings: dict, n_threads) -> tuple[dict, np.ndarray]:
@@ -168,9 +194,8 @@ def _run_cases(cases: list[dict], settings: dict, n_threads) -> tuple[dict, np.n
             out[k][i] = res[k][()]
         return i
 
-    n_threads = (os.cpu_count() or 1) if n_threads is None else int(n_threads)
-    if n_threads < 1:
-        raise ValueError(f"n_threads must be >= 1, got {n_threads}")
+    n_threads = (os.cpu_count() or 1) if n_threads is None else check_int("n_threads",
+                                                                          n_threads, lo=1)
     if n_threads == 1:
         for i in range(n):
             work(i)
@@ -205,17 +230,22 @@ def _window_rules(t_ends, window_lengths, window_fractions, t_end, t_transient):
     """(t_ends with the tested t_end, rules, tested window length), arguments checked."""
     tested_len = float(t_end) - float(t_transient)
     if not tested_len > 0:
-        raise ValueError(f"t_transient = {t_transient} must be < t_end = {t_end}")
-    t_ends = np.unique(np.append(np.asarray(t_ends, float), float(t_end)))
-    lengths = [float(x) for x in window_lengths]
+        raise ParameterError("t_transient", t_transient, f"must be < t_end = {t_end}")
+    t_ends = np.unique(np.append(
+        check_reals("t_ends", t_ends, lo=0.0, lo_open=True, hi=T_END_MAX, min_size=0),
+        float(t_end)))
+    lengths = [float(x) for x in check_reals("window_lengths", window_lengths, min_size=0)]
     if tested_len not in lengths:
         lengths.append(tested_len)
-    fractions = [float(x) for x in window_fractions]
+    fractions = [float(x) for x in check_reals("window_fractions", window_fractions,
+                                               min_size=0)]
     if any(not 0 < f < 1 for f in fractions):
-        raise ValueError(f"window fractions must lie in (0, 1), got {fractions}")
+        raise ParameterError("window_fractions", window_fractions,
+                             "window fractions must lie in (0, 1)")
     if any(x <= 0 for x in lengths) or any(x >= t_ends[0] for x in lengths):
-        raise ValueError(f"window lengths {lengths} must be > 0 and < the shortest t_end "
-                         f"{t_ends[0]:g}")
+        raise ParameterError("window_lengths", window_lengths,
+                             f"window lengths {lengths} (with the tested t_end - t_transient) "
+                             f"must be > 0 and < the shortest t_end {t_ends[0]:g}")
     rules = [("length", x) for x in sorted(lengths)] + [("fraction", f) for f in fractions]
     return t_ends, rules, tested_len
 
@@ -231,8 +261,9 @@ def _window_starts(pts, rules, t_ends, whole_periods) -> np.ndarray:
                 period = 2.0 * math.pi / p["omega"]
                 w = np.floor(win / period) * period
                 if np.any(w <= 0):
-                    raise ValueError(f"a window of rule {kind} {x:g} is shorter than one "
-                                     f"forcing period at point {p['label']}")
+                    raise ParameterError("whole_periods", whole_periods,
+                                         f"a window of rule {kind} {x:g} is shorter than one "
+                                         f"forcing period at point {p['label']}")
             t_tr[i, j] = t_ends - w
     return t_tr
 
@@ -263,6 +294,11 @@ def window_convergence(points: Sequence[dict],
     equals the reference's. Arrays over (point, window, t_end).
     """
     pts = _check_points(points)
+    _check_solver(t_end=t_end, t_transient=t_transient, v_stick=v_stick, r=r, d=d,
+                  max_impacts=max_impacts, root_tol=root_tol,
+                  periodic_shortcut=periodic_shortcut, n_threads=n_threads)
+    ke_tol, xmax_rtol = _check_tols(ke_tol, xmax_rtol)
+    whole_periods = check_bool("whole_periods", whole_periods)
     t_ends, rules, tested_len = _window_rules(t_ends, window_lengths, window_fractions,
                                               t_end, t_transient)
     t_tr = _window_starts(pts, rules, t_ends, whole_periods)
@@ -320,9 +356,14 @@ def vstick_convergence(points: Sequence[dict], v_sticks: Sequence[float] = V_STI
     v_stick), v_stick increasing.
     """
     pts = _check_points(points)
-    vs = np.unique(np.append(np.asarray(v_sticks, float), float(v_stick)))
+    _check_solver(t_end=t_end, t_transient=t_transient, v_stick=v_stick, r=r, d=d,
+                  max_impacts=max_impacts, root_tol=root_tol,
+                  periodic_shortcut=periodic_shortcut, n_threads=n_threads)
+    ke_tol, xmax_rtol = _check_tols(ke_tol, xmax_rtol)
+    vs = np.unique(np.append(check_reals("v_sticks", v_sticks, lo=0.0, lo_open=True,
+                                         hi=V_STICK_MAX, min_size=0), float(v_stick)))
     if not np.all(vs > 0):
-        raise ValueError(f"v_sticks must be > 0, got {vs.tolist()}")
+        raise ParameterError("v_stick", v_stick, "must be > 0 in a v_stick study")
     cases = [dict(eta=p["eta"], omega=p["omega"], F=p["F"], v_stick=float(v))
              for p in pts for v in vs]
     solver = dict(t_end=float(t_end), t_transient=float(t_transient), r=float(r),
@@ -373,6 +414,22 @@ def _contour_measures(eta, omega, ke, strides, level, area_total) -> dict:
             "area_fraction": area, "d_area_fraction": area - area[-1]}
 
 
+RESOLUTION_MAX = 10_001      # points per axis of the finest grid (1e8 runs)
+
+
+def _check_range(name, value) -> tuple[float, float]:
+    """(lo, hi) of eta or omega, lo < hi, both within the parameter's bounds."""
+    q = name.split("_")[0]
+    lo, hi = check_reals(name, value, min_size=2, max_size=2)
+    try:
+        lo, hi = check_param(q, lo), check_param(q, hi)
+    except ParameterError as err:
+        raise ParameterError(name, value, f"{err.allowed} (both ends)") from None
+    if not lo < hi:
+        raise ParameterError(name, value, "must be two numbers lo < hi")
+    return lo, hi
+
+
 def grid_convergence(eta_range: Sequence[float] = (0.01, 1.0),
                      omega_range: Sequence[float] = (0.5, 1.5), F: float = 0.4,
                      resolutions: Sequence[int] = (11, 21, 41, 81), level: float = 0.5, *,
@@ -393,17 +450,24 @@ def grid_convergence(eta_range: Sequence[float] = (0.01, 1.0),
     ``ke_ratio``/``xmax``/``regime`` over (eta, omega): the coarse grids are
     ``[::stride, ::stride]``.
     """
-    res = sorted({int(n) for n in resolutions})
-    if not res or res[0] < 2:
-        raise ValueError(f"resolutions must be >= 2 points per axis, got {resolutions}")
+    _check_solver(t_end=t_end, t_transient=t_transient, v_stick=v_stick, r=r, d=d,
+                  max_impacts=max_impacts, root_tol=root_tol,
+                  periodic_shortcut=periodic_shortcut, n_threads=n_threads)
+    F = check_param("F", F)
+    level = check_real("level", level)
+    counts = check_reals("resolutions", resolutions, lo=2, hi=RESOLUTION_MAX)
+    if np.any(counts != np.round(counts)):
+        raise ParameterError("resolutions", resolutions, "must be integers (points per axis)")
+    res = sorted({int(n) for n in counts})
     n_f = res[-1]
-    e0, e1 = (float(v) for v in eta_range)
-    w0, w1 = (float(v) for v in omega_range)
-    if not (e1 > e0 and w1 > w0):
-        raise ValueError(f"empty range eta {eta_range} or omega {omega_range}")
+    e0, e1 = _check_range("eta_range", eta_range)
+    w0, w1 = _check_range("omega_range", omega_range)
     strides = [(n_f - 1) // (n - 1) for n in res]
     for n in res:
-        nested_axis(e0, e1, n_f, n)           # raises when not nested
+        try:
+            nested_axis(e0, e1, n_f, n)           # raises when not nested
+        except ValueError as err:
+            raise ParameterError("resolutions", resolutions, str(err)) from None
     eta = np.linspace(e0, e1, n_f)
     omega = np.linspace(w0, w1, n_f)
     E, OM = np.meshgrid(eta, omega, indexing="ij")

@@ -29,11 +29,11 @@ def _pair(name, value) -> tuple:
     return pair
 
 
-def check_band(band) -> tuple[float, float]:
+def check_band(band, name: str = "omega_band") -> tuple[float, float]:
     """omega band (lo, hi): 0 < lo < hi <= OMEGA_MAX."""
-    lo, hi = _pair("omega_band", band)
-    lo = check_real("omega_band", lo, lo=0.0, lo_open=True, hi=OMEGA_MAX)
-    hi = check_real("omega_band", hi, lo=lo, lo_open=True, hi=OMEGA_MAX)
+    lo, hi = _pair(name, band)
+    lo = check_real(name, lo, lo=0.0, lo_open=True, hi=OMEGA_MAX)
+    hi = check_real(name, hi, lo=lo, lo_open=True, hi=OMEGA_MAX)
     return lo, hi
 
 

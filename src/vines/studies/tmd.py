@@ -26,6 +26,8 @@ from dataclasses import asdict, dataclass
 import numpy as np
 
 from ..core.linear import stuck_amplitude, stuck_peak
+from ..core.params import check_param
+from .design_checks import check_band, check_eta
 
 #: points of the dense grid on which band maxima are located before refinement
 N_BAND_GRID = 2001
@@ -122,6 +124,10 @@ def optimal_tmd(mu: float, d: float, band) -> TunedMassDamper:
     (module docstring). Deterministic: a fixed grid, then Nelder-Mead in (log f, log zeta)
     within F_BOUNDS x ZETA_BOUNDS to xatol 1e-9."""
     from scipy.optimize import minimize
+
+    mu = check_eta("mu", mu)
+    d = check_param("d", d)
+    band = check_band(band, "band")
 
     def worst(x):
         f, z = math.exp(x[0]), math.exp(x[1])

@@ -33,15 +33,29 @@ from ..core.params import (
     RTOL_MAX,
     RTOL_MIN,
     V_STICK_DEFAULT,
+    V_STICK_MAX,
     ModelParams,
     ParameterError,
     SolverSettings,
+    check_callable,
+    check_choice,
+    check_int,
     check_real,
+    check_reals,
 )
-from ..reference.hiprec import DPS_DEFAULT, H_SAMPLE_DEFAULT, V_STICK_REFERENCE, reference_run
+from ..reference.hiprec import (
+    DPS_DEFAULT,
+    H_SAMPLE_DEFAULT,
+    V_STICK_REFERENCE,
+    check_reference_params,
+    reference_run,
+)
 from ..solvers import RK_METHODS, run_simulation
 
 V_VISIBLE_DEFAULT = 1e-3
+DPS_MIN, DPS_MAX = 20, 100       # digits of the reference (as the config schema)
+H_SAMPLE_MAX = 0.5                # largest sampling step of the reference
+MIN_TIME_MAX = 3600.0             # longest timing of one setting [s]
 
 
 def timed(fn, min_time: float = 0.05, rounds: int = 3, max_calls: int = 10_000):
@@ -165,11 +179,20 @@ def work_precision(eta, omega, F, *, t_end, t_transient, r=R_DEFAULT, d=D_DEFAUL
     p = ModelParams(eta=eta, omega=omega, F=F, r=r, d=d)
     st = SolverSettings(t_end=t_end, t_transient=t_transient, v_stick=v_stick,
                         max_impacts=max_impacts)
-    for m in rk_methods:
-        if m not in RK_METHODS:
-            raise ParameterError("rk_methods", m, f"must be among {', '.join(RK_METHODS)}")
-    rtols = [check_real("rtol", tol, lo=RTOL_MIN, hi=RTOL_MAX) for tol in rtols]
-    say = progress or (lambda line: None)
+    if not isinstance(rk_methods, (list, tuple)):
+        raise ParameterError("rk_methods", rk_methods, "must be a list of RK method names")
+    rk_methods = [check_choice("rk_methods", m, RK_METHODS) for m in rk_methods]
+    rtols = list(check_reals("rtols", rtols, lo=RTOL_MIN, hi=RTOL_MAX, min_size=0))
+    root_tols = check_reals("root_tols", root_tols, lo=0.0, lo_open=True, hi=1e-3, min_size=0)
+    v_sticks = check_reals("v_sticks", v_sticks, lo=0.0, hi=V_STICK_MAX, min_size=0)
+    v_stick_reference = check_real("v_stick_reference", v_stick_reference, lo=0.0,
+                                   hi=V_STICK_MAX)
+    dps = check_int("dps", dps, lo=DPS_MIN, hi=DPS_MAX)
+    h_sample = check_real("h_sample", h_sample, lo=0.0, lo_open=True, hi=H_SAMPLE_MAX)
+    v_visible = check_real("v_visible", v_visible, lo=0.0, lo_open=True)
+    min_time = check_real("min_time", min_time, lo=0.0, lo_open=True, hi=MIN_TIME_MAX)
+    say = check_callable("progress", progress) or (lambda line: None)
+    check_reference_params(p)
     run_simulation(p, SolverSettings(t_end=1.0, t_transient=0.0))   # load the kernel first
     ref, ref_limit = _references(p, st, v_sticks, v_stick_reference, dps, h_sample, say)
     rows = []
