@@ -30,7 +30,9 @@ def test_ball_stays_in_cavity(eta, omega, F):
     st = res.state_at(t)
     w = st[0] - st[2]
     assert np.max(np.abs(w)) <= 1.0 + 1e-12
-    # impacts sit exactly on their wall
+    # impacts sit exactly on their wall: the kernel stores z_b = fl(z_m - wall) and the gap is
+    # (z_m - z_b) - wall, two correctly rounded IEEE operations (the same on every CPU):
+    # |gap| <= u (1 + |z_m|) + u (1 + u (1 + |z_m|)) <= 2.2e-16 (1 + |z_m|), u = 2^-53
     gap = res.impacts["z_m"] - res.impacts["z_b"] - res.impacts["wall"]
     assert np.all(np.abs(gap) <= 4e-16 * (1 + np.abs(res.impacts["z_m"])))
 
@@ -40,14 +42,21 @@ def test_impact_law_momentum_and_restitution(eta, omega, F):
     res = vines.simulate(eta, omega, F, **SHORT)
     imp = res.impacts
     post = res.state_at(imp["t"])       # the segment starting at the impact: post-impact
+    # Round-off bounds from the problem's scale, not from relative errors of differences:
+    # the post-impact velocities are a few correctly rounded operations on v_m, v_b (Eq. 10),
+    # read back through state_at at the segment's start (closed-form parts of size <= scale);
+    # the errors are k u scale, u = 2^-53 (measured k <= 16 for restitution, <= 10 for
+    # momentum over POINTS), so 1e-13 scale (k = 900) holds on any IEEE CPU. A relative bound
+    # on dw would be ill-conditioned at the small dw of chatter (cancellation in v_m - v_b).
+    scale = 1.0 + np.abs(imp["v_m"]) + np.abs(imp["v_b"])
     mom_pre = imp["v_m"] + eta * imp["v_b"]
     mom_post = post[1] + eta * post[3]
-    assert np.allclose(mom_post, mom_pre, rtol=0, atol=1e-12 * (1 + np.abs(mom_pre)).max())
+    assert np.all(np.abs(mom_post - mom_pre) <= 1e-13 * (1.0 + eta) * scale)
     dw_pre = imp["v_m"] - imp["v_b"]
     dw_post = post[1] - post[3]
     stuck = np.abs(dw_post) < 1e-15         # plastic: the ball stuck at this impact
-    assert np.allclose(dw_post[~stuck], -vines.core.params.R_DEFAULT * dw_pre[~stuck], rtol=1e-12,
-                       atol=1e-14)
+    r = vines.core.params.R_DEFAULT
+    assert np.all(np.abs(dw_post + r * dw_pre)[~stuck] <= 1e-13 * scale[~stuck])
     # approach: w' > 0 at L, w' < 0 at R
     assert np.all(dw_pre * imp["wall"] > 0)
 
@@ -137,7 +146,13 @@ def test_two_impacts_closer_than_any_sampling_step():
     """A chatter sequence: consecutive impacts far closer than typical solver steps."""
     res = vines.simulate(0.2, 0.9, 0.4, t_end=300.0, t_transient=100.0)
     gaps = np.diff(res.impacts["t"])
+    # A regime property, not round-off: each chatter sequence ends when the relative speed
+    # after an impact drops to ~v_stick = 1e-6, near the LO's extreme excursions where
+    # |w''| = |z_m''| ~ 5.5; the last flights last 2 w'+ / |w''| ~ 7.3e-7..8e-7. About 40
+    # such flights in this window are shorter than 1e-6, so the minimum is far from the
+    # bound's edge (a perturbed, e.g. other-CPU, trajectory keeps dozens of them).
     assert gaps.min() < 1e-6
+    assert np.count_nonzero(gaps < 1e-6) >= 10
     assert np.all(gaps > 0)
 
 
