@@ -112,7 +112,12 @@ def test_named_1to1_point_fig4a():
 
 def test_named_four_impacts_fig9a():
     res = vines.simulate(0.2, 0.8, 0.4)
-    assert abs(res.impacts_per_period - 4.0) < 0.01
+    # a finite-window count: a window of n = t_win / T periods of an orbit with 4 impacts per
+    # period holds 4 n impacts up to the 4 of one partial period, so |per period - 4| <= 4 / n
+    # (here one impact in ~3400 periods: 3e-4)
+    st = res.settings
+    n_periods = (st.t_end - st.t_transient) / res.params.period
+    assert abs(res.impacts_per_period - 4.0) <= 4.0 / n_periods
     assert res.t_stuck == 0.0
 
 

@@ -44,6 +44,9 @@ def _agree(ex, rk, horizon, tol=1e-8, min_dw=0.0):
     assert ta.size == tb.size and ta.size > 0, (ta.size, tb.size)
     assert np.array_equal(ex.impacts["wall"][sel_a], rk.impacts["wall"][sel_b])
     err = float(np.max(np.abs(ta - tb)))
+    # the error is the DOP853 reference's: for r = 1, F = 0.4 (the largest, 2.8e-9 at rtol
+    # 1e-12) the exact times are 13x closer to DOP853 at rtol 1e-13 (2.1e-10), which moves
+    # by 2.6e-9 itself; the horizons end before that error grows past tol
     assert err <= tol, err
     return err
 
@@ -196,6 +199,8 @@ def test_vanishing_ball_mass_gives_the_linear_response():
             res = vines.simulate(eta, omega, F)
             assert res.status == "ok" and res.n_impacts > 100
             errs.append(abs(res.xmax - a_lin) / a_lin)
+        # first order in eta: errs = C eta, C <= 17 over these points (errs[1] = 1.7e-5 at
+        # W 0.9); 1e-4 allows C = 100. A property of the linear response, not round-off
         assert errs[1] <= 1e-4
         assert 30.0 <= errs[0] / errs[1] <= 300.0       # first order in eta
 
@@ -330,6 +335,9 @@ def test_exact_tangency_keeps_invariants():
     _assert_sane(res, n=200001)
     assert res.n_impacts <= 1
     if res.n_impacts:
+        # contact is declared once the gap 1 - |w| = (t - pi)^2 / 2 (|w''| = 1) is <= root_tol =
+        # 1e-13: |t - pi| <= sqrt(2 root_tol) = 4.5e-7 and |w'| = |sin t| <= the same; the 1%
+        # covers |w''| < 1 near pi and the gap's round-off (1e-16 against 1e-13)
         assert abs(res.impacts["t"][0] - math.pi) <= 1e-6
         assert abs(res.impact_dw[0]) <= math.sqrt(2.0 * 1e-13) * 1.01
     t = np.linspace(0.0, 3.1, 3101)
@@ -361,11 +369,14 @@ def test_long_run_1e5_stays_on_the_periodic_attractor():
     assert abs(L.xmax - S.xmax) <= 1e-9
     # the impact law still holds late in the run (no loss of precision in the exponentials)
     late = L.impacts[L.impacts["t"] > 9.9e4]
+    # (the bounds of test_exact.test_impact_law_momentum_and_restitution: k u scale, the
+    # segments' closed forms run in local time, so t ~ 1e5 adds nothing)
     post = L.state_at(late["t"])
-    assert np.allclose(post[1] + 0.05 * post[3], late["v_m"] + 0.05 * late["v_b"],
-                       rtol=0, atol=1e-13)
-    assert np.allclose(post[1] - post[3], -R_DEFAULT * (late["v_m"] - late["v_b"]),
-                       rtol=1e-12, atol=1e-14)
+    scale = 1.0 + np.abs(late["v_m"]) + np.abs(late["v_b"])
+    mom_pre = late["v_m"] + 0.05 * late["v_b"]
+    assert np.all(np.abs(post[1] + 0.05 * post[3] - mom_pre) <= 1e-13 * 1.05 * scale)
+    dw_pre = late["v_m"] - late["v_b"]
+    assert np.all(np.abs(post[1] - post[3] + R_DEFAULT * dw_pre) <= 1e-13 * scale)
     assert np.max(np.abs(st[0] - st[2])) <= 1.0 + 1e-12
 
 
