@@ -14,6 +14,7 @@ if not workflow.config_settings.configfiles:
 
 
 include: "workflow/rules/common.smk"
+include: "workflow/rules/warmup.smk"
 include: "workflow/rules/simulate_grid.smk"
 include: "workflow/rules/extract_measures.smk"
 include: "workflow/rules/bifurcation_sweep.smk"

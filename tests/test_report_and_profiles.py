@@ -1,4 +1,4 @@
-"""`snakemake --report` and the SLURM profile (no SLURM needed).
+"""`snakemake --report`, the default profile and the SLURM profile (no SLURM needed).
 
 `work_precision` takes every core of a local run; commands without a core count (--report,
 --profile profiles/slurm) must still parse. Runs on a copy of the workflow in tmp_path (the
@@ -9,6 +9,7 @@ import shutil
 import subprocess
 
 import pytest
+import yaml
 from test_pipeline import ROOT, SNAKEMAKE, TINY, _copy_workflow, _smk, needs_snakemake
 
 # one figure (fig2) and one tiny work-precision case: the report holds their captions
@@ -22,6 +23,10 @@ REPORT_CFG = dict(
                     "min_time": 0.001, "dps": 20})
 
 
+#: the default profile (profiles/default) hides the job blocks `_threads` reads
+JOB_BLOCKS = ("--workflow-profile", "none")
+
+
 def _threads(out: str, rule: str) -> set:
     """Thread counts a dry-run prints for the jobs of `rule` (1 is not printed)."""
     blocks = re.findall(rf"\nrule {rule}:\n(.*?)(?:\n\n|\Z)", out, re.S)
@@ -32,6 +37,39 @@ def _threads(out: str, rule: str) -> set:
 def _copy_with_profiles(dst):
     _copy_workflow(dst)
     shutil.copytree(ROOT / "profiles", dst / "profiles", dirs_exist_ok=True)
+
+
+def _rules_with_threads() -> set:
+    """Rules of workflow/rules/*.smk that declare ``threads:`` (multi-threaded rules)."""
+    found = set()
+    for smk in (ROOT / "workflow" / "rules").glob("*.smk"):
+        for block in re.split(r"\n(?=rule )", smk.read_text()):
+            m = re.match(r"rule (\w+):", block)
+            if m and re.search(r"^    threads:", block, re.M):
+                found.add(m.group(1))
+    return found
+
+
+def test_slurm_profile_sets_threads_of_every_multithreaded_rule():
+    profile = yaml.safe_load((ROOT / "profiles" / "slurm" / "config.yaml").read_text())
+    rules = _rules_with_threads()
+    assert {"simulate_grid", "robust_map", "basin_slice", "convergence"} <= rules
+    assert set(profile["set-threads"]) == rules
+
+
+@needs_snakemake
+def test_default_profile_shortens_the_output(tmp_path):
+    """profiles/default is used without being named: a dry run shows the job counts but
+    not every job's block."""
+    _copy_with_profiles(tmp_path)
+    smoke = str(tmp_path / "config" / "smoke.yaml")
+    r = _run(tmp_path, "-n", "-c2", "--configfile", smoke)
+    assert r.returncode == 0, r.stdout + r.stderr
+    out = r.stdout + r.stderr
+    assert "profiles/default" in out and "Job stats:" in out
+    assert "\nrule simulate_grid:" not in out and "    output: " not in out
+    r = _run(tmp_path, "-n", "-c2", "--configfile", smoke, "--workflow-profile", "none")
+    assert "\nrule simulate_grid:" in r.stdout + r.stderr        # the full plan on demand
 
 
 def _run(cwd, *args):
@@ -57,10 +95,11 @@ def test_profile_dry_run_without_cores(tmp_path):
     _copy_with_profiles(tmp_path)
     smoke = str(tmp_path / "config" / "smoke.yaml")
     r = _run(tmp_path, "-n", "--profile", str(tmp_path / "profiles" / "slurm"),
-             "--executor", "local", "--configfile", smoke)
+             "--executor", "local", "--configfile", smoke, *JOB_BLOCKS)
     assert r.returncode == 0, r.stdout + r.stderr
     assert _threads(r.stdout, "work_precision") == {8}            # profile set-threads
-    assert _threads(r.stdout, "simulate_grid") == {8}
+    for rule in ("simulate_grid", "robust_map", "basin_slice", "convergence"):
+        assert _threads(r.stdout, rule) == {8}, rule
 
 
 @needs_snakemake
@@ -69,12 +108,12 @@ def test_slurm_profile_dry_run(tmp_path):
     _copy_with_profiles(tmp_path)
     smoke = str(tmp_path / "config" / "smoke.yaml")
     profile = str(tmp_path / "profiles" / "slurm")
-    r = _run(tmp_path, "-n", "--profile", profile, "--configfile", smoke)
+    r = _run(tmp_path, "-n", "--profile", profile, "--configfile", smoke, *JOB_BLOCKS)
     assert r.returncode == 0, r.stdout + r.stderr
     assert _threads(r.stdout, "work_precision") == {8}
     # --cores caps every job (a small node), as in tests/slurm/run_single_node.sh
     r = _run(tmp_path, "-n", "--profile", profile, "--cores", "2",
-             "--slurm-status-command", "squeue", "--configfile", smoke)
+             "--slurm-status-command", "squeue", "--configfile", smoke, *JOB_BLOCKS)
     assert r.returncode == 0, r.stdout + r.stderr
     assert _threads(r.stdout, "work_precision") == {2}
     assert _threads(r.stdout, "simulate_grid") == {2}

@@ -7,9 +7,10 @@ Subpackages: core (simulation), orbits (periodic orbits), reference (independent
 studies (work-precision, convergence), data (datasets), pipeline, plotting; see
 docs/architecture.md.
 
-``simulate``, ``simulate_batch``, ``design``, ``SimulationResult`` and ``IMPACT_DTYPE`` are imported on
-first use, so that code which only reads datasets or draws figures does not load numba
-and the compiled kernels.
+``simulate``, ``simulate_batch``, ``design``, ``lyapunov``, ``SimulationResult`` and
+``IMPACT_DTYPE`` are imported on first use, so that code which only reads datasets or draws
+figures does not load numba and the compiled kernels; ``open_run`` (a finished run's
+datasets as one ``xarray.DataTree``) likewise, so that ``import vines`` does not load xarray.
 """
 from importlib import import_module
 from importlib.metadata import PackageNotFoundError, version
@@ -28,10 +29,12 @@ except PackageNotFoundError:   # sources used without installing (not a release)
 #: public names loaded on first access, and their modules
 _LAZY = {"simulate": ".solvers", "simulate_batch": ".core.simulation",
          "SimulationResult": ".core.result", "IMPACT_DTYPE": ".core.result",
-         "design": ".studies.design"}
+         "design": ".studies.design", "lyapunov": ".attractors.lyapunov",
+         "open_run": ".data.run"}
 
-__all__ = ["simulate", "simulate_batch", "design", "ModelParams", "SolverSettings", "ParameterError",
-           "SimulationResult", "IMPACT_DTYPE", "D_DEFAULT", "L_HALF_M", "__version__"]
+__all__ = ["simulate", "simulate_batch", "design", "lyapunov", "open_run", "ModelParams",
+           "SolverSettings", "ParameterError", "SimulationResult", "IMPACT_DTYPE", "D_DEFAULT",
+           "L_HALF_M", "__version__"]
 
 
 def __getattr__(name):

@@ -20,6 +20,7 @@ fraction: the fractions of the attractors and the unsettled fraction sum to 1.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -32,13 +33,16 @@ from ..core.params import (
     R_DEFAULT,
     ROOT_TOL_DEFAULT,
     T_END_DEFAULT,
+    T_END_MAX,
     T_TRANSIENT_DEFAULT,
     V_STICK_DEFAULT,
     ModelParams,
     ParameterError,
     SolverSettings,
+    check_real,
 )
 from ..core.shortcut import rel_diff
+from . import asymptotic as asy
 from .endstate import EndState, settle, settle_states
 from .orbit import one_period, section_of_1to1
 from .sampling import BOX_NAMES, DEFAULT_BOX, check_box, sample_states
@@ -77,9 +81,14 @@ class Attractor:
     window_regimes: dict
     section_state: list | None = None
     orbit: dict | None = None
+    asymptotic: dict | None = None
 
     def to_dict(self) -> dict:
-        return dict(self.__dict__)
+        """The attributes; with an asymptotic view (``census(t_max=...)``) its keys
+        (basin_fraction_asymptotic, ci_asymptotic, status, lyapunov_max, ...) as well."""
+        out = dict(self.__dict__)
+        extra = out.pop("asymptotic")
+        return out | extra if extra is not None else out
 
 
 @dataclass
@@ -98,12 +107,18 @@ class Census:
     unsettled_fraction: float
     ci_method: str = f"{CI_METHOD} score interval, {CI_LEVEL:.0%}"
     members: np.ndarray = field(default=None, repr=False)
+    t_max: float | None = None
+    from_rest_asymptotic: int | None = None
+    members_asymptotic: np.ndarray = field(default=None, repr=False)
 
     def to_dict(self) -> dict:
-        return {"attractors": [a.to_dict() for a in self.attractors],
-                "from_rest": self.from_rest, "unsettled_fraction": self.unsettled_fraction,
-                "n": self.n, "seed": self.seed, "box": self.box, "ci_method": self.ci_method,
-                "params": self.params, "settings": self.settings}
+        out = {"attractors": [a.to_dict() for a in self.attractors],
+               "from_rest": self.from_rest, "unsettled_fraction": self.unsettled_fraction,
+               "n": self.n, "seed": self.seed, "box": self.box, "ci_method": self.ci_method,
+               "params": self.params, "settings": self.settings}
+        if self.t_max is not None:
+            out |= {"t_max": self.t_max, "from_rest_asymptotic": self.from_rest_asymptotic}
+        return out
 
 
 class _Group:
@@ -260,29 +275,136 @@ def _check_states(states) -> np.ndarray:
 def census(eta, omega, F, *, r=R_DEFAULT, d=D_DEFAULT, n=256, seed=0, box=DEFAULT_BOX,
            states=None, t_end=T_END_DEFAULT, t_transient=T_TRANSIENT_DEFAULT,
            v_stick=V_STICK_DEFAULT, max_impacts=MAX_IMPACTS_DEFAULT,
-           root_tol=ROOT_TOL_DEFAULT, n_threads=None) -> Census:
+           root_tol=ROOT_TOL_DEFAULT, n_threads=None, t_max=None) -> Census:
     """Attractor census at (eta, omega, F) from n Sobol initial states in ``box``
     (``sampling``; forcing phase 0 at t = 0), or from the given ``states`` (n, 4) =
     (z_m, z_m', z_b, z_b') (then n, seed and box are not used), each run to t_end with the
     measures over [t_transient, t_end] (module docstring). ``members`` of the result: the
-    attractor index of every state (-1: unsettled). Raises ParameterError for bad input."""
+    attractor index of every state (-1: unsettled).
+
+    ``t_max`` (> t_end; ``asymptotic.T_MAX_DEFAULT`` is the documented choice): also the
+    asymptotic view (``asymptotic``): states not settled at t_end run on until they settle
+    on a periodic orbit or reach t_max; every attractor gains basin_fraction_asymptotic,
+    ci_asymptotic, status, lyapunov_max (and motion classes their lifetime and where their
+    states escape to), the result ``t_max``, ``from_rest_asymptotic`` and
+    ``members_asymptotic``. Without t_max the result is the t_end view alone, unchanged.
+    Raises ParameterError for bad input."""
     p = ModelParams(eta=eta, omega=omega, F=F, r=r, d=d)
     st = SolverSettings(t_end=t_end, t_transient=t_transient, v_stick=v_stick,
                         max_impacts=max_impacts, root_tol=root_tol)
+    if t_max is not None:
+        t_max = check_real("t_max", t_max, lo=st.t_end, lo_open=True, hi=T_END_MAX)
     box = check_box(box)
     states = sample_states(n, seed, box) if states is None else _check_states(states)
     ends = settle_states(p, st, states, n_threads)
     groups, n_unsettled = _group(ends, p.period)
     oscs = oscillators(p)
-    rest = _place_from_rest(groups, settle(p, st, oscs, (0.0, 0.0, 0.0, 0.0)), p.period)
+    rest_end = settle(p, st, oscs, (0.0, 0.0, 0.0, 0.0))
+    rest = _place_from_rest(groups, rest_end, p.period)
     groups.sort(key=lambda g: (-len(g.members), g.first if g.first >= 0 else len(ends)))
     attractors = [_attractor(p, st, oscs, g, ends, states, len(ends)) for g in groups]
     members = np.full(len(ends), -1, dtype=np.int64)
     for j, g in enumerate(groups):
         members[g.members] = j
-    return Census(params=p.as_dict(), settings=st.as_dict() | {"state0": None}, n=len(ends),
-                  seed=int(seed), box=dict(zip(BOX_NAMES, map(list, box), strict=False)),
-                  attractors=attractors,
-                  from_rest=groups.index(rest) if rest is not None else None,
-                  unsettled_fraction=n_unsettled / len(ends), members=members)
+    out = Census(params=p.as_dict(), settings=st.as_dict() | {"state0": None}, n=len(ends),
+                 seed=int(seed), box=dict(zip(BOX_NAMES, map(list, box), strict=False)),
+                 attractors=attractors,
+                 from_rest=groups.index(rest) if rest is not None else None,
+                 unsettled_fraction=n_unsettled / len(ends), members=members)
+    if t_max is not None:
+        _asymptotic_view(out, p, st, oscs, states, ends, groups, (rest, rest_end), t_max,
+                         n_threads)
+    return out
+
+
+# ------------------------------------------------------------------ asymptotic view
+
+def _group_of(groups: list, e: EndState, T: float, first: int) -> int:
+    """Index of the periodic group e belongs to; a new (empty) group if none."""
+    for j, g in enumerate(groups):
+        if g.end.kind in ("1:1", "orbit") and _matches(g, e, T):
+            return j
+    g = _Group(first, e)
+    groups.append(g)
+    return len(groups) - 1
+
+
+def _asymptotic_view(out: Census, p, st, oscs, states, ends, groups, rest, t_max,
+                     n_threads) -> None:
+    """Add the asymptotic view to ``out`` (``asymptotic`` module docstring)."""
+    n, T = len(ends), p.period
+    conts = asy.continue_states(p, st, oscs, ends, t_max, n_threads)
+    n_old = len(groups)
+    members = out.members.copy()
+    for i, c in sorted(conts.items()):
+        if c.outcome == "escaped":
+            members[i] = _group_of(groups, c.end, T, i)
+    for g in groups[n_old:]:            # attractors reached only asymptotically
+        a = _attractor(p, st, oscs, g, ends, states, n)
+        a.window_regimes = {}
+        out.attractors.append(a)
+    for j, (g, a) in enumerate(zip(groups, out.attractors, strict=True)):
+        k = int(np.count_nonzero(members == j))
+        view = {"basin_fraction_asymptotic": k / n, "ci_asymptotic": _wilson(k, n)}
+        if g.end.kind == "motion":
+            view |= _motion_view(p, st, states, ends, g, conts, members, t_max, n_threads)
+        else:
+            view |= {"status": "persistent",
+                     "lyapunov_max": asy.periodic_lambda(p, st, oscs, g.end),
+                     "lyapunov_window": None}
+        a.asymptotic = view
+    out.t_max, out.members_asymptotic = t_max, members
+    out.from_rest_asymptotic = _rest_asymptotic(out, p, st, oscs, groups, rest, t_max)
+
+
+def _motion_view(p, st, states, ends, g, conts, members, t_max, n_threads) -> dict:
+    """Lifetime, escapes, status and leading exponent of a class of motions."""
+    mem = g.members
+    cs = [conts[i] for i in mem]
+    escaped = np.array([c.outcome == "escaped" for c in cs], bool)
+    t_out = np.array([c.t_escape if c.outcome == "escaped" else t_max for c in cs])
+    life = asy.lifetime(t_out - st.t_end, escaped)
+    n_settled = sum(c.outcome == "settled" for c in cs)
+    dest = [int(members[i]) for i, c in zip(mem, cs, strict=True) if c.outcome == "escaped"]
+    lam_long = None
+    if mem and life["escaped"] == 0 and n_settled < len(mem):
+        first = next(i for i, c in zip(mem, cs, strict=True) if c.outcome == "censored")
+        lam_long = asy.long_lambda(p, st, t_max, ends[first])
+    status, horizon = asy.class_status(life, n_settled, len(mem), lam_long, st.t_end,
+                                       t_max)
+    if lam_long is not None:
+        lam, ci, win = lam_long
+    elif mem:
+        lam, ci, win = asy.window_lambda(p, st, states, mem, n_threads)
+    else:
+        lam, ci, win = math.nan, [math.nan, math.nan], None
+    view = {"status": status, "lyapunov_max": lam, "lyapunov_max_ci": ci,
+            "lyapunov_window": win, "lifetime": life,
+            "escape_to": {str(j): dest.count(j) for j in sorted(set(dest))}}
+    if horizon is not None:
+        view["horizon"] = horizon
+    return view
+
+
+def _rest_asymptotic(out: Census, p, st, oscs, groups, rest, t_max) -> int | None:
+    """Attractor the start from rest is in at t_max (None: its run stopped early)."""
+    g, e = rest
+    if g is None:
+        return None
+    if e.kind != "motion":
+        return out.from_rest
+    c = asy.continue_state(p, st, asy.asymptotic_settings(st, t_max), oscs, e)
+    if c.outcome != "escaped":
+        return out.from_rest
+    n_old = len(groups)
+    j = _group_of(groups, c.end, p.period, -1)
+    if j >= n_old:                      # reached from rest only, and only asymptotically
+        a = _attractor(p, st, oscs, groups[j], [], np.zeros((0, 4)), out.n)
+        a.window_regimes = {}
+        a.asymptotic = {"basin_fraction_asymptotic": 0.0, "ci_asymptotic": _wilson(0, out.n),
+                        "status": "persistent",
+                        "lyapunov_max": asy.periodic_lambda(p, st, oscs, c.end),
+                        "lyapunov_window": None}
+        out.attractors.append(a)
+    return j
 

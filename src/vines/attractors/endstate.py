@@ -39,7 +39,8 @@ class EndState:
     """End state of one run. ke_ratio, xmax: the run's window measures (dimensionless
     xmax); orbit: the polished 1:1 orbit (kind "1:1"); section (pp, 4), modes (pp,):
     the confirmed orbit's states and segment modes at t = k T, k = k0 ... k0 + pp - 1
-    (kind "orbit")."""
+    (kind "orbit"); final_state, final_mode: the state (z_m, z_m', z_b, z_b') and
+    segment mode at the end of the run."""
 
     kind: str
     regime: str
@@ -50,6 +51,8 @@ class EndState:
     section: np.ndarray | None = None
     modes: np.ndarray | None = None
     t_section: float = math.nan
+    final_state: np.ndarray | None = None
+    final_mode: int = 0
 
 
 def _section(raw, T: float, t_end: float, t_transient: float):
@@ -70,10 +73,18 @@ def _section(raw, T: float, t_end: float, t_transient: float):
 def settle(p: ModelParams, st: SolverSettings, oscs, state0) -> EndState:
     """Run ``state0`` = (z_m, z_m', z_b, z_b') at t = 0 and classify its end state."""
     raw, m = run_measured(p, st, state0=tuple(float(v) for v in state0))
-    base = dict(regime=m["regime"], ke_ratio=float(m["ke_ratio"]), xmax=float(m["xmax"]),
-                status=m["status"])
-    if m["status"] != "ok":
-        return EndState(kind="unsettled", **base)
+    return classify_end(p, st, oscs, raw, m["regime"], float(m["ke_ratio"]),
+                        float(m["xmax"]))
+
+
+def classify_end(p: ModelParams, st: SolverSettings, oscs, raw, regime: str,
+                 ke_ratio: float = math.nan, xmax: float = math.nan) -> EndState:
+    """The end state of a finished run ``raw`` over [., st.t_end] (kinds as above)."""
+    base = dict(regime=regime, ke_ratio=ke_ratio, xmax=xmax, status=raw.status,
+                final_state=np.asarray(raw.solver_info.get("final_state"), float),
+                final_mode=int(raw.solver_info.get("final_mode", 0)))
+    if raw.status != "ok":
+        return EndState(**(base | {"kind": "unsettled"}))
     orbit = polish_1to1(p, oscs[0], raw.impacts, st.t_end)
     if orbit is not None:
         return EndState(kind="1:1", orbit=orbit, **base)

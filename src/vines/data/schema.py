@@ -9,6 +9,11 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..core.params import PARAM_NAMES
+
+#: dimensions of the grid datasets, in order: the model parameters (eta, omega, F)
+DIMS = PARAM_NAMES
+
 CONVENTIONS = "CF-1.10"
 
 COORD_ATTRS = {

@@ -1,0 +1,247 @@
+"""Lyapunov spectra by saltation matrices (``core.variational``, ``attractors.lyapunov``).
+
+Oracles that share no code with the tangent pass: the map Jacobian of ``orbits.maps``
+(implicit differentiation of the impact-to-impact maps), central differences of the exact
+flow map, the phase-volume contraction (damping between impacts, det = r^2 per impact), the
+linear oscillator without impacts, and a two-trajectory finite-difference estimate of
+lambda_1.
+"""
+import math
+
+import numpy as np
+import pytest
+
+import vines
+from vines.attractors.lyapunov import spectrum
+from vines.core.exact import KernelRun, oscillators
+from vines.core.params import ModelParams, ParameterError, SolverSettings
+from vines.core.variational import (
+    monodromy,
+    saltation_impact,
+    saltation_impact_stick,
+    stick_projection,
+)
+from vines.core.walls import impact_velocities
+from vines.orbits.periodic import find_1to1
+
+#: chaotic points found by a random search (irregular from rest, lambda_1 > 0 from every
+#: state tried, windows up to 3e4)
+CHAOTIC = ((0.2026, 0.917, 0.1345), (0.4387, 0.9858, 0.3917))
+#: stable 1:1 orbits: Fig 4(a) and the efficient orbit of the Fig 16 point
+ONE_TO_ONE = ((0.05, 1.0, 0.05), (0.5, 0.9, 0.3077))
+
+
+def _stable_1to1(eta, omega, F):
+    orbits = [o for o in find_1to1(eta, omega, F) if o.stable]
+    assert orbits, "the test point must have a stable 1:1 orbit"
+    return ModelParams(eta=eta, omega=omega, F=F), orbits[0]
+
+
+def _after_L_impact(p, orbit):
+    """A state on the orbit just after its L impact, and its time."""
+    vm, vb, zb, t_L = orbit.x_L
+    vm_p, vb_p = impact_velocities(p.eta, p.r, vm, vb)
+    return (zb + 1.0, vm_p, zb, vb_p), float(t_L)
+
+
+def _flow_map(p, oscs, x0, t0, t1):
+    run = KernelRun(p, SolverSettings(t_end=t1, t_transient=t0), oscs, np.asarray(x0, float),
+                    t0, t1, t0, t0, 0)
+    run.run()
+    return run.cur[1:5].copy(), int(run.cnt[0])
+
+
+@pytest.mark.parametrize("point", ONE_TO_ONE)
+def test_monodromy_equals_map_jacobian_eigenvalues(point):
+    """The product of state-transition and saltation matrices over one period of a 1:1
+    orbit has the eigenvalues of J_P2 J_P1 (the map's implicit differentiation)."""
+    p, orbit = _stable_1to1(*point)
+    x0, t_L = _after_L_impact(p, orbit)
+    s = 0.5 * orbit.flight_times[0]         # start mid-flight: one L and one R impact
+    x_mid, _ = _flow_map(p, oscillators(p), x0, t_L, t_L + s)
+    M, tr = monodromy(p, SolverSettings(), oscillators(p), x_mid, t_L + s, p.period)
+    assert tr.n_impacts == 2
+    mu = np.sort_complex(np.linalg.eigvals(M))
+    ref = np.sort_complex(orbit.eigenvalues)
+    assert np.max(np.abs(mu - ref)) < 1e-8
+
+
+def test_monodromy_equals_finite_differences_on_a_chaotic_trajectory():
+    """Along 20 time units of chaotic motion (10 impacts) the matrix product equals central
+    differences of the exact flow map (h = 1e-7: truncation ~ h^2 |x'''| << 1e-5)."""
+    p = ModelParams(eta=CHAOTIC[0][0], omega=CHAOTIC[0][1], F=CHAOTIC[0][2])
+    oscs = oscillators(p)
+    x, _ = _flow_map(p, oscs, (0.0, 0.0, 0.0, 0.0), 0.0, 500.0)
+    M, tr = monodromy(p, SolverSettings(), oscs, x, 500.0, 20.0)
+    assert tr.n_impacts >= 5
+    h = 1e-7
+    J = np.empty((4, 4))
+    for j in range(4):
+        dx = np.zeros(4)
+        dx[j] = h
+        (a, na), (b, nb) = (_flow_map(p, oscs, x + dx, 500.0, 520.0),
+                            _flow_map(p, oscs, x - dx, 500.0, 520.0))
+        assert na == nb == tr.n_impacts        # no impact gained or lost by the perturbation
+        J[:, j] = (a - b) / (2.0 * h)
+    assert np.max(np.abs(M - J)) < 1e-5 * np.max(np.abs(J))
+
+
+def test_saltation_determinant_and_sticking_rank():
+    """det S = r^2 for any impact (det D R = -r, n.f+ = -r n.f-); an impact that sticks
+    and the stick projection have rank 2 and map into the stuck manifold."""
+    p = ModelParams(eta=0.3, omega=0.8, F=0.2, r=0.65)
+    osc_f = oscillators(p)[0]
+    rng = np.random.default_rng(3)
+    S = np.empty((4, 4))
+    for _ in range(20):
+        zm, vm, vb, t = rng.normal(size=4)
+        if abs(vm - vb) < 0.05:
+            continue
+        saltation_impact(osc_f, p.eta, p.r, p.phi, t, zm, vm, vb, S)
+        assert np.linalg.det(S) == pytest.approx(p.r ** 2, rel=1e-12)
+        saltation_impact_stick(osc_f, p.eta, p.phi, t, zm, vm, vb, S)
+        assert np.linalg.matrix_rank(S) == 2
+        assert np.array_equal(S[0], S[2]) and np.array_equal(S[1], S[3])
+    stick_projection(p.eta, S)
+    assert np.linalg.matrix_rank(S) == 2
+
+
+@pytest.mark.parametrize("point", ONE_TO_ONE)
+def test_spectrum_on_stable_1to1_orbit_equals_log_multipliers(point):
+    """All four exponents = log |mu_i| / T (mu_i: eigenvalues of the map Jacobian,
+    T = 2 pi / omega), to 2e-3 (measured: <= 2e-4 over the window [4000, 7000])."""
+    p, orbit = _stable_1to1(*point)
+    x0, t_L = _after_L_impact(p, orbit)
+    st = SolverSettings(t_end=t_L + 7000.0, t_transient=t_L + 4000.0)
+    res = spectrum(p, st, x0, t0=t_L)
+    ref = np.sort(np.log(np.abs(orbit.eigenvalues)) / p.period)[::-1]
+    assert res.regime == "1:1" and res.n_sticks == 0
+    assert np.max(np.abs(res.exponents - ref)) < 2e-3
+    assert np.all(np.diff(res.exponents) <= 0.0)
+
+
+def test_no_impact_limit():
+    """Without impacts the LO's two exponents are -d/2 and the ball's free drift two
+    zeros; the drift's polynomial growth biases them by ~log(t_end/t_transient)/window."""
+    d = vines.D_DEFAULT
+    res = vines.lyapunov(eta=0.5, omega=0.5, F=0.05, state0=(0.1, 0.0, 0.1, 0.0))
+    assert res.regime == "no-impact" and res.n_impacts == 0
+    drift = math.log(7000.0 / 4000.0) / 3000.0
+    assert np.all(np.abs(res.exponents[:2]) <= 1.5 * drift)
+    assert np.max(np.abs(res.exponents[2:] + d / 2)) < 1e-5
+    assert res.exponents[0] > 0.0 > res.exponents[1]
+
+
+@pytest.mark.parametrize("point,state0", [(ONE_TO_ONE[1], (0.0, 0.0, 0.0, 0.0)),
+                                          (CHAOTIC[0], (0.5, -0.3, 0.2, 0.4))])
+def test_sum_of_exponents_is_the_phase_volume_contraction(point, state0):
+    """sum lambda_i = -d + 2 ln(r) (impacts in the window) / (window length)."""
+    eta, omega, F = point
+    res = vines.lyapunov(eta=eta, omega=omega, F=F, state0=state0)
+    assert res.n_sticks == 0 and res.n_impacts > 100
+    expect = -vines.D_DEFAULT + 2.0 * math.log(0.65) * res.n_impacts / 3000.0
+    assert abs(res.exponents.sum() - expect) < 1e-9 * (1.0 + abs(expect)) + 1e-10
+
+
+def test_sticking_removes_two_directions():
+    """Chatter with sticking: lambda_3 = lambda_4 = -inf, the others finite."""
+    res = vines.lyapunov(eta=0.2, omega=0.9, F=0.4, t_end=2000.0, t_transient=1000.0)
+    assert res.n_sticks > 0 and res.regime == "chatter"
+    assert np.all(np.isneginf(res.exponents[2:])) and np.all(np.isfinite(res.exponents[:2]))
+    d = res.to_dict()
+    assert d["ci"][3] == [-math.inf, -math.inf]
+
+
+@pytest.mark.parametrize("point", CHAOTIC)
+def test_chaotic_lambda1_positive_independent_of_state_and_window(point):
+    eta, omega, F = point
+    est = []
+    for state0, t_end in (((0.0, 0.0, 0.0, 0.0), 7000.0), ((0.5, -0.3, 0.2, 0.4), 7000.0),
+                          ((-1.0, 0.8, -0.5, -0.2), 20000.0)):
+        res = vines.lyapunov(eta=eta, omega=omega, F=F, state0=state0, t_end=t_end,
+                             t_transient=t_end - 3000.0)
+        assert res.regime == "irregular"
+        assert res.ci[0][0] > 0.0
+        est.append(res)
+    for a in est[1:]:
+        half = 0.5 * (est[0].ci[0][1] - est[0].ci[0][0]) + 0.5 * (a.ci[0][1] - a.ci[0][0])
+        assert abs(a.exponents[0] - est[0].exponents[0]) < half
+
+
+def _two_trajectory_lambda1(p, x0, t_start, t_stop, delta=1e-9, n_batches=10):
+    """Classical two-trajectory estimate: a neighbour at distance delta, renormalised every
+    forcing period; an interval in which the two cross a different number of walls is
+    extended (by T/8) until they agree. Returns (mean, 95 % batch-means half-width)."""
+    from scipy.stats import t as student_t
+    oscs = oscillators(p)
+    T = p.period
+    x, _ = _flow_map(p, oscs, x0, 0.0, t_start)
+    u = np.array([1.0, -0.5, 0.3, 0.7])
+    y = x + delta * u / np.linalg.norm(u)
+    t = t_start
+    edges = np.linspace(t_start, t_stop, n_batches + 1)
+    logs = np.zeros(n_batches)
+    while t < t_stop - 1e-9:
+        t1 = min(t + T, t_stop)
+        while True:
+            xa, na = _flow_map(p, oscs, x, t, t1)
+            ya, nb = _flow_map(p, oscs, y, t, t1)
+            if na == nb or t1 >= t_stop:
+                break
+            t1 = min(t1 + T / 8.0, t_stop)
+        dist = np.linalg.norm(ya - xa)
+        b = min(np.searchsorted(edges, t1, side="left") - 1, n_batches - 1)
+        logs[b] += math.log(dist / delta)
+        x, y, t = xa, xa + delta * (ya - xa) / dist, t1
+    batch = logs / np.diff(edges)
+    half = student_t.ppf(0.975, n_batches - 1) * batch.std(ddof=1) / math.sqrt(n_batches)
+    return batch.mean(), half
+
+
+def test_chaotic_lambda1_agrees_with_two_trajectory_estimate():
+    eta, omega, F = CHAOTIC[0]
+    p = ModelParams(eta=eta, omega=omega, F=F)
+    x0 = (0.0, 0.0, 0.0, 0.0)
+    fd, fd_half = _two_trajectory_lambda1(p, x0, 4000.0, 10000.0)
+    res = vines.lyapunov(eta=eta, omega=omega, F=F, state0=x0, t_end=10000.0,
+                         t_transient=4000.0)
+    half = 0.5 * (res.ci[0][1] - res.ci[0][0])
+    assert fd > 0.0 and abs(res.exponents[0] - fd) < fd_half + half
+
+
+def test_bad_input_names_the_argument():
+    with pytest.raises(ParameterError, match="eta"):
+        vines.lyapunov(eta=-1.0, omega=1.0, F=0.1)
+    with pytest.raises(ParameterError, match="t_transient"):
+        vines.lyapunov(eta=0.1, omega=1.0, F=0.1, t_end=100.0, t_transient=200.0)
+    with pytest.raises(ParameterError, match="state0"):
+        vines.lyapunov(eta=0.1, omega=1.0, F=0.1, state0=(0.0, 0.0, 3.0, 0.0))
+    with pytest.raises(ParameterError, match="n_batches"):
+        vines.lyapunov(eta=0.1, omega=1.0, F=0.1, t_end=100.0, t_transient=50.0,
+                       n_batches=1000)
+    with pytest.raises(TypeError):
+        vines.lyapunov(0.1, 1.0, 0.1)          # keyword arguments only
+
+
+def test_tangent_run_follows_the_census_trajectory_bit_for_bit():
+    """The spectrum's run (paused every 256 periods) is the trajectory of ``run_measured``
+    (the census's runs, paused at sections by the shortcut's detector): same end state,
+    same impacts in the window."""
+    from vines.core.simulation import run_measured
+    from vines.core.variational import TangentRun
+    p = ModelParams(eta=CHAOTIC[0][0], omega=CHAOTIC[0][1], F=CHAOTIC[0][2])
+    st = SolverSettings()
+    s0 = (0.5, -0.3, 0.2, 0.4)
+    raw, m = run_measured(p, st, state0=s0)
+    tr = TangentRun(p, st, oscillators(p), s0, 0.0, np.linspace(4000.0, 7000.0, 17)).run()
+    assert np.array_equal(raw.solver_info["final_state"], tr.run_.cur[1:5])
+    assert m["n_impacts_window"] == tr.n_impacts
+
+
+def test_irregular_torus_has_zero_leading_exponent():
+    """"irregular" (no strobe return) is not chaos: at (0.511, 1.26, 0.484) the motion from
+    rest has lambda_1 = 0 within its interval (quasi-periodic), the rest negative."""
+    res = vines.lyapunov(eta=0.511, omega=1.26, F=0.484, t_end=20000.0, t_transient=4000.0)
+    assert res.regime == "irregular"
+    assert res.ci[0][0] < 0.0 < res.ci[0][1] and abs(res.exponents[0]) < 1e-3
+    assert np.all(res.exponents[2:] < -0.1)
