@@ -343,6 +343,8 @@ def test_exact_tangency_keeps_invariants():
         assert abs(res.impacts["t"][0] - math.pi) <= 1e-6
         assert abs(res.impact_dw[0]) <= math.sqrt(2.0 * 1e-13) * 1.01
     t = np.linspace(0.0, 3.1, 3101)
+    # the closed form and numpy both evaluate cos t (t <= 3.1): a few ulps each, whatever the
+    # SIMD path (measured 2.2e-16; 1e-14 is 90 u)
     assert np.max(np.abs(res.state_at(t)[0] - np.cos(t))) <= 1e-14
 
 
