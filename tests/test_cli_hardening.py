@@ -191,7 +191,8 @@ def test_regime_of_runs_that_stop_early(status, regime):
     p = P.ModelParams(eta=0.05, omega=1.0, F=0.05)
     st = P.SolverSettings(t_end=100.0, t_transient=50.0)
     impacts = np.zeros(0, dtype=[("t", "f8"), ("wall", "i1")])
-    raw = types.SimpleNamespace(int_vm2=1.0, int_vb2=1.0, impacts=impacts, status=status,
+    raw = types.SimpleNamespace(int_vm2=1.0, int_vb2=1.0, impacts=impacts, impact_tally=None,
+                                status=status,
                                 xmax_window=0.5, xmax_whole_run=0.5, n_impacts=0,
                                 t_stuck_window=0.0, t_stuck_total=0.0, n_sticks=0,
                                 shortcut_time=float("nan"), shortcut_period=0)

@@ -108,3 +108,32 @@ def test_yaml_syntax_error_names_file_and_line(tmp_path):
                        capture_output=True, text=True, timeout=60)
     assert r.returncode == 2 and "Traceback" not in r.stderr
     assert len(r.stderr.strip().splitlines()) == 1 and str(bad) in r.stderr
+
+
+def test_convergence_points_can_name_a_time_history_point():
+    """A figure's point is written once: {timehistory: NAME, index: I} in the convergence
+    studies is replaced by that point of the time-history entry (and its label)."""
+    cfg = copy.deepcopy(SMOKE)
+    th = sorted(cfg["timehistories"])[0]
+    cfg["convergence"]["vstick"]["points"] = [{"timehistory": th, "index": 0, "label": "x"}]
+    validate_config(cfg, SCHEMA)
+    want = {k: SMOKE["timehistories"][th]["points"][0][k] for k in ("eta", "omega", "F")}
+    assert cfg["convergence"]["vstick"]["points"] == [{**want, "label": "x"}]
+    for study, bad, key in (("window", {"timehistory": "nope", "index": 0}, "timehistory"),
+                            ("vstick", {"timehistory": th, "index": 99}, "index")):
+        cfg = copy.deepcopy(SMOKE)
+        cfg["convergence"][study]["points"] = [bad]
+        with pytest.raises(ConfigError, match=rf"convergence\.{study}\.points\[0\]\.{key}"):
+            validate_config(cfg, SCHEMA)
+
+
+def test_shipped_convergence_studies_name_the_figure_points_they_share():
+    """No copy of a time-history point in the shipped configs' convergence studies."""
+    for name in ("config.yaml", "smoke.yaml"):
+        cfg = yaml.safe_load((ROOT / "config" / name).read_text())
+        histories = {(p["eta"], p["omega"], p["F"]) for th in cfg["timehistories"].values()
+                     for p in th["points"]}
+        for study in ("window", "vstick"):
+            for p in cfg["convergence"][study]["points"]:
+                if "timehistory" not in p:
+                    assert (p["eta"], p["omega"], p["F"]) not in histories, (name, study, p)

@@ -82,9 +82,11 @@ def _run(cwd, *args):
 def test_work_precision_takes_the_cores_of_a_local_run(tmp_path):
     _copy_workflow(tmp_path)
     smoke = str(tmp_path / "config" / "smoke.yaml")
-    r = _smk(tmp_path, "-n", "--configfile", smoke)               # _smk runs with -c2
+    # the default profile hides the job blocks that list the threads: plain output here
+    plain = ("--workflow-profile", "none")
+    r = _smk(tmp_path, "-n", *plain, "--configfile", smoke)       # _smk runs with -c2
     assert _threads(r.stdout, "work_precision") == {2}
-    r = _run(tmp_path, "-n", "-c1", "--configfile", smoke)
+    r = _run(tmp_path, "-n", "-c1", *plain, "--configfile", smoke)
     assert r.returncode == 0, r.stderr
     assert _threads(r.stdout, "work_precision") == {1}
 

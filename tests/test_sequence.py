@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 from vines.core.params import ModelParams, ParameterError
-from vines.orbits.periodic import find_1to1
+from vines.orbits.periodic import orbits_1to1
 from vines.orbits.sequence import (
     canonical_walls,
     family_name,
@@ -98,7 +98,7 @@ def _assert_same_spectrum(ev_maps, ev_fd, tol=1e-5):
 @pytest.mark.parametrize("simulation", [False, True])
 def test_LR_one_period_is_the_1to1_solver(eta, omega, F, simulation):
     p = ModelParams(eta=eta, omega=omega, F=F)
-    ref = find_1to1(p, None, None, simulation=simulation)
+    ref = orbits_1to1(p, simulation=simulation)
     got = find_sequence(p, "LR", 1, simulation=simulation)
     assert len(got) == len(ref) > 0
     for o, q in zip(got, ref, strict=True):
@@ -245,36 +245,3 @@ def test_continuation_locates_the_1to1_flip_and_switches_to_period2():
     d = br.to_dict()
     assert d["switched"][0]["walls"] == "LRLR" and d["events"][0]["type"] == "flip"
     assert all(np.isfinite(pt["lambda_max"]) for pt in d["branch"])
-
-
-# --------------------------------------------------------------------------- pending CLI
-
-def _args(**kw):
-    import argparse
-
-    from vines.core.params import D_DEFAULT, R_DEFAULT
-    base = {"eta": "0.2", "omega": "0.8", "F": "0.4", "r": R_DEFAULT, "d": D_DEFAULT,
-            "walls": "LLRR", "periods": "1"}
-    base.update(kw)
-    return argparse.Namespace(**base)
-
-
-def test_pending_periodic_walls_command():
-    import json
-
-    from vines._cli_pending import periodic_walls
-    d = periodic_walls.run(_args())
-    json.dumps(d)
-    keys = {"walls", "periods", "dw", "phases", "eigenvalues", "lambda_max", "admissible",
-            "stable"}
-    assert d["family"] == "LLRR/1" and d["solutions"]
-    assert all(keys <= set(s) and len(s["dw"]) == 4 for s in d["solutions"])
-    assert d["solutions"][0]["stable"] and "LLRR/1" in periodic_walls.text(d)
-    one = periodic_walls.run(_args(walls="lr", eta=0.55, omega=1.0))
-    ref = find_1to1(ModelParams(eta=0.55, omega=1.0, F=0.4), None, None)
-    assert [s["lambda_max"] for s in one["solutions"]] == [o.lambda_max for o in ref]
-    assert [s["dw"] for s in one["solutions"]] == [[o.dw_L, o.dw_R] for o in ref]
-    for bad, name in (({"walls": "LQ"}, "walls"), ({"periods": "0"}, "periods"),
-                      ({"eta": "-1"}, "eta")):
-        with pytest.raises(ParameterError, match=name):
-            periodic_walls.run(_args(**bad))

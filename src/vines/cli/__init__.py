@@ -7,20 +7,26 @@ Contract (see the README and the project specification, section 7):
   required flag, a bad choice) exits with status 2 after printing exactly one line
   ``vines <command>: error: <message>`` on stderr, naming the parameter, the value given and
   what is allowed. No traceback, no output file.
+* Ctrl-C (SIGINT) ends any command with one line ``vines <command>: interrupted`` on stderr
+  and exit status 130; nothing is written on stdout (the output is printed only once
+  complete).
 * Unexpected internal errors are not caught: they keep their traceback.
 
 One module per command (``simulate``, ``periodic``, ``continue_``, ``boundaries``,
-``attractors``); what they share (the argument parser, the model arguments, the error
+``attractors``, ``design``); what they share (the argument parser, the model arguments, the error
 messages, the JSON-or-text output) is in ``common``.
 
 Adding a command: a module ``vines/cli/<name>.py`` defining ``NAME``,
 ``add_parser(subparsers) -> VinesArgumentParser`` (reusing ``common.add_model_args``) and
-``run(args) -> int`` (ending in ``common.emit``), and its module name in ``COMMANDS``.
+``run(args) -> int`` (ending in ``common.emit``), and its module name in ``COMMANDS``
+(optionally ``FLAG_OF``: the flag of each ParameterError name that is not ``--<name>``).
 """
 from __future__ import annotations
 
 import argparse
+import os
 import sys
+import threading
 from collections.abc import Sequence
 from importlib import import_module
 
@@ -29,7 +35,7 @@ from ..core.params import ParameterError
 from .common import PROG, VinesArgumentParser, flag_for
 
 #: the commands' modules, in the order of ``vines --help``
-COMMANDS = ("simulate", "periodic", "continue_", "boundaries", "attractors")
+COMMANDS = ("simulate", "periodic", "continue_", "boundaries", "attractors", "design")
 
 __all__ = ["main", "build_parser", "COMMANDS", "VinesArgumentParser"]
 
@@ -70,8 +76,9 @@ def _join_negative_values(argv: list[str], value_flags: set[str]) -> list[str]:
     return out
 
 
-def build_parser() -> tuple[VinesArgumentParser, dict]:
-    """The ``vines`` parser and its sub-parsers by command name."""
+def build_parser(with_modules: bool = False) -> tuple:
+    """The ``vines`` parser and its sub-parsers by command name (and the command modules by
+    name with ``with_modules``)."""
     parser = VinesArgumentParser(
         prog=PROG,
         description="Exact simulation and map-based analysis of the vibro-impact nonlinear "
@@ -80,18 +87,64 @@ def build_parser() -> tuple[VinesArgumentParser, dict]:
     parser.add_argument("--version", action="version", version=f"{PROG} {__version__}")
     subparsers = parser.add_subparsers(dest="command", metavar="command",
                                        parser_class=VinesArgumentParser)
-    commands = {}
+    commands, modules = {}, {}
     for name in COMMANDS:
         module = import_module(f".{name}", __name__)
         sub = module.add_parser(subparsers)
         sub.set_defaults(handler=module.run)
         commands[module.NAME] = sub
-    return parser, commands
+        modules[module.NAME] = module
+    return (parser, commands, modules) if with_modules else (parser, commands)
+
+
+#: exit status after Ctrl-C (128 + SIGINT, as shells report it)
+EXIT_INTERRUPTED = 130
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    parser, commands = build_parser()
+    """Run ``vines`` on ``argv`` (default: the command line); the exit status."""
     argv = list(sys.argv[1:] if argv is None else argv)
+    try:
+        return _main(argv)
+    except KeyboardInterrupt:
+        command = next((a for a in argv if not a.startswith("-")), None)
+        where = f"{PROG} {command}" if command else PROG
+        sys.stderr.write(f"{where}: interrupted (Ctrl-C); no output written\n")
+        sys.stderr.flush()
+        if any(t is not threading.main_thread() and not t.daemon for t in threading.enumerate()):
+            # worker threads inside compiled runs cannot be stopped and would be joined at
+            # exit (up to a whole run each): leave now; nothing is left to write
+            os._exit(EXIT_INTERRUPTED)
+        return EXIT_INTERRUPTED
+
+
+def _interruptible(handler, args: argparse.Namespace) -> int:
+    """``handler(args)`` in a worker thread while the main thread waits in short slices.
+
+    Ctrl-C may be delivered to any thread; a main thread blocked without a timeout (e.g.
+    on the results of a thread pool) would never see it. Waking every 0.1 s it does, and
+    raises KeyboardInterrupt. Exceptions of the handler (SystemExit of a parser error
+    included) are raised again here.
+    """
+    out: dict = {}
+
+    def target():
+        try:
+            out["status"] = handler(args)
+        except BaseException as err:    # noqa: BLE001 - handed to the main thread
+            out["error"] = err
+
+    worker = threading.Thread(target=target, name=f"{PROG}-{args.command}", daemon=True)
+    worker.start()
+    while worker.is_alive():
+        worker.join(0.1)
+    if "error" in out:
+        raise out["error"]
+    return out["status"]
+
+
+def _main(argv: list[str]) -> int:
+    parser, commands, modules = build_parser(with_modules=True)
     argv = _join_negative_values(argv, _value_flags(commands))
     args, extras = parser.parse_known_args(argv)
     if args.command is None:
@@ -102,9 +155,9 @@ def main(argv: Sequence[str] | None = None) -> int:
         known = sorted(f for a in sub._actions for f in a.option_strings)
         sub.error(f"unrecognized argument {extras[0]!r} (allowed options: {', '.join(known)})")
     try:
-        return args.handler(args)
+        return _interruptible(args.handler, args)
     except ParameterError as err:
-        flag = flag_for(err.name)
+        flag = getattr(modules[args.command], "FLAG_OF", {}).get(err.name) or flag_for(err.name)
         if any(flag in a.option_strings for a in sub._actions):
             sub.error(f"argument {flag}: {err}")
         sub.error(str(err))

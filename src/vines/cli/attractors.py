@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import argparse
 
+from ..attractors.sampling import N_MAX, SEED_MAX
 from ..core.params import T_END_DEFAULT, T_END_MAX, T_TRANSIENT_DEFAULT, ModelParams, check_int
 from .common import (
     VinesArgumentParser,
@@ -23,13 +24,13 @@ def add_parser(subparsers) -> VinesArgumentParser:
         description="Run N scrambled-Sobol initial states (z_m, z_m' in [-1.5, 1.5], "
                     "w = z_m - z_b in [-1, 1], z_b' in [-1.5, 1.5], forcing phase 0) until "
                     "they settle on a periodic orbit or reach t-end, group the end states "
-                    "into attractors and report each one's basin fraction with a 95 %% "
+                    "into attractors and report each one's basin fraction with a 95 % "
                     "Wilson interval, and which one the start from rest reaches.",
     )
     add_model_args(p)
-    add_value(p, "--n", "an integer >= 1 and <= 1000000", "number of initial states "
+    add_value(p, "--n", f"an integer >= 1 and <= {N_MAX}", "number of initial states "
               "(default 256)", default=256)
-    add_value(p, "--seed", "an integer >= 0", "scramble seed of the Sobol points "
+    add_value(p, "--seed", f"an integer >= 0 and <= {SEED_MAX}", "scramble seed of the Sobol points "
               "(default 0)", default=0)
     add_value(p, "--t-end", f"a number > 0 and <= {T_END_MAX:g}",
               f"longest run (default {T_END_DEFAULT:g})", default=T_END_DEFAULT)
@@ -45,11 +46,13 @@ def add_parser(subparsers) -> VinesArgumentParser:
 
 def run(args: argparse.Namespace) -> int:
     params = model_params(args)
+    n = check_int("n", args.n, lo=1, hi=N_MAX)
+    seed = check_int("seed", args.seed, lo=0, hi=SEED_MAX)
     threads = None if args.threads is None else check_int("threads", args.threads, lo=1)
     from ..attractors import census
     with quiet_stdout():
-        res = census(params.eta, params.omega, params.F, r=params.r, d=params.d, n=args.n,
-                     seed=args.seed, t_end=args.t_end, t_transient=args.t_transient,
+        res = census(params.eta, params.omega, params.F, r=params.r, d=params.d, n=n,
+                     seed=seed, t_end=args.t_end, t_transient=args.t_transient,
                      n_threads=threads)
     return emit(args.json, res.to_dict(), lambda d: _text(d, params))
 

@@ -1,10 +1,12 @@
-"""``vines continue``: a 1:1 branch followed in eta, omega or F, with its events.
+"""``vines continue``: a 1:1 branch (or, with ``--walls SEQ --periods N``, a branch of any
+wall sequence) followed in eta, omega or F, with its events.
 
 (The module has a trailing underscore: ``continue`` is a Python keyword.)
 """
 from __future__ import annotations
 
 import argparse
+import dataclasses
 
 from ..core.params import (
     BRANCH_KINDS,
@@ -20,6 +22,7 @@ from ..core.params import (
     check_step_points,
 )
 from .common import VinesArgumentParser, add_model_args, emit, quiet_stdout
+from .periodic import add_walls_args
 
 NAME = "continue"
 
@@ -56,7 +59,8 @@ def add_parser(subparsers) -> VinesArgumentParser:
     p.allowed_values["--branch"] = "one of " + ", ".join(BRANCH_KINDS)
     p.add_argument("--switch", action="store_true",
                    help="also continue the asymmetric branch born at every symmetry-breaking "
-                        "point of the symmetric branch (JSON key switched; arclength only)")
+                        "point of the symmetric branch (with --walls: the period-doubled "
+                        "branch born at every flip point) (JSON key switched; arclength only)")
     p.allowed_values["--max-inadmissible"] = f"an integer >= 1 and <= {MAX_POINTS_MAX}"
     p.add_argument("--max-inadmissible", metavar="N", default=MAX_INADMISSIBLE_DEFAULT,
                    help="end the branch after N consecutive non-admissible points "
@@ -67,6 +71,10 @@ def add_parser(subparsers) -> VinesArgumentParser:
                    help="refuse a step that needs more than N continuation points "
                         f"[integer >= 1 and <= {MAX_POINTS_MAX}; default {MAX_POINTS_DEFAULT}]")
     add_model_args(p, optional_group="model parameters (the two not continued are required)")
+    add_walls_args(p, "continue an orbit of this wall sequence (arclength only)")
+    p.add_argument("--all", action="store_true",
+                   help="text output: every point of every branch (default: a summary with "
+                        f"the events and {N_SAMPLES} points per branch)")
     p.add_argument("--json", action="store_true",
                    help="print one JSON object on stdout (keys: branch, events)")
     p.set_defaults(_parser=p)
@@ -108,9 +116,8 @@ def _end_points(args: argparse.Namespace, others: list[str]) -> tuple[dict, Mode
     return values, params
 
 
-def run(args: argparse.Namespace) -> int:
-    others = _fixed_params(args)
-    values, params = _end_points(args, others)
+def _limits(args: argparse.Namespace, values: dict) -> tuple[float | None, int, int]:
+    """Validated step (None: the default), max_points and max_inadmissible."""
     max_points = check_int("max_points", args.max_points, lo=1, hi=MAX_POINTS_MAX)
     step = None
     if args.step is not None:
@@ -119,6 +126,16 @@ def run(args: argparse.Namespace) -> int:
                           "--max-points")
     max_inadmissible = check_int("max_inadmissible", args.max_inadmissible, lo=1,
                                  hi=MAX_POINTS_MAX)
+    return step, max_points, max_inadmissible
+
+
+def run(args: argparse.Namespace) -> int:
+    others = _fixed_params(args)
+    values, params = _end_points(args, others)
+    if args.walls is not None:
+        return emit(args.json, _run_walls(args, values, params),
+                    lambda d: _text(d, values, every=args.all))
+    step, max_points, max_inadmissible = _limits(args, values)
     if args.switch and (args.method != "arclength" or args.branch != "symmetric"):
         args._parser.error(f"argument --switch: not allowed with --method {args.method} "
                            f"--branch {args.branch} (only with --method arclength --branch "
@@ -131,22 +148,80 @@ def run(args: argparse.Namespace) -> int:
                              r=params.r, d=params.d, max_points=max_points,
                              method=args.method, branch=args.branch, switch=args.switch,
                              max_inadmissible=max_inadmissible)
-    return emit(args.json, br.to_dict(), lambda d: _text(d, values))
+    return emit(args.json, br.to_dict(), lambda d: _text(d, values, every=args.all))
 
 
-def _text(d: dict, values: dict, indent: str = "") -> str:
-    """Table of a ``Branch.to_dict()`` (and of the branches switched to)."""
+def _run_walls(args: argparse.Namespace, values: dict, stop: ModelParams) -> dict:
+    """The continued branch of a wall sequence (keys of ``SequenceBranch.to_dict``: walls,
+    periods, family, param, branch, events, stopped, switched)."""
+    from ..orbits.sequence import check_periods, check_walls, find_sequence
+    from ..orbits.sequence_branches import continue_sequence
+
+    walls = check_walls(args.walls)
+    periods = check_periods(args.periods)
+    if args.method != "arclength":
+        args._parser.error(f"argument --method: invalid method = {args.method!r}: must be "
+                           "arclength with --walls")
+    step, max_points, max_inadmissible = _limits(args, values)
+    start = dataclasses.replace(stop, **{args.param: values["start"]})
+    symmetric = args.branch == "symmetric"
+    with quiet_stdout():
+        found = find_sequence(start, walls, periods)
+        cands = [o for o in found if o.symmetric == symmetric] or found
+        if not cands:
+            return {"walls": walls, "periods": periods, "param": args.param, "branch": [],
+                    "events": [], "stopped": f"no {walls}/{periods} orbit at start",
+                    "switched": []}
+        br = continue_sequence(start, walls, periods, args.param, values["stop"], step=step,
+                               orbit=cands[0], switch=bool(args.switch),
+                               max_points=max_points, max_inadmissible=max_inadmissible)
+    return br.to_dict()
+
+
+def _dw(pt: dict) -> str:
+    """The impact velocities of a point: dw_L (1:1) or dw, one per impact (a sequence)."""
+    if "dw_L" in pt:
+        return f"dw_L = {pt['dw_L']:.6g}"
+    return "dw = [" + ", ".join(f"{v:.6g}" for v in pt["dw"]) + "]"
+
+
+#: points shown per branch in the default summary (first, last, evenly spaced between)
+N_SAMPLES = 5
+
+
+def _samples(points: list) -> list:
+    """At most N_SAMPLES points: the first, the last and evenly spaced ones between."""
+    if len(points) <= N_SAMPLES:
+        return points
+    idx = sorted({round(k * (len(points) - 1) / (N_SAMPLES - 1)) for k in range(N_SAMPLES)})
+    return [points[i] for i in idx]
+
+
+def _text(d: dict, values: dict, indent: str = "", every: bool = False) -> str:
+    """Summary of a ``Branch.to_dict()`` (and of the branches switched to): its ends, its
+    events and N_SAMPLES points; every point with ``every``."""
     param = d["param"]
-    lines = [f"{indent}{d['family']} branch in {param} from {values['start']:g} towards "
-             f"{values['stop']:g}: {len(d['branch'])} points ({d['stopped']})"]
-    for pt in d["branch"]:
+    name = d.get("family") or f"{d.get('walls')}/{d.get('periods')}"
+    if indent and d["branch"]:
+        # a switched branch starts where it is born, not at --start, and runs either way
+        first, last = d["branch"][0][param], d["branch"][-1][param]
+        head = (f"born at {param} = {first:.7g}, followed "
+                f"{'up' if last >= first else 'down'} to {last:.7g}")
+    else:
+        head = f"from {values['start']:g} towards {values['stop']:g}"
+    lines = [f"{indent}{name} branch in {param} {head}: {len(d['branch'])} points "
+             f"({d['stopped']})"]
+    pts = d["branch"] if every else _samples(d["branch"])
+    if len(pts) < len(d["branch"]):
+        lines.append(f"{indent}  {len(pts)} of the points (--all: every point, --json: "
+                     "everything)")
+    for pt in pts:
         lines.append(f"{indent}  {param} = {pt[param]:.6g}  |lambda_max| = "
                      f"{pt['lambda_max']:.6g}  stable = {pt['stable']}  symmetric = "
-                     f"{pt['symmetric']}  admissible = {pt['admissible']}  "
-                     f"dw_L = {pt['dw_L']:.6g}")
+                     f"{pt['symmetric']}  admissible = {pt['admissible']}  {_dw(pt)}")
     for ev in d["events"]:
         con = f" (meets the {ev['connects']} branch)" if ev.get("connects") else ""
         lines.append(f"{indent}  event {ev['type']} at {param} = {ev['at']:.7g}{con}")
     for sw in d["switched"]:
-        lines.append(_text(sw, values, indent + "  "))
+        lines.append(_text(sw, values, indent + "  ", every))
     return "\n".join(lines)

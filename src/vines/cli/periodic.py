@@ -1,8 +1,11 @@
-"""``vines periodic``: the 1:1 orbits of the map P2 o P1 at one parameter point."""
+"""``vines periodic``: the 1:1 orbits of the map P2 o P1 at one parameter point, or with
+``--walls SEQ --periods N`` the periodic orbits of any wall sequence (``--walls LR
+--periods 1`` gives the same orbits as the 1:1 solver)."""
 from __future__ import annotations
 
 import argparse
 
+from ..core.params import ModelParams
 from .common import VinesArgumentParser, add_model_args, emit, model_params, quiet_stdout
 
 NAME = "periodic"
@@ -10,23 +13,49 @@ NAME = "periodic"
 #: keys of each orbit in the JSON output
 ORBIT_KEYS = ("symmetric", "admissible", "stable", "lambda_max", "eigenvalues", "dw_L", "dw_R",
               "phase_L", "phase_R", "flight_times")
+#: keys of each solution of a wall sequence in the JSON output
+SOLUTION_KEYS = ("walls", "periods", "family", "paper_label", "symmetric", "admissible",
+                 "stable", "lambda_max", "eigenvalues", "dw", "phases", "flight_times")
+
+
+#: limits of ``vines.orbits.sequence`` (repeated so that parsing loads no numba; a test
+#: checks that they agree)
+MAX_IMPACTS_PER_ORBIT, MAX_PERIODS = 64, 64
+WALLS_ALLOWED = f"1 to {MAX_IMPACTS_PER_ORBIT} letters L or R, e.g. LR, LLRR, LLR, RLRL"
+PERIODS_ALLOWED = f"an integer 1 <= N <= {MAX_PERIODS}"
+
+
+def add_walls_args(parser: VinesArgumentParser, what: str) -> None:
+    """--walls and --periods (default: the 1:1 orbits); ``what`` ends the help of --walls."""
+    parser.allowed_values.update({"--walls": WALLS_ALLOWED, "--periods": PERIODS_ALLOWED})
+    g = parser.add_argument_group("wall sequence (default: the 1:1 orbits)")
+    g.add_argument("--walls", metavar="SEQ", default=None, help=f"{what} [{WALLS_ALLOWED}]")
+    g.add_argument("--periods", metavar="N", default=1,
+                   help=f"forcing periods of the orbit [{PERIODS_ALLOWED}; default 1]")
 
 
 def add_parser(subparsers) -> VinesArgumentParser:
     p = subparsers.add_parser(
         NAME,
-        help="1:1 periodic orbits from the impact maps, with admissibility and stability",
+        help="1:1 periodic orbits from the impact maps (or any wall sequence with --walls), "
+             "with admissibility and stability",
         description="Solve P2(P1(x_L)) = x_L + (0, 0, 0, T) for every 1:1 orbit reachable from "
                     "the built-in seeds (symmetric closed form, flight-time scan, short "
-                    "simulation) and report admissibility and the eigenvalues of J_P2 J_P1.",
+                    "simulation) and report admissibility and the eigenvalues of J_P2 J_P1. "
+                    "With --walls SEQ --periods N: every orbit of that wall sequence over N "
+                    "forcing periods (Newton on the composed maps).",
     )
     add_model_args(p)
+    add_walls_args(p, "wall sequence of the orbit, impact by impact")
     p.add_argument("--json", action="store_true",
-                   help="print one JSON object on stdout (key: solutions)")
+                   help="print one JSON object on stdout (keys: solutions, params; with "
+                        "--walls also walls, periods, family)")
     return p
 
 
 def run(args: argparse.Namespace) -> int:
+    if args.walls is not None:
+        return emit(args.json, run_walls(args), text_walls)
     params = model_params(args)
     from ..orbits.periodic import orbits_1to1
 
@@ -34,6 +63,22 @@ def run(args: argparse.Namespace) -> int:
         orbits = orbits_1to1(params)
     sols = [{k: o.to_dict()[k] for k in ORBIT_KEYS} for o in orbits]
     return emit(args.json, {"solutions": sols, "params": params.as_dict()}, _text)
+
+
+def run_walls(args: argparse.Namespace) -> dict:
+    """Every orbit of the sequence found: {"walls", "periods", "family", "solutions",
+    "params"}. Raises ParameterError (naming the option) on bad input."""
+    from ..orbits.sequence import check_periods, check_walls, family_name, find_sequence
+
+    walls = check_walls(args.walls)
+    periods = check_periods(args.periods)
+    params = ModelParams(eta=args.eta, omega=args.omega, F=args.F, r=args.r, d=args.d,
+                         phi=getattr(args, "phi", 0.0))
+    with quiet_stdout():
+        orbits = find_sequence(params, walls, periods)
+    sols = [{k: o.to_dict()[k] for k in SOLUTION_KEYS} for o in orbits]
+    return {"walls": walls, "periods": periods, "family": family_name(walls, periods),
+            "solutions": sols, "params": params.as_dict()}
 
 
 def _text(d: dict) -> str:
@@ -48,4 +93,21 @@ def _text(d: dict) -> str:
                      f"dw_L = {s['dw_L']:.6g}  dw_R = {s['dw_R']:.6g}  "
                      f"phase_L = {s['phase_L']:.6g}  flights = "
                      f"{s['flight_times'][0]:.6g}, {s['flight_times'][1]:.6g}")
+    return "\n".join(lines)
+
+
+def text_walls(d: dict) -> str:
+    """A reader's form of ``run_walls``'s object."""
+    p, sols = d["params"], d["solutions"]
+    lines = [(f"eta = {p['eta']:g}, omega = {p['omega']:g}, F = {p['F']:g}: "
+             f"{len(sols)} solution(s) of {d['walls']} over {d['periods']} period(s) "
+             f"(family {d['family']})")]
+    for s in sols:
+        sym = "symmetric" if s["symmetric"] else "asymmetric"
+        adm = "admissible" if s["admissible"] else "NOT admissible"
+        st = "stable" if s["stable"] else "unstable"
+        dw = ", ".join(f"{v:.6g}" for v in s["dw"])
+        ph = ", ".join(f"{v:.4g}" for v in s["phases"])
+        lines.append(f"  {sym:10s} {adm:14s} {st:8s} |lambda_max| = {s['lambda_max']:.6g}  "
+                     f"dw = [{dw}]  phases = [{ph}]")
     return "\n".join(lines)

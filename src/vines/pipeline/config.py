@@ -105,6 +105,30 @@ def load_yaml(path) -> dict:
     return data
 
 
+def resolve_point_references(config: dict) -> None:
+    """Replace every convergence point given as {timehistory: NAME, index: I} by that point
+    of the time-history entry (its eta, omega, F and the reference's label), in place."""
+    histories = config.get("timehistories", {})
+    for study in ("window", "vstick"):
+        points = config.get("convergence", {}).get(study, {}).get("points", [])
+        for i, pt in enumerate(points):
+            if "timehistory" not in pt:
+                continue
+            key = f"convergence.{study}.points[{i}]"
+            name, k = pt["timehistory"], pt["index"]
+            if name not in histories:
+                raise ConfigError(f"{key}.timehistory", f"{name!r} is not a timehistories "
+                                  f"entry ({sorted(histories)})")
+            source = histories[name]["points"]
+            if k >= len(source):
+                raise ConfigError(f"{key}.index", f"{k} is beyond the {len(source)} point(s) "
+                                  f"of timehistories.{name}")
+            resolved = {d: source[k][d] for d in ("eta", "omega", "F")}
+            if "label" in pt:
+                resolved["label"] = pt["label"]
+            points[i] = resolved
+
+
 def validate_config(config: dict, schema: dict) -> dict:
     """Validate ``config`` in place (filling defaults) and check cross-key rules.
 
@@ -119,6 +143,7 @@ def validate_config(config: dict, schema: dict) -> dict:
         err = min(errors, key=lambda e: -len(e.absolute_path))
         key = ".".join(str(p) for p in err.absolute_path) or "<top level>"
         raise ConfigError(key, err.message)
+    resolve_point_references(config)
     check_physical(config)   # every value through the API's validators (t_transient < t_end)
     for name, grid in config["grids"].items():
         axes = grid_axes(grid, key=f"grids.{name}")

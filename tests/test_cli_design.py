@@ -1,18 +1,20 @@
-"""The pending ``vines design`` command (src/vines/_cli_pending/design.py): its defaults are
-the API's, its flags reach ``vines.design`` and bad values raise ParameterError naming a flag."""
+"""``vines design`` (src/vines/cli/design.py): its defaults are the API's, its flags reach
+``vines.design`` and bad values exit 2 with one line naming the flag."""
 import argparse
 import json
 
 import pytest
+from conftest import run_vines
 
 from vines import ParameterError
-from vines._cli_pending import design as cmd
+from vines.cli import design as cmd
+from vines.cli.common import VinesArgumentParser
 from vines.studies import design as api
 
 
 def _parse(argv):
     parser = argparse.ArgumentParser(prog="vines")
-    cmd.add_parser(parser.add_subparsers(dest="command"))
+    cmd.add_parser(parser.add_subparsers(dest="command", parser_class=VinesArgumentParser))
     return parser.parse_args(["design", *argv])
 
 
@@ -28,7 +30,7 @@ def test_run_evaluates_a_design():
     args = _parse(["--omega-band", "0.95", "1.05", "--n-omega", "3", "--amplitude", "0.001",
                    "--eta", "0.05", "--clearance", "0.02", "--census-n", "2", "--t-end", "2000",
                    "--t-transient", "1500", "--threads", "1", "--d", "0.02", "--json"])
-    d = cmd.run(args)
+    d = cmd.compute(args)
     json.dumps(d, allow_nan=False)
     assert d["inputs"]["d"] == 0.02 and d["vines"]["eta"] == 0.05
     assert d["curves"]["omega"] == [0.95, 1.0, 1.05]
@@ -44,10 +46,27 @@ def test_run_evaluates_a_design():
 ])
 def test_bad_values_name_the_flag(argv, flag):
     with pytest.raises(ParameterError) as err:
-        cmd.run(_parse(argv))
+        cmd.compute(_parse(argv))
     assert cmd.FLAG_OF[err.value.name] == flag
 
 
 def test_c_and_d_are_exclusive():
     with pytest.raises(SystemExit):
         _parse(["--c", "2", "--d", "0.01", "--eta", "0.1", "--clearance", "0.01"])
+
+
+def test_command_line():
+    """Through ``vines``: one JSON object on stdout, the text summary, one-line errors."""
+    small = ["--omega-band", "0.95", "1.05", "--n-omega", "3", "--amplitude", "0.001",
+             "--eta", "0.05", "--clearance", "0.02", "--census-n", "0", "--t-end", "2000",
+             "--t-transient", "1500", "--threads", "1"]
+    proc = run_vines("design", *small, "--json")
+    assert proc.returncode == 0, proc.stderr
+    d = json.loads(proc.stdout)
+    assert d["curves"]["omega"] == [0.95, 1.0, 1.05] and d["vines"]["clearance_m"] == 0.02
+    proc = run_vines("design", *small)
+    assert proc.returncode == 0 and "LO alone" in proc.stdout
+    proc = run_vines("design", *small[:-2], "--threads", "0")
+    assert proc.returncode == 2 and proc.stdout == ""
+    assert proc.stderr.splitlines() == [proc.stderr.strip()]
+    assert proc.stderr.startswith("vines design: error: argument --threads: ")

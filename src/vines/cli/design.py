@@ -1,10 +1,7 @@
 """``vines design``: choose (or judge) a VI NES for a frequency band and base amplitudes.
 
-Pending: to be wired into the CLI package (``add_parser(subparsers)`` builds the
-sub-parser, ``run(args) -> dict`` returns the JSON object; the CLI's own error handling
-turns a ParameterError into exit status 2 with one line naming the flag). Every value is
-read as a string and validated by ``vines.design`` itself, so the CLI and the API accept
-the same values.
+Every value is read as a string and validated by ``vines.design`` itself, so the CLI and the
+API accept the same values; a ParameterError names its flag through ``FLAG_OF``.
 """
 from __future__ import annotations
 
@@ -18,6 +15,7 @@ from ..core.params import (
     T_END_DEFAULT,
     T_TRANSIENT_DEFAULT,
 )
+from .common import VinesArgumentParser, emit, quiet_stdout
 
 #: defaults of vines.studies.design (repeated here so that --help does not load numba;
 #: tests/test_design_cli.py checks that they agree)
@@ -27,7 +25,9 @@ AMPLITUDES_M = (0.00075, 0.003, 0.006)
 N_ETA, N_CLEARANCE, CENSUS_N = 5, 13, 64
 VIEWS = ("t_end",)
 
-#: flag -> name of the ParameterError raised by vines.design (for the CLI's messages)
+NAME = "design"
+
+#: name of the ParameterError raised by vines.design -> its flag (for the CLI's messages)
 FLAG_OF = {"omega_band": "--omega-band", "n_omega": "--n-omega", "amplitude": "--amplitude",
            "M": "--M", "k": "--k", "c": "--c", "d": "--d", "r": "--r", "eta": "--eta",
            "clearance": "--clearance", "eta_max": "--eta-max",
@@ -36,14 +36,14 @@ FLAG_OF = {"omega_band": "--omega-band", "n_omega": "--n-omega", "amplitude": "-
            "n_threads": "--threads", "t_end": "--t-end", "t_transient": "--t-transient"}
 
 
-def add_parser(subparsers) -> argparse.ArgumentParser:
-    """The ``design`` sub-parser (handler: ``run``)."""
+def add_parser(subparsers) -> VinesArgumentParser:
+    """The ``design`` sub-parser."""
     p = subparsers.add_parser(
-        "design",
+        NAME,
         help="choose a VI NES (ball mass ratio, clearance) for a frequency band and base "
              "amplitudes, against the LO alone and the optimal TMD of the same mass",
         description="Worst-case transmissibility x_max/A over the band omega = w/w0 and the "
-                    "base amplitudes, from rest and over every attractor holding >= 1 %% of "
+                    "base amplitudes, from rest and over every attractor holding >= 1 % of "
                     "a census's states, for a given design (--eta, --clearance) or the best "
                     "one with eta <= --eta-max (grid over eta and log clearance, then a "
                     "compass search). References: the LO alone and the TMD of mass ratio "
@@ -96,20 +96,24 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
     p.add_argument("--json", action="store_true",
                    help="print one JSON object on stdout (keys: inputs, curves, lo_alone, "
                         "tmd, vines, search, worst_case, cost)")
-    p.set_defaults(handler=run)
     return p
 
 
-def run(args: argparse.Namespace) -> dict:
+def run(args: argparse.Namespace) -> int:
+    return emit(args.json, compute(args), text)
+
+
+def compute(args: argparse.Namespace) -> dict:
     """The design's JSON object (``DesignResult.to_dict``); ParameterError on bad input."""
     from ..studies.design import design
-    res = design(omega_band=args.omega_band, n_omega=args.n_omega,
-                 amplitudes_m=args.amplitude, M_kg=args.M, k_N_per_m=args.k,
-                 c_Ns_per_m=args.c, d=args.d, r=args.r, eta=args.eta,
-                 clearance_m=args.clearance, eta_max=args.eta_max,
-                 clearance_range_m=args.clearance_range, n_eta=args.n_eta,
-                 n_clearance=args.n_clearance, view=args.view, census_n=args.census_n,
-                 t_end=args.t_end, t_transient=args.t_transient, n_threads=args.threads)
+    with quiet_stdout():
+        res = design(omega_band=args.omega_band, n_omega=args.n_omega,
+                     amplitudes_m=args.amplitude, M_kg=args.M, k_N_per_m=args.k,
+                     c_Ns_per_m=args.c, d=args.d, r=args.r, eta=args.eta,
+                     clearance_m=args.clearance, eta_max=args.eta_max,
+                     clearance_range_m=args.clearance_range, n_eta=args.n_eta,
+                     n_clearance=args.n_clearance, view=args.view, census_n=args.census_n,
+                     t_end=args.t_end, t_transient=args.t_transient, n_threads=args.threads)
     return res.to_dict()
 
 

@@ -1,0 +1,45 @@
+"""Every command's --help: exit 0, on stdout, no doubled percent sign (argparse formats help
+strings but prints descriptions as written)."""
+import pytest
+from conftest import run_vines
+
+from vines.cli import build_parser
+
+COMMANDS = sorted(build_parser()[1])
+
+
+def test_every_registered_command_is_listed():
+    assert {"simulate", "periodic", "continue", "boundaries", "attractors",
+            "design"} <= set(COMMANDS)
+
+
+@pytest.mark.parametrize("command", COMMANDS)
+def test_help_has_no_doubled_percent(command):
+    proc = run_vines(command, "--help")
+    assert proc.returncode == 0, proc.stderr
+    assert "usage: vines " + command in proc.stdout
+    assert "%%" not in proc.stdout
+
+
+def test_switched_branch_header_names_where_it_is_born():
+    from vines.cli.continue_ import _text
+    pt = {"eta": 0.0, "lambda_max": 0.5, "stable": True, "symmetric": False,
+          "admissible": True, "dw_L": 1.0}
+    sw = {"param": "eta", "family": "asymmetric", "events": [], "stopped": "done",
+          "switched": [], "branch": [dict(pt, eta=0.1496), dict(pt, eta=0.12)]}
+    d = dict(sw, family="symmetric", switched=[sw], branch=[dict(pt, eta=0.12)])
+    lines = _text(d, {"start": 0.12, "stop": 0.3}).splitlines()
+    assert lines[0].startswith("symmetric branch in eta from 0.12 towards 0.3")
+    head = [ln for ln in lines if "asymmetric branch" in ln][0]
+    assert "born at eta = 0.1496, followed down to 0.12" in head
+
+
+def test_continue_text_is_a_summary_unless_all():
+    args = ["continue", "--param", "F", "--start", "0.3", "--stop", "0.01", "--eta", "0.2",
+            "--omega", "1"]
+    short, full = run_vines(*args), run_vines(*args, "--all")
+    assert short.returncode == full.returncode == 0
+    n_short, n_full = len(short.stdout.splitlines()), len(full.stdout.splitlines())
+    assert n_short <= 40 < n_full
+    events = [ln for ln in full.stdout.splitlines() if "event " in ln]
+    assert events and all(ev in short.stdout for ev in events)
