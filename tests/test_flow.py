@@ -37,6 +37,8 @@ def test_flow_matches_numerical_integration(m, d, W, F):
     for s in (0.0, 0.37, 3.1, 11.0, 40.0):
         z, v, a, j, _ = fl.flow(osc, X0, V0, math.sin(TH0), math.cos(TH0), s)
         zr, vr = ref.sol(s)
+        # DOP853's error at rtol 1e-13 over 40 units (measured <= 1.5e-12); the closed form
+        # has round-off only
         assert abs(z - zr) <= 1e-10 * (1 + abs(zr))
         assert abs(v - vr) <= 1e-10 * (1 + abs(vr))
         # z'' from the equation of motion itself
@@ -52,6 +54,7 @@ def test_velocity_square_integral(m, d, W, F):
         exact = fl.v2_integral(osc, X0, V0, sth, cth, L)
         num = quad(lambda s: fl.flow(osc, X0, V0, sth, cth, s)[1] ** 2, 0.0, L,
                    epsabs=1e-15, epsrel=1e-13, limit=400)[0]
+        # quad asked for epsrel 1e-13 (measured 1.4e-13 relative, 1.75e-12 absolute)
         assert abs(exact - num) <= 1e-11 * max(1.0, abs(num))
 
 
@@ -78,6 +81,7 @@ def test_local_time_is_translation_invariant():
     th = TH0 + 1.0 * 2.0
     z2, v2, *_ = fl.flow(osc, z1, v1, math.sin(th), math.cos(th), 3.0)
     z3, v3, *_ = fl.flow(osc, X0, V0, math.sin(TH0), math.cos(TH0), 5.0)
+    # round-off of two closed-form evaluations of size ~1 (measured 2e-15): 1e-13 is 900 u (u = 2^-53)
     assert abs(z2 - z3) < 1e-13 and abs(v2 - v3) < 1e-13
 
 

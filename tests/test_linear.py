@@ -43,7 +43,9 @@ def test_limits_and_broadcast():
     assert stuck_amplitude(0.44, 1 / 1.2, 0.0, 0.0) == 0.0
     a = stuck_amplitude(np.array([[0.2], [0.5]]), np.linspace(0.5, 1.5, 7), 0.4, D_DEFAULT)
     assert a.shape == (2, 7)
-    # peak near the stuck natural frequency 1/sqrt(1 + eta)
+    # peak near the stuck natural frequency 1/sqrt(1 + eta): the grid's argmax is within half
+    # a step (2.5e-5) of the damped peak, which lies O(d^2) = O(1.4e-4) from 1/sqrt(1 + eta)
+    # (measured 2.1e-5 in all); 1e-3 bounds both with a 5x margin on the worst case
     w = np.linspace(0.5, 1.5, 20001)
     for eta in (0.2, 0.5):
         assert w[np.argmax(stuck_amplitude(eta, w, 0.4))] == pytest.approx(1 / math.sqrt(1 + eta), abs=1e-3)

@@ -139,6 +139,9 @@ def test_continuation_events_are_located_and_consistent():
     above = _preferred(at + 1e-5, 1.0, 0.05)
     assert below.stable and not above.stable
     lam = above.eigenvalues[0]
+    # transversal crossing: |lam| - 1 = (d|lam|/d eta) x 1e-5 = 161 x 1e-5 = 1.6e-3 here (the
+    # event itself is solved to ~4e-12 in eta: |lam| - 1 = 6e-10 there); 1e-2 is a slope of
+    # 1000, the property asked is a complex pair just outside the unit circle
     assert abs(lam.imag) > 1e-3 and abs(abs(lam) - 1.0) < 1e-2
     # branch points agree with independent solves
     for i in (0, len(br) // 2, len(br) - 1):
