@@ -33,7 +33,7 @@ def add_parser(subparsers) -> VinesArgumentParser:
         help="Lyapunov spectrum (saltation matrices, Benettin QR) at one parameter point",
         description="The four Lyapunov exponents of the exact trajectory from STATE0 (default: "
                     "rest) over the window [t-transient, t-end], per unit dimensionless time, "
-                    "with 95 %% batch-means intervals. A window containing a stick has "
+                    "with 95 % batch-means intervals. A window containing a stick has "
                     "lambda_3 = lambda_4 = -inf (null in JSON): sticking removes two "
                     "dimensions. A finite-time answer: the motion in the window may be a "
                     "transient (vines attractors --t-max).")
