@@ -75,7 +75,10 @@ FIG_INPUTS = {
     "fig13": {"measures": _measures("fig12")},
     "fig14": {"sweeps": _sweeps("fig14")},
     # companion of Fig 14 (not in the paper); irregular split by the exponents
-    "fig14_regimes": {"sweeps": _sweeps("fig14"), "lyapunov": _named("lyapunov", "fig14")},
+    "fig14_regimes": {
+        "sweeps": _sweeps("fig14"),
+        "lyapunov": _named("lyapunov", "fig14"),
+    },
     "fig15": {"sweep": _sweeps("fig15"), "branches": _branches("fig15")},
     "fig16": {"stability": _smaps("fig16"), "boundaries": _boundaries("fig16")},
     # beyond the paper: coexisting attractors (robust-TET maps beside Fig 12, basin slices)
