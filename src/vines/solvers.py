@@ -25,7 +25,7 @@ from .core.params import (
     check_real,
 )
 from .core.result import RawRun, SimulationResult
-from .core.simulation import simulation_result
+from .core.simulation import simulate_exact, simulation_result
 
 #: scipy methods of the RK reference solver (``vines.reference.rk``)
 RK_METHODS = ("DOP853", "RK45", "LSODA", "Radau")
@@ -79,15 +79,12 @@ def run_simulation(p: ModelParams, st: SolverSettings, *, solver: str = "exact",
     """``simulate`` on validated model and settings (``rtol``/``atol`` already checked)."""
     if not isinstance(solver, str) or solver not in SOLVERS:
         raise ParameterError("solver", solver, f"must be one of {', '.join(SOLVERS)}")
-    if solver == "exact":
-        periodic_shortcut = check_bool("periodic_shortcut", periodic_shortcut)
-        keep = check_bool("keep_impacts", keep_impacts)
-        raw = SOLVERS[solver](p, st, periodic_shortcut=periodic_shortcut, keep_records=keep)
-        options = {"root_tol": st.root_tol, "periodic_shortcut": periodic_shortcut}
-    else:
-        if not isinstance(method, str) or method not in RK_METHODS:
-            raise ParameterError("method", method, f"must be one of {', '.join(RK_METHODS)}")
-        raw = SOLVERS[solver](p, st, method=method, rtol=rtol, atol=atol)
-        options = {"method": method, "rtol": rtol,
-                   "atol": raw.solver_info.get("atol", atol)}
+    if solver == "exact":   # the exact solver's own front end (one copy of its options)
+        return simulate_exact(p, st,
+                              periodic_shortcut=check_bool("periodic_shortcut", periodic_shortcut),
+                              keep_impacts=check_bool("keep_impacts", keep_impacts))
+    if not isinstance(method, str) or method not in RK_METHODS:
+        raise ParameterError("method", method, f"must be one of {', '.join(RK_METHODS)}")
+    raw = SOLVERS[solver](p, st, method=method, rtol=rtol, atol=atol)
+    options = {"method": method, "rtol": rtol, "atol": raw.solver_info.get("atol", atol)}
     return simulation_result(p, st, raw, solver, options)
