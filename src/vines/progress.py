@@ -117,35 +117,47 @@ class Reporter:
 
 
 class LineReporter(Reporter):
-    """Plain lines through ``write`` (e.g. a log's ``print`` or ``logging.info``): the
-    outermost task's start, every ``step`` of its total ("census 128/256 (50 %)"), at most
-    every ``every_s`` seconds when its total is unknown, and its end with the time taken."""
+    """Plain lines through ``write`` (e.g. a log's ``print`` or ``logging.info``) about the
+    outermost task: every ``step`` of its total ("census 128/256 states (50 %)"), at most
+    every ``every_s`` seconds when its total is unknown, and its end with the time taken.
+    A task that ends within ``quiet_s`` seconds writes nothing (many short tasks, e.g. one
+    census per point, would fill a log)."""
 
     def __init__(self, write: Callable[[str], object], step: float = 0.1,
-                 every_s: float = 30.0):
+                 every_s: float = 30.0, quiet_s: float = 0.0):
         super().__init__()
-        self.write, self.step, self.every_s = write, step, every_s
-        self._next = 0.0
+        self.write, self.step, self.every_s, self.quiet_s = write, step, every_s, quiet_s
+        self._next, self._shown = 0.0, False
 
     def show_start(self, t: Task) -> None:
-        size = f"{_num(t.total)} {t.unit}" if t.total is not None else "size unknown"
-        self.write(f"{t.desc}: started ({size})")
-        self._next = self.step if t.total else time.perf_counter() + self.every_s
+        self._next, self._shown = (self.step if t.total else self.every_s), False
+        if self.quiet_s <= 0:
+            self._show(f"{t.desc}: started ({_size(t)})")
 
     def show_advance(self, t: Task) -> None:
         f = t.fraction
+        if t.elapsed < self.quiet_s:
+            return
         if f is not None:
             if f + 1e-12 >= self._next and f < 1.0:
-                self.write(f"{t.desc} {_num(t.count)}/{_num(t.total)} {t.unit} "
+                self._show(f"{t.desc} {_num(t.count)}/{_num(t.total)} {t.unit} "
                            f"({100 * f:.0f} %)")
                 self._next = (int(f / self.step + 1e-9) + 1) * self.step
-        elif not t.total and time.perf_counter() >= self._next:
-            self.write(f"{t.desc} {_num(t.count)} {t.unit}")
-            self._next = time.perf_counter() + self.every_s
+        elif t.elapsed >= self._next:
+            self._show(f"{t.desc} {_num(t.count)} {t.unit}")
+            self._next = t.elapsed + self.every_s
 
     def show_end(self, t: Task) -> None:
-        if not self.cancelled:
+        if self._shown and not self.cancelled:
             self.write(f"{t.desc}: {_num(t.count)} {t.unit} in {t.elapsed:.1f} s")
+
+    def _show(self, line: str) -> None:
+        self._shown = True
+        self.write(line)
+
+
+def _size(t: Task) -> str:
+    return f"{_num(t.total)} {t.unit}" if t.total is not None else "size unknown"
 
 
 def _num(x) -> str:
