@@ -27,6 +27,7 @@ Adding a command: a module ``vines/cli/<name>.py`` defining ``NAME``,
 from __future__ import annotations
 
 import argparse
+import logging
 import os
 import sys
 import threading
@@ -134,7 +135,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         if worker is not None and worker.is_alive():
             # a compiled run still in progress cannot be stopped, and its thread pool would
             # be joined at exit: leave now (nothing was written on stdout)
+            reporting.LOG.debug("the command did not stop within %g s: left", GRACE_S)
+            logging.shutdown()
             os._exit(EXIT_INTERRUPTED)
+        reporting.LOG.debug("the command stopped between two items of its loop")
         return EXIT_INTERRUPTED
 
 
