@@ -109,15 +109,15 @@ def build_parser(with_modules: bool = False) -> tuple:
 EXIT_INTERRUPTED = 130
 #: seconds a cancelled command may take to stop between two items of its loop before the
 #: process ends without waiting for it (a compiled run in progress cannot be stopped)
-GRACE_S = 1.0
+GRACE_S = 0.5
 
 
 class _Interrupted(Exception):
-    """Ctrl-C: the worker (if still running) and the reporter whose bar must be cleared."""
+    """Ctrl-C while a command ran: the reporter whose bar must be cleared."""
 
-    def __init__(self, worker: threading.Thread | None, reporter: progress.Reporter | None):
+    def __init__(self, reporter: progress.Reporter):
         super().__init__("interrupted")
-        self.worker, self.reporter = worker, reporter
+        self.reporter = reporter
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -128,17 +128,15 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         return _main(argv)
     except (KeyboardInterrupt, _Interrupted) as err:
-        worker = getattr(err, "worker", None)
         reporting.close(getattr(err, "reporter", None))
         reporting.LOG.error("interrupted (Ctrl-C); no output written")
-        sys.stderr.flush()
-        if worker is not None and worker.is_alive():
-            # a compiled run still in progress cannot be stopped, and its thread pool would
-            # be joined at exit: leave now (nothing was written on stdout)
-            reporting.LOG.debug("the command did not stop within %g s: left", GRACE_S)
+        if isinstance(err, _Interrupted):
+            # a compiled run still in progress cannot be stopped and its thread pool would
+            # be joined at exit; the interpreter's teardown (numba, LLVM) takes a second or
+            # more on a loaded machine: leave now, nothing is left to write
             logging.shutdown()
+            sys.stderr.flush()
             os._exit(EXIT_INTERRUPTED)
-        reporting.LOG.debug("the command stopped between two items of its loop")
         return EXIT_INTERRUPTED
 
 
@@ -148,11 +146,13 @@ def _interruptible(handler, args: argparse.Namespace, reporter: progress.Reporte
 
     Ctrl-C is delivered to the main thread; blocked without a timeout (e.g. on the results
     of a thread pool) it would never see it. Waking every 0.1 s it does: it cancels the
-    reporter, so the command's loops stop at their next item and cancel their pending
-    work, waits up to GRACE_S for that and raises ``_Interrupted``. Exceptions of the
-    handler (SystemExit of a parser error included) are raised again here.
+    reporter, so the command's loops stop at their next item and drop their pending work,
+    waits up to GRACE_S for that and raises ``_Interrupted``. Exceptions of the handler
+    (SystemExit of a parser error included) are raised again here. (The end of the worker
+    is an Event: ``Thread.join`` interrupted by Ctrl-C may mark a running thread as ended.)
     """
     out: dict = {}
+    ended = threading.Event()
 
     def target():
         try:
@@ -160,18 +160,21 @@ def _interruptible(handler, args: argparse.Namespace, reporter: progress.Reporte
                 out["status"] = handler(args)
         except BaseException as err:    # noqa: BLE001 - handed to the main thread
             out["error"] = err
+        finally:
+            ended.set()
 
-    worker = threading.Thread(target=target, name=f"{PROG}-{args.command}", daemon=True)
-    worker.start()
+    threading.Thread(target=target, name=f"{PROG}-{args.command}", daemon=True).start()
     try:
-        while worker.is_alive():
-            worker.join(0.1)
+        while not ended.wait(0.1):
+            pass
     except KeyboardInterrupt:
         reporter.cancel()
         try:
-            worker.join(GRACE_S)
+            ended.wait(GRACE_S)
+            reporting.LOG.debug("after Ctrl-C the command %s", f"stopped: {out.get('error')!r}"
+                                if ended.is_set() else f"still runs after {GRACE_S:g} s: left")
         finally:
-            raise _Interrupted(worker, reporter) from None
+            raise _Interrupted(reporter) from None
     if "error" in out:
         raise out["error"]
     return out["status"]
