@@ -65,7 +65,7 @@ class TqdmReporter(progress.Reporter):
     def show_start(self, t: progress.Task) -> None:
         from tqdm import tqdm
         self.close()
-        self.bar = tqdm(total=t.total, desc=t.desc, unit=t.unit, file=self.stream,
+        self.bar = tqdm(total=t.total, desc=t.desc, unit=f" {t.unit}", file=self.stream,
                         leave=False, dynamic_ncols=True, mininterval=0.25,
                         unit_scale=isinstance(t.total, float))   # time: 1.61k/200k t
 
