@@ -76,11 +76,11 @@ def test_cancel_drops_the_pending_work_of_a_pool():
         time.sleep(0.01)
         return i
 
-    with progress.reporting(rec), pytest.raises(progress.Cancelled):
-        with ThreadPoolExecutor(max_workers=2) as ex:
-            for i in progress.track(ex.map(work, range(400)), 400, "pool"):
-                if i == 3:
-                    rec.cancel()
+    with (progress.reporting(rec), pytest.raises(progress.Cancelled),
+          ThreadPoolExecutor(max_workers=2) as ex):
+        for i in progress.track(ex.map(work, range(400)), 400, "pool"):
+            if i == 3:
+                rec.cancel()
     # at most the items already running or queued ahead when the cancel came
     assert len(ran) < 50
 

@@ -54,6 +54,10 @@ def setup_logging(command: str | None = None, verbose: int = 0, quiet: bool = Fa
     LOG.propagate = False
 
 
+#: the bar of a task counted in a continuous quantity (time, a parameter): 4 digits
+FLOAT_BAR = "{desc}: {percentage:3.0f}%|{bar}| {n:.4g}/{total:.4g}{unit} [{elapsed}<{remaining}]"
+
+
 class TqdmReporter(progress.Reporter):
     """The outermost task as a tqdm bar on ``stream`` (removed at its end, which is logged
     at INFO level with the time taken)."""
@@ -67,7 +71,7 @@ class TqdmReporter(progress.Reporter):
         self.close()
         self.bar = tqdm(total=t.total, desc=t.desc, unit=f" {t.unit}", file=self.stream,
                         leave=False, dynamic_ncols=True, mininterval=0.25,
-                        unit_scale=isinstance(t.total, float))   # time: 1.61k/200k t
+                        bar_format=FLOAT_BAR if isinstance(t.total, float) else None)
 
     def show_advance(self, t: progress.Task) -> None:
         bar = self.bar
