@@ -26,7 +26,13 @@ The contract of every command:
 * Exit status 0 on success; **2** for bad input of any kind (a non-number, a value out of
   range, an unknown or missing flag, a bad choice), with exactly one line
   `vines <command>: error: ...` on stderr naming the option, the value and what is
-  allowed; **130** after Ctrl-C, with one line on stderr and nothing on stdout.
+  allowed; **130** after Ctrl-C (within about a second, also in the middle of a long
+  census, scan or continuation), with one line on stderr and nothing on stdout.
+* stderr also carries progress: a bar for every long loop (census, boundary scan,
+  continuation, Lyapunov spectrum, design) when stderr is a terminal, removed when the loop
+  ends; `-q/--quiet` shows errors only, `-v` adds timings (and, when stderr is not a
+  terminal, a progress line every 10 %), `-vv` debugging detail. stdout is never touched:
+  with `--json` it is the one JSON object whether or not a bar was shown.
 * Integer options accept what people type for an integer (`1000`, `1e3`, `1_000`).
 * The JSON keys of `vines simulate` are listed in [usage.md](usage.md#the-simulate-command);
   those of the other commands in [bifurcation.md](bifurcation.md) (periodic, continue,

@@ -47,6 +47,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .. import progress
 from ..core.params import ModelParams, SolverSettings, check_int
 from ..core.shortcut import rel_diff
 from .endstate import EndState, classify_end
@@ -135,10 +136,10 @@ def continue_states(p, st, oscs, ends: list, t_max: float,
         return continue_state(p, st, st_max, oscs, ends[i])
 
     if n_threads == 1 or len(idx) <= 1:
-        out = [work(i) for i in idx]
+        out = list(progress.track(map(work, idx), len(idx), "asymptotic view", "states"))
     else:
         with ThreadPoolExecutor(max_workers=n_threads) as ex:
-            out = list(ex.map(work, idx))
+            out = list(progress.track(ex.map(work, idx), len(idx), "asymptotic view", "states"))
     return dict(zip(idx, out, strict=True))
 
 
@@ -225,9 +226,9 @@ def long_lambda(p, st, t_max: float, e: EndState):
 def _threaded(fn, items, n_threads):
     n_threads = n_threads if n_threads is not None else (os.cpu_count() or 1)
     if n_threads == 1 or len(items) <= 1:
-        return [fn(i) for i in items]
+        return list(progress.track(map(fn, items), len(items), "lyapunov exponents", "runs"))
     with ThreadPoolExecutor(max_workers=n_threads) as ex:
-        return list(ex.map(fn, items))
+        return list(progress.track(ex.map(fn, items), len(items), "lyapunov exponents", "runs"))
 
 
 def periodic_lambda(p, st, oscs, end: EndState) -> float:

@@ -25,6 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .. import progress
 from ..core.exact import oscillators
 from ..core.params import ModelParams, SolverSettings, check_int
 from ..core.simulation import run_measured
@@ -108,7 +109,8 @@ def settle_states(p: ModelParams, st: SolverSettings, states: np.ndarray,
     def work(i):
         return settle(p, st, oscs, states[i])
 
-    if n_threads == 1 or len(states) <= 1:
-        return [work(i) for i in range(len(states))]
+    n = len(states)
+    if n_threads == 1 or n <= 1:
+        return list(progress.track(map(work, range(n)), n, "census", "states"))
     with ThreadPoolExecutor(max_workers=n_threads) as ex:
-        return list(ex.map(work, range(len(states))))
+        return list(progress.track(ex.map(work, range(n)), n, "census", "states"))

@@ -30,6 +30,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .. import progress
 from ..core.params import (
     D_DEFAULT,
     MAX_IMPACTS_DEFAULT,
@@ -160,9 +161,8 @@ def spectrum(p: ModelParams, st: SolverSettings, state0=None, *, t0: float = 0.0
             rec.on_chunk(seg, n_done, t_done)
             n_imp = int(tr.tp[TP_IMP])     # impacts matched so far in this chunk
             rec.add_impacts(tr.run_.imp[:n_imp])
-        tr.run(on_chunk)
-    else:
-        tr.run()
+    with progress.task(st.t_end - t0, "lyapunov spectrum", "t"):
+        tr.run(on_chunk if rec is not None else None)
     width = np.diff(edges)[:, None]
     batch = tr.sums / width
     with np.errstate(invalid="ignore"):

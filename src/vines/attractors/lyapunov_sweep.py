@@ -18,6 +18,7 @@ import math
 
 import numpy as np
 
+from .. import progress
 from ..core.params import (
     D_DEFAULT,
     PARAM_NAMES,
@@ -66,7 +67,7 @@ def sweep_exponents(param, values, *, eta=None, omega=None, F=None, r=R_DEFAULT,
            "n_sticks": np.zeros(n, "i8"), "exponents": np.full((n, 4), np.nan),
            "ci": np.full((n, 4, 2), np.nan)}
     state, theta = (0.0, 0.0, 0.0, 0.0), 0.0
-    for k, val in enumerate(values):
+    for k, val in enumerate(progress.track(values, n, "lyapunov sweep", "points")):
         kw = {**fixed, param: val}
         p = ModelParams(eta=kw["eta"], omega=kw["omega"], F=kw["F"], r=r, d=d,
                         phi=math.fmod(theta, 2.0 * math.pi))

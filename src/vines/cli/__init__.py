@@ -7,14 +7,17 @@ Contract (see the README and the project specification, section 7):
   required flag, a bad choice) exits with status 2 after printing exactly one line
   ``vines <command>: error: <message>`` on stderr, naming the parameter, the value given and
   what is allowed. No traceback, no output file.
-* Ctrl-C (SIGINT) ends any command with one line ``vines <command>: interrupted`` on stderr
-  and exit status 130; nothing is written on stdout (the output is printed only once
-  complete).
+* Ctrl-C (SIGINT) ends any command within about a second with one line
+  ``vines <command>: interrupted (Ctrl-C); no output written`` on stderr and exit status
+  130; nothing is written on stdout (the output is printed only once complete).
+* stderr carries progress bars (on a terminal) and log messages (``vines.cli.reporting``;
+  ``-q/--quiet``, ``-v/--verbose``); stdout carries the answer only.
 * Unexpected internal errors are not caught: they keep their traceback.
 
 One module per command (``simulate``, ``periodic``, ``continue_``, ``boundaries``,
-``attractors``, ``lyapunov``, ``design``); what they share (the argument parser, the model arguments, the error
-messages, the JSON-or-text output) is in ``common``.
+``attractors``, ``lyapunov``, ``design``); what they share (the argument parser, the model
+arguments, the error messages, the JSON-or-text output) is in ``common``, the messages and
+progress on stderr in ``reporting``.
 
 Adding a command: a module ``vines/cli/<name>.py`` defining ``NAME``,
 ``add_parser(subparsers) -> VinesArgumentParser`` (reusing ``common.add_model_args``) and
@@ -24,14 +27,17 @@ Adding a command: a module ``vines/cli/<name>.py`` defining ``NAME``,
 from __future__ import annotations
 
 import argparse
+import logging
 import os
 import sys
 import threading
+import time
 from collections.abc import Sequence
 from importlib import import_module
 
-from .. import __version__
+from .. import __version__, progress
 from ..core.params import ParameterError
+from . import reporting
 from .common import PROG, VinesArgumentParser, flag_for
 
 #: the commands' modules, in the order of ``vines --help``
@@ -92,6 +98,7 @@ def build_parser(with_modules: bool = False) -> tuple:
     for name in COMMANDS:
         module = import_module(f".{name}", __name__)
         sub = module.add_parser(subparsers)
+        reporting.add_flags(sub)
         sub.set_defaults(handler=module.run)
         commands[module.NAME] = sub
         modules[module.NAME] = module
@@ -100,45 +107,74 @@ def build_parser(with_modules: bool = False) -> tuple:
 
 #: exit status after Ctrl-C (128 + SIGINT, as shells report it)
 EXIT_INTERRUPTED = 130
+#: seconds a cancelled command may take to stop between two items of its loop before the
+#: process ends without waiting for it (a compiled run in progress cannot be stopped)
+GRACE_S = 0.5
+
+
+class _Interrupted(Exception):
+    """Ctrl-C while a command ran: the reporter whose bar must be cleared."""
+
+    def __init__(self, reporter: progress.Reporter):
+        super().__init__("interrupted")
+        self.reporter = reporter
 
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Run ``vines`` on ``argv`` (default: the command line); the exit status."""
     argv = list(sys.argv[1:] if argv is None else argv)
+    command = next((a for a in argv if not a.startswith("-")), None)
+    reporting.setup_logging(command)
     try:
         return _main(argv)
-    except KeyboardInterrupt:
-        command = next((a for a in argv if not a.startswith("-")), None)
-        where = f"{PROG} {command}" if command else PROG
-        sys.stderr.write(f"{where}: interrupted (Ctrl-C); no output written\n")
-        sys.stderr.flush()
-        if any(t is not threading.main_thread() and not t.daemon for t in threading.enumerate()):
-            # worker threads inside compiled runs cannot be stopped and would be joined at
-            # exit (up to a whole run each): leave now; nothing is left to write
+    except (KeyboardInterrupt, _Interrupted) as err:
+        reporting.close(getattr(err, "reporter", None))
+        reporting.LOG.error("interrupted (Ctrl-C); no output written")
+        if isinstance(err, _Interrupted):
+            # a compiled run still in progress cannot be stopped and its thread pool would
+            # be joined at exit; the interpreter's teardown (numba, LLVM) takes a second or
+            # more on a loaded machine: leave now, nothing is left to write
+            logging.shutdown()
+            sys.stderr.flush()
             os._exit(EXIT_INTERRUPTED)
         return EXIT_INTERRUPTED
 
 
-def _interruptible(handler, args: argparse.Namespace) -> int:
-    """``handler(args)`` in a worker thread while the main thread waits in short slices.
+def _interruptible(handler, args: argparse.Namespace, reporter: progress.Reporter) -> int:
+    """``handler(args)`` in a worker thread (reporting progress to ``reporter``) while the
+    main thread waits in short slices.
 
-    Ctrl-C may be delivered to any thread; a main thread blocked without a timeout (e.g.
-    on the results of a thread pool) would never see it. Waking every 0.1 s it does, and
-    raises KeyboardInterrupt. Exceptions of the handler (SystemExit of a parser error
-    included) are raised again here.
+    Ctrl-C is delivered to the main thread; blocked without a timeout (e.g. on the results
+    of a thread pool) it would never see it. Waking every 0.1 s it does: it cancels the
+    reporter, so the command's loops stop at their next item and drop their pending work,
+    waits up to GRACE_S for that and raises ``_Interrupted``. Exceptions of the handler
+    (SystemExit of a parser error included) are raised again here. (The end of the worker
+    is an Event: ``Thread.join`` interrupted by Ctrl-C may mark a running thread as ended.)
     """
     out: dict = {}
+    ended = threading.Event()
 
     def target():
         try:
-            out["status"] = handler(args)
+            with progress.reporting(reporter):
+                out["status"] = handler(args)
         except BaseException as err:    # noqa: BLE001 - handed to the main thread
             out["error"] = err
+        finally:
+            ended.set()
 
-    worker = threading.Thread(target=target, name=f"{PROG}-{args.command}", daemon=True)
-    worker.start()
-    while worker.is_alive():
-        worker.join(0.1)
+    threading.Thread(target=target, name=f"{PROG}-{args.command}", daemon=True).start()
+    try:
+        while not ended.wait(0.1):
+            pass
+    except KeyboardInterrupt:
+        reporter.cancel()
+        try:
+            ended.wait(GRACE_S)
+            reporting.LOG.debug("after Ctrl-C the command %s", f"stopped: {out.get('error')!r}"
+                                if ended.is_set() else f"still runs after {GRACE_S:g} s: left")
+        finally:
+            raise _Interrupted(reporter) from None
     if "error" in out:
         raise out["error"]
     return out["status"]
@@ -152,16 +188,21 @@ def _main(argv: list[str]) -> int:
         parser.print_help(sys.stderr)
         return 2
     sub = commands[args.command]
+    reporting.setup_logging(args.command, args.verbose, args.quiet)
     if extras:
         known = sorted(f for a in sub._actions for f in a.option_strings)
         sub.error(f"unrecognized argument {extras[0]!r} (allowed options: {', '.join(known)})")
+    reporter = reporting.reporter_for(args)
+    t0 = time.perf_counter()
     try:
-        return _interruptible(args.handler, args)
+        status = _interruptible(args.handler, args, reporter)
     except ParameterError as err:
         flag = getattr(modules[args.command], "FLAG_OF", {}).get(err.name) or flag_for(err.name)
         if any(flag in a.option_strings for a in sub._actions):
             sub.error(f"argument {flag}: {err}")
         sub.error(str(err))
+    reporting.LOG.info("done in %.1f s", time.perf_counter() - t0)
+    return status
 
 
 if __name__ == "__main__":  # pragma: no cover

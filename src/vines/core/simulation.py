@@ -8,6 +8,7 @@ from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 
+from .. import progress as _progress
 from .conventions import BATCH_FIELDS
 from .exact import run_exact
 from .params import (
@@ -106,6 +107,10 @@ def _batch_point(eta, omega, F, r, d, phi, st: SolverSettings, shortcut: bool) -
     return tuple(m[k] for k in BATCH_FIELDS)
 
 
+#: the progress task of ``simulate_batch`` (``vines.progress``): description, unit
+TASK = ("simulate", "points")
+
+
 def simulate_batch(eta, omega, F, *, r=R_DEFAULT, d=D_DEFAULT, phi=0.0, t_end=T_END_DEFAULT,
                    t_transient=T_TRANSIENT_DEFAULT, v_stick=V_STICK_DEFAULT,
                    max_impacts=MAX_IMPACTS_DEFAULT, root_tol=ROOT_TOL_DEFAULT,
@@ -151,13 +156,12 @@ def simulate_batch(eta, omega, F, *, r=R_DEFAULT, d=D_DEFAULT, phi=0.0, t_end=T_
         return i
 
     if n_threads == 1 or n <= 1:
-        for done, i in enumerate(range(n), 1):
-            work(i)
+        for done, _ in enumerate(_progress.track(map(work, range(n)), n, *TASK), 1):
             if progress:
                 progress(done, n)
     else:
         with ThreadPoolExecutor(max_workers=n_threads) as ex:
-            for done, _ in enumerate(ex.map(work, range(n)), 1):
+            for done, _ in enumerate(_progress.track(ex.map(work, range(n)), n, *TASK), 1):
                 if progress:
                     progress(done, n)
     return {k: v.reshape(shape) for k, v in out.items()}

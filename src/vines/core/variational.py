@@ -34,6 +34,7 @@ import math
 import numpy as np
 from numba import njit
 
+from .. import progress
 from .flow import I_D, I_F, I_W, fundamentals
 
 #: slots of the tangent pass's state ``tp``: active frame columns (4, or 2 while stuck),
@@ -372,6 +373,7 @@ class TangentRun:
             if done:
                 self.status = eng.STATUS_TEXT.get(rc, str(rc))
                 return self
+            progress.advance(chunk)
             t_pause += chunk
 
     def _compact(self, n_seg: int, n_done: int, n_imp: int) -> None:

@@ -31,6 +31,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike
 
+from .. import progress
 from ..core.params import (
     D_DEFAULT,
     R_DEFAULT,
@@ -111,6 +112,7 @@ class _CurveTracer:
         tr.t = sign * tr.tangent(self.sys(z0)[1], np.ones(len(z0)))
         out = []
         while len(out) < self.max_points:
+            progress.check()
             st = tr.step()
             if st is None:
                 return out, "step below min_step"
@@ -221,7 +223,7 @@ def boundaries(F: float, eta_range: Sequence[float], omega_range: Sequence[float
         edges = class_edges(*class_map)
     else:
         edges = _map_edges(model, F, box, n_map) if n_map >= 2 else []
-    for edge in edges:
+    for edge in progress.track(edges, len(edges), "boundary edges", "edges"):
         # an edge with both cells outside the box cannot seed a curve inside it
         if (_in_box(edge[0], box) or _in_box(edge[1], box)) and not traced.explains(edge):
             for seed in _edge_seeds(model, F, edge):
@@ -367,7 +369,7 @@ def _seeds(model, F, box, n_scan):
     (e0, e1), (w0, w1) = box
     lines = [("eta", e0, e1, {"omega": w, "F": F}) for w in np.linspace(w0, w1, n_scan)]
     lines += [("omega", w0, w1, {"eta": e, "F": F}) for e in np.linspace(e0, e1, n_scan)]
-    for param, start, stop, fixed in lines:
+    for param, start, stop, fixed in progress.track(lines, len(lines), "boundary scan", "lines"):
         p = dict(fixed, **{param: start})
         orbits = orbits_1to1(ModelParams(eta=p["eta"], omega=p["omega"], F=F, r=model.r,
                                          d=model.d), simulation=False)

@@ -38,6 +38,7 @@ import math
 
 import numpy as np
 
+from .. import progress
 from ..core.exact import oscillators
 from ..core.params import ModelParams, ParameterError
 from ..core.walls import WALL_L, WALL_R
@@ -165,6 +166,7 @@ class _Follower:
                 return
             self.pts.append((float(st.z1[-1]), o))
             self.arc.append(s)
+            progress.advance()
             n_bad = 0 if o.admissible else n_bad + 1
             if n_bad >= max_inadmissible:
                 self.stopped = f"admissibility lost for good ({max_inadmissible} points)"
@@ -330,7 +332,8 @@ def follow(model: sh.Model, family: str, param: str, fixed: dict, u0, start: flo
         direction = d
     tracer = Tracer(system, z0, direction, h=step, h_min=min_step, h_max=step)
     f = _Follower(system, tracer, bounds)
-    f.run(max_points, max_inadmissible)
+    with progress.task(None, f"{family} branch in {param}", "points"):
+        f.run(max_points, max_inadmissible)
     for e in f.events:
         e.pop("t", None)
     return make_branch(param, f.pts, f.events, f.stopped, family=family, arclength=f.arc)

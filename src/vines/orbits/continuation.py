@@ -30,6 +30,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .. import progress
 from ..core.params import (
     BRANCH_KINDS,
     CONTINUATION_METHODS,
@@ -169,7 +170,8 @@ def continue_branch(param: str, start, stop, step=None, fixed: dict | None = Non
             return _make_branch(cs.param, [], [],
                                 "the given orbit does not converge at start")
     if cs.method == "natural":
-        br = _natural(cont, cs, orbit)
+        with progress.task(abs(cs.stop - cs.start), f"branch in {cs.param}", cs.param):
+            br = _natural(cont, cs, orbit)
         br.family = "symmetric" if orbit.symmetric else "asymmetric"
         return br
     return _arclength(cs, orbit, r, d, phi)
@@ -311,6 +313,7 @@ def _natural(cont: _Continuer, cs: ContinuationSettings, orbit: PeriodicOrbit) -
             continue
         _locate_events(cont, v_prev, o_prev, v, o, events, cs.event_tol)
         pts.append((v, o))
+        progress.advance(abs(v - v_prev))
         h = min(step, 1.5 * h)
     events.sort(key=lambda e: sign * e["at"])
     return _make_branch(param, pts, events, stopped, cont)

@@ -31,6 +31,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numba import njit
 
+from .. import progress
 from ..core.exact import oscillators
 from ..core.params import (
     MAX_INADMISSIBLE_DEFAULT,
@@ -217,8 +218,9 @@ def continue_sequence(params: ModelParams, walls: str, periods: int, param: str,
             return SequenceBranch(walls, periods, param, [], [],
                                   f"no {walls}/{periods} orbit at start")
         orbit = found[0]
-    return _trace(params, walls, periods, param, start, stop, step, orbit, switch,
-                  max_points, max_inadmissible)
+    with progress.task(None, f"{walls}/{periods} branch in {param}", "points"):
+        return _trace(params, walls, periods, param, start, stop, step, orbit, switch,
+                      max_points, max_inadmissible)
 
 
 def _trace(params, walls, periods, param, start, stop, step, orbit, switch, max_points,
@@ -248,6 +250,7 @@ def _trace(params, walls, periods, param, start, stop, step, orbit, switch, max_
         cur = _tests(o, st.t1)
         _events(tr, st, sys_, prev, cur, events, len(points))
         points.append(o)
+        progress.advance()
         prev = cur
         n_bad = 0 if o.admissible else n_bad + 1
         if n_bad >= max_inadmissible:

@@ -33,6 +33,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from .. import progress
 from ..core.params import (
     C_DAMP_NS_PER_M,
     K_SPRING_N_PER_M,
@@ -183,6 +184,7 @@ class Evaluator:
                              max_impacts=st.max_impacts, root_tol=st.root_tol,
                              n_threads=self.n_threads)
         self.n_runs += out["xmax"].size
+        progress.advance(out["xmax"].size)
         return out["xmax"] / np.broadcast_to(F, out["xmax"].shape)
 
     def _climb(self, eta, F, peak, at, h) -> tuple:
@@ -233,6 +235,7 @@ def attractor_curves(problem: DesignProblem, eta: float, clearance_m: float,
             atts, u = view(model, problem.settings, problem.census_n, problem.census_seed,
                            n_threads)
             unsettled = max(unsettled, u)
+            progress.advance()
             xs = [x for frac, x, rest in atts if rest or frac >= problem.basin_min]
             if xs:
                 out[j, i] = max(out[j, i], max(xs) / F)
@@ -422,16 +425,19 @@ def solve(problem: DesignProblem, *, eta=None, clearance_m=None, eta_max=None,
     t1, c1 = time.perf_counter(), time.process_time()
     ev = Evaluator(problem, n_threads)
     search = None
-    if eta_max is not None:
-        best = optimise(ev, eta_max, clearance_range_m, n_eta, n_clearance)
-        eta, clearance_m, search = best["eta"], best["clearance_m"], best["grid"]
-    rest = ev.responses([(eta, clearance_m)])[0]
+    with progress.task(None, "design: runs from rest", "runs"):
+        if eta_max is not None:
+            best = optimise(ev, eta_max, clearance_range_m, n_eta, n_clearance)
+            eta, clearance_m, search = best["eta"], best["clearance_m"], best["grid"]
+        rest = ev.responses([(eta, clearance_m)])[0]
     t2, c2 = time.perf_counter(), time.process_time()
     any_, unsettled = None, None
-    if problem.census_n > 0:
-        any_, unsettled = attractor_curves(problem, eta, clearance_m, rest.curves, n_threads)
-    t3, c3 = time.perf_counter(), time.process_time()
     n_points = len(problem.omega) * len(problem.amplitudes_m)
+    if problem.census_n > 0:
+        with progress.task(n_points, "design: attractor censuses", "points"):
+            any_, unsettled = attractor_curves(problem, eta, clearance_m, rest.curves,
+                                               n_threads)
+    t3, c3 = time.perf_counter(), time.process_time()
     cost = dict(wall_s=t3 - t0, tmd_s=t1 - t0, search_s=t2 - t1, census_s=t3 - t2,
                 cpu_s=c3 - c0, search_cpu_s=c2 - c1, census_cpu_s=c3 - c2,
                 n_designs=len(ev.cache), n_runs_from_rest=ev.n_runs,

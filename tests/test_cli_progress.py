@@ -1,0 +1,90 @@
+"""Issue 27 item 1: a progress bar on a terminal's stderr for a 256-state census, none when
+stderr is not a terminal or with --quiet; stdout stays the answer alone (with --json one
+JSON object, the same as without a terminal); -v logs progress lines instead."""
+import fcntl
+import json
+import os
+import pty
+import re
+import select
+import struct
+import subprocess
+import sys
+import termios
+
+from conftest import ROOT, SRC, run_vines
+
+CENSUS = ["attractors", "--eta", "0.13", "--omega", "1", "--F", "0.1", "--n", "256",
+          "--t-end", "1000", "--t-transient", "500", "--threads", "2"]
+
+
+def _env() -> dict:
+    return dict(os.environ, PYTHONPATH=os.pathsep.join(
+        [str(SRC), os.environ.get("PYTHONPATH", "")]).rstrip(os.pathsep))
+
+
+def run_on_terminal(*args, timeout=600) -> tuple[int, str, str]:
+    """``python -m vines *args`` with stderr on a pseudo-terminal (100 columns) and stdout
+    on a pipe: (exit status, stdout, everything the terminal received)."""
+    master, slave = pty.openpty()
+    fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack("HHHH", 24, 100, 0, 0))
+    proc = subprocess.Popen([sys.executable, "-m", "vines", *args], stdout=subprocess.PIPE,
+                            stderr=slave, stdin=subprocess.DEVNULL, env=_env(), cwd=ROOT)
+    os.close(slave)
+    received = b""
+    try:
+        while True:
+            ready, _, _ = select.select([master], [], [], 0.2)
+            if ready:
+                try:
+                    data = os.read(master, 65536)
+                except OSError:           # the terminal closed: the process has ended
+                    break
+                if not data:
+                    break
+                received += data
+            elif proc.poll() is not None:
+                break
+        out = proc.stdout.read().decode()
+        proc.wait(timeout=timeout)
+    finally:
+        os.close(master)
+        if proc.poll() is None:
+            proc.kill()
+    return proc.returncode, out, received.decode(errors="replace")
+
+
+def test_census_shows_a_bar_on_a_terminal():
+    code, out, term = run_on_terminal(*CENSUS, "--json")
+    assert code == 0, term
+    assert "census:" in term and "/256 [" in term and "%|" in term     # tqdm's bar
+    assert re.search(r"census: +\d+%\|[^|]*\| *[1-9]\d*/256 \[", term)   # it advanced
+    assert "Traceback" not in term
+    json.loads(out)                        # stdout: the answer alone
+
+
+def test_no_bar_without_a_terminal_and_the_same_json():
+    plain = run_vines(*CENSUS, "--json")
+    assert plain.returncode == 0, plain.stderr
+    assert plain.stderr == ""
+    obj = json.loads(plain.stdout)         # exactly one JSON object on stdout
+    assert plain.stdout.count("\n") == 1 and isinstance(obj, dict)
+    code, out, term = run_on_terminal(*CENSUS, "--json")
+    assert code == 0 and json.loads(out) == obj
+
+
+def test_quiet_shows_no_bar():
+    code, out, term = run_on_terminal(*CENSUS, "--quiet")
+    assert code == 0, term
+    assert "%|" not in term and "census" not in term
+    assert out.startswith("eta = 0.13, omega = 1, F = 0.1: ")
+
+
+def test_verbose_logs_progress_lines_without_a_terminal():
+    proc = run_vines(*CENSUS, "--json", "-v")
+    assert proc.returncode == 0, proc.stderr
+    lines = proc.stderr.splitlines()
+    assert "vines attractors: census: started (256 states)" in lines
+    assert "vines attractors: census 128/256 states (50 %)" in lines
+    assert lines[-1].startswith("vines attractors: done in ")
+    json.loads(proc.stdout)
