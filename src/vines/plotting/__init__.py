@@ -37,6 +37,7 @@ from .draw import (
     CLASSES,
     LABELS,
     SYMBOLS,
+    MapStyle,
     bifurcation_dots,
     branch_lines,
     class_handles,
@@ -81,7 +82,7 @@ __all__ = [
     "stability", "sweep", "sweep_fixed", "sweep_points", "timehistory",
     # draw
     "C_BALL", "C_BRANCH", "C_LO", "CLASSES", "LABELS", "SYMBOLS", "bifurcation_dots",
-    "branch_lines", "class_handles", "class_map", "common_range", "contour_map",
+    "branch_lines", "class_handles", "class_map", "common_range", "contour_map", "MapStyle",
     "eigenvalue_panel", "figure", "fmt", "impact_handles", "impact_phase_panel", "metres",
     "no_impact_handle", "panel_label", "save", "shared_colorbar", "stable_edge", "stable_edge_handle", "hatch_cells", "th_title",
     "time_history", "twin_measures",

@@ -71,8 +71,8 @@ def main(sm):
             ax = axes[i, j]
             eta, W = src["eta"].values, src["omega"].values
             # (d-i): a coarse census grid, drawn cell by cell (contours would invent shapes)
-            mappables[i] = P.contour_map(fig, ax, eta, W, z, label=label, vmin=0.0, vmax=1.0,
-                                         cells=i > 0, colorbar=False, no_impact=silent)
+            style = P.MapStyle(label, 0.0, 1.0, cells=i > 0, colorbar=False)
+            mappables[i] = P.contour_map(fig, ax, eta, W, z, style, no_impact=silent)
             if i > 0:
                 P.hatch_cells(ax, eta, W, wilson_width(z, n_states) > WIDE_INTERVAL)
             if i == 3:
