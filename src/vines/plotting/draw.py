@@ -328,16 +328,19 @@ def stable_edge_handle(label=r"edge of the stable 1:1 region ($|\lambda_{\max}| 
     return Line2D([], [], label=label, path_effects=_EDGE_HALO, **STABLE_EDGE)
 
 
+def cell_edges(v) -> np.ndarray:
+    """Edges of the cells of the grid points ``v`` (at least 2, increasing): half-way
+    between points, the end cells symmetric about their point."""
+    v = np.asarray(v, float)
+    mid = (v[1:] + v[:-1]) / 2
+    return np.concatenate([[2 * v[0] - mid[0]], mid, [2 * v[-1] - mid[-1]]])
+
+
 def hatch_cells(ax, x, y, mask, hatch="////", color="white"):
     """Hatch the cells (one per grid point, edges half-way between points) where ``mask``
     (len(y), len(x)) is True."""
     from matplotlib.patches import Rectangle
-
-    def edges(v):
-        v = np.asarray(v, float)
-        mid = (v[1:] + v[:-1]) / 2
-        return np.concatenate([[2 * v[0] - mid[0]], mid, [2 * v[-1] - mid[-1]]])
-    ex, ey = edges(x), edges(y)
+    ex, ey = cell_edges(x), cell_edges(y)
     for j, i in zip(*np.nonzero(mask), strict=True):
         ax.add_patch(Rectangle((ex[i], ey[j]), ex[i + 1] - ex[i], ey[j + 1] - ey[j],
                                fill=False, hatch=hatch, edgecolor=color, lw=0))
