@@ -1,10 +1,12 @@
 """Orbit atlas (beyond the paper; docs/bifurcation.md): per F a row, (left) the periodic
 family group that is stable and admissible at each (eta, W) (orbit_atlas atlas_*; the
-group of the smallest lambda_max where several are stable, hatched there), grey where only
+group of the smallest lambda_max where several are stable, hatched there), dark grey where only
 unstable or non-admissible orbits were found, white where no seed reached any family;
 (right) the regime the simulation from rest settles on (Fig 12's grid at the same F,
-grids.fig12_*) in the same colours. The atlas is a finite search: absent means that no
-seed reached a family, not that none exists."""
+grids.fig12_*): its periodic families in the atlas's colours, the other regimes in the
+regime colours of every regime figure (palette.REGIMES). One legend of exactly the
+classes drawn. The atlas is a finite search: absent means that no seed reached a family,
+not that none exists."""
 
 import numpy as np
 

@@ -67,8 +67,9 @@ def census_cells(fig, ax, grid, style, smap, F):
         cs = P.contour_map(fig, ax, eta_r, W_r, z_r, style)
     else:
         cs = P.contour_map(fig, ax, eta, W, z, style)
-    ax.set_xlim(*P.cell_edges(eta)[[0, -1]])
-    ax.set_ylim(*P.cell_edges(W)[[0, -1]])
+    for v, set_lim in ((eta, ax.set_xlim), (W, ax.set_ylim)):     # eta, W > 0
+        lo, hi = P.cell_edges(v)[[0, -1]]
+        set_lim(max(lo, 0.0), hi)
     return cs
 
 
