@@ -197,3 +197,31 @@ def test_stable_orbit_share_is_drawn_only_where_the_orbit_is_stable():
     assert kept2 == 1
     upper = wr2 > 0.525
     assert np.all(zr2[upper][:, col] == 0.3) and np.all(zr2[upper][:, ~col] == 0.0)
+
+
+# ------------------------------------------------------------------ zoom insets (Figs 6, 15)
+
+def _panel(y_top):
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots()
+    x = np.linspace(0.0, 1.0, 400)
+    ax.scatter(np.repeat(x, 20), np.tile(np.linspace(-2.0, y_top, 20), 400), s=1)
+    ax.set_xlim(0.0, 1.0)
+    ax.set_ylim(-2.5, 2.5)
+    return fig, ax
+
+
+def test_inset_covers_no_drawn_point():
+    """An inset goes where nothing is drawn (with room for its tick labels); when the data
+    fill the panel, the panel gains headroom above them for it and the data stay whole."""
+    import matplotlib.pyplot as plt
+
+    from vines.plotting import bifurcation as B
+    for y_top in (0.0, 2.4):                  # room in the upper half / none anywhere
+        fig, ax = _panel(y_top)
+        box = B._inset_box(ax)
+        assert B._covered(B._drawn_points(ax), box) == 0
+        lo, hi = ax.get_ylim()
+        assert lo == -2.5 and (hi == 2.5) == (y_top == 0.0)
+        assert len(B._drawn_points(ax)) == 8000           # every point still inside
+        plt.close(fig)
