@@ -197,6 +197,13 @@ def test_stable_orbit_share_is_drawn_only_where_the_orbit_is_stable():
     assert kept2 == 1
     upper = wr2 > 0.525
     assert np.all(zr2[upper][:, col] == 0.3) and np.all(zr2[upper][:, ~col] == 0.0)
+    # a census point on the map's edge (eta 0.2): its cell's outer half (to 0.225) takes
+    # the edge's class, not the census value; a point off the map (0.25) is kept
+    er3, wr3, zr3, _ = P.stable_orbit_share([0.15, 0.2, 0.25], [0.5, 0.55],
+                                            np.array([[0.5] * 3, [0.0] * 3]), m, per_cell=40)
+    beyond = (er3 > 0.2) & (er3 < 0.225)
+    assert np.all(zr3[~inside][:, beyond] == 0.0) and np.all(zr3[inside][:, beyond] == 0.5)
+    assert np.all(zr3[:, er3 > 0.225] == np.repeat([0.5, 0.0], 40)[:, None])
 
 
 # ------------------------------------------------------------------ zoom insets (Figs 6, 15)

@@ -49,6 +49,7 @@ from .draw import (
     figure,
     fmt,
     hatch_cells,
+    hatch_region,
     impact_handles,
     impact_phase_panel,
     metres,
@@ -91,7 +92,7 @@ __all__ = [
     "C_BALL", "C_BRANCH", "C_LO", "CLASSES", "LABELS", "SYMBOLS", "bifurcation_dots",
     "branch_lines", "class_handles", "cell_edges", "class_map", "common_range", "contour_map", "MapStyle",
     "eigenvalue_panel", "figure", "fmt", "impact_handles", "impact_phase_panel", "metres",
-    "no_impact_handle", "panel_label", "save", "shared_colorbar", "stable_edge", "stable_edge_handle", "hatch_cells", "th_title",
+    "no_impact_handle", "panel_label", "save", "shared_colorbar", "stable_edge", "stable_edge_handle", "hatch_cells", "hatch_region", "th_title",
     "time_history", "twin_measures",
     # impacts
     "impact_direction", "point_impacts", "pre_impact_velocities",

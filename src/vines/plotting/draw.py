@@ -346,6 +346,18 @@ def hatch_cells(ax, x, y, mask, hatch="////", color="white"):
                                fill=False, hatch=hatch, edgecolor=color, lw=0))
 
 
+def hatch_region(ax, x, y, mask, hatch="////", color="white"):
+    """Hatch where ``mask`` (len(y), len(x)) on a fine raster is True, as one artist (its
+    edge follows the raster; ``hatch_cells`` draws one patch per cell of a coarse grid)."""
+    if not np.any(mask):
+        return None
+    cs = ax.contourf(x, y, np.asarray(mask, float), levels=[0.5, 1.5], colors="none",
+                     hatches=[hatch])
+    cs.set_hatchcolor(color)
+    cs.set_linewidth(0)
+    return cs
+
+
 def no_impact_handle(what="no impact (the LO never reaches a wall)"):
     """Legend patch of the no-impact class of KE-ratio maps."""
     return Patch(facecolor=palette.NO_IMPACT, edgecolor="0.3", lw=0.5, label=what)

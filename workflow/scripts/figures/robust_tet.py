@@ -54,19 +54,23 @@ def mark_changed(ax, rob):
     return int(changed.sum())
 
 
-def census_cells(fig, ax, grid, style, smap, F):
+def census_cells(fig, ax, grid, style, wide, smap, F):
     """A census row (d-l): one cell per census point, edges half-way between points (the
-    panel shows the whole cells: each is the census at its centre); the stable 1:1 share
-    (``smap`` given) finer, only where Fig. 16's map has a stable 1:1 orbit
-    (``P.stable_orbit_share``)."""
+    panel shows the whole cells: each is the census at its centre), hatched where ``wide``
+    (the Wilson interval); the stable 1:1 share (``smap`` given) finer, only where Fig. 16's
+    map has a stable 1:1 orbit (``P.stable_orbit_share``), hatched where it is drawn."""
     eta, W, z = grid
-    if smap is not None:
+    if smap is None:
+        cs = P.contour_map(fig, ax, eta, W, z, style)
+        P.hatch_cells(ax, eta, W, wide)
+    else:
         eta_r, W_r, z_r, kept = P.stable_orbit_share(eta, W, z, smap)
         print(f"F = {F}: stable 1:1 share drawn where Fig. 16 has a stable 1:1 orbit; "
               f"{kept} cells with a share > 0 and no stable point kept whole")
         cs = P.contour_map(fig, ax, eta_r, W_r, z_r, style)
-    else:
-        cs = P.contour_map(fig, ax, eta, W, z, style)
+        i_W = np.searchsorted(P.cell_edges(W)[1:-1], W_r)
+        i_eta = np.searchsorted(P.cell_edges(eta)[1:-1], eta_r)
+        P.hatch_region(ax, eta_r, W_r, wide[np.ix_(i_W, i_eta)] & (z_r > 0))
     for v, set_lim in ((eta, ax.set_xlim), (W, ax.set_ylim)):     # eta, W > 0
         lo, hi = P.cell_edges(v)[[0, -1]]
         set_lim(max(lo, 0.0), hi)
@@ -100,9 +104,9 @@ def main(sm):
                 ax.set_xlim(eta.min(), eta.max())
                 ax.set_ylim(W.min(), W.max())
             else:
-                mappables[i] = census_cells(fig, ax, (eta, W, z), style, smap if i == 2 else None,
-                                            F)
-                P.hatch_cells(ax, eta, W, wilson_width(z, n_states) > WIDE_INTERVAL)
+                wide = wilson_width(z, n_states) > WIDE_INTERVAL
+                mappables[i] = census_cells(fig, ax, (eta, W, z), style, wide,
+                                            smap if i == 2 else None, F)
             if i == 3:
                 print(f"F = {F}: efficient fraction at t_max differs at "
                       f"{mark_changed(ax, rob)} of {z.size} points")
