@@ -68,9 +68,10 @@ def census_cells(fig, ax, grid, style, wide, smap, F):
         print(f"F = {F}: stable 1:1 share drawn where Fig. 16 has a stable 1:1 orbit; "
               f"{kept} cells with a share > 0 and no stable point kept whole")
         cs = P.contour_map(fig, ax, eta_r, W_r, z_r, style)
-        i_W = np.searchsorted(P.cell_edges(W)[1:-1], W_r)
-        i_eta = np.searchsorted(P.cell_edges(eta)[1:-1], eta_r)
-        P.hatch_region(ax, eta_r, W_r, wide[np.ix_(i_W, i_eta)] & (z_r > 0))
+        cell = np.ix_(np.searchsorted(P.cell_edges(W)[1:-1], W_r),
+                      np.searchsorted(P.cell_edges(eta)[1:-1], eta_r))
+        # a measured share > 0: hatched where drawn; a measured 0: the whole cell, as (d-f)
+        P.hatch_region(ax, eta_r, W_r, wide[cell] & ((z_r > 0) | (z[cell] == 0)))
     for v, set_lim in ((eta, ax.set_xlim), (W, ax.set_ylim)):     # eta, W > 0
         lo, hi = P.cell_edges(v)[[0, -1]]
         set_lim(max(lo, 0.0), hi)
