@@ -201,3 +201,43 @@ def test_map_solve_stores_the_asymmetric_branch():
     ref = [o for o in find_1to1(0.12, 1.1, 0.3077) if not o.symmetric and o.stable][0]
     assert abs(ref.lambda_max - 0.821) < 5e-4        # the 3 decimals of the issue's value
     assert abs(np.interp(0.12, *zip(*sorted(zip(eta, lam, strict=True)), strict=True)) - ref.lambda_max) < 5e-3
+
+
+def test_map_solve_switches_beyond_a_non_admissible_start():
+    """Fig 6 at F = 0.1: the symmetric orbit is not admissible at the branch's start (it
+    becomes so at eta ~ 0.0185), yet the asymmetric branch born at the symmetry-breaking
+    point eta ~ 0.0789 is stored: the switching run starts at the first admissible point.
+    Oracle: the map solver's asymmetric orbit at eta = 0.077 (admissible, lambda_max 2.43)."""
+    from vines.data.builders import ragged_rows
+    from vines.pipeline import stages
+    spec = {"param": "eta", "start": 0.01, "stop": 0.1, "step": 0.01,
+            "fixed": {"omega": 1.0, "F": 0.1}}
+    ds = stages.map_solve(spec, model={"r": R_DEFAULT, "d": D_DEFAULT}, code="t", title="t")
+    assert not bool(ragged_rows(ds, "admissible")[0][0])
+    assert ds["family"].values.tolist() == ["symmetric", "asymmetric"]
+    sb = ds["event_at"].values[ds["event_type"].values == "symmetry-breaking"]
+    assert abs(sb[0] - float(ds["born_at"][1])) < stages.BRANCH_EVENT_TOL
+    eta, lam = ragged_rows(ds, "eta")[1], ragged_rows(ds, "lambda_max")[1]
+    near = np.abs(eta - 0.077) < 2e-3
+    ref = [o for o in find_1to1(0.077, 1.0, 0.1) if not o.symmetric and o.admissible]
+    assert ref and near.any()
+    order = np.argsort(eta[near])
+    # linear interpolation between points <= 4e-5 apart in eta, on a stretch where
+    # lambda_max falls from 2.4 to 1 over 2e-3 (measured error 7e-6): 1e-3 bounds it
+    assert abs(np.interp(0.077, eta[near][order], lam[near][order]) - ref[0].lambda_max) < 1e-3
+
+
+def test_switch_start_is_the_first_admissible_point():
+    """The switching run keeps the spec's start (and the preferred orbit there) when the
+    branch starts admissible or never is, else starts at its first admissible point."""
+    from types import SimpleNamespace
+
+    from vines.pipeline.stages import switch_start
+
+    def branch(flags):
+        return SimpleNamespace(admissible=np.array(flags), values=np.arange(len(flags)) + 0.5,
+                               orbits=[f"orbit{i}" for i in range(len(flags))])
+    assert switch_start(branch([True, False]), 0.25) == (0.25, None)
+    assert switch_start(branch([False, False]), 0.25) == (0.25, None)
+    assert switch_start(branch([]), 0.25) == (0.25, None)
+    assert switch_start(branch([False, False, True, True]), 0.25) == (2.5, "orbit2")

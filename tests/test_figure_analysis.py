@@ -170,3 +170,65 @@ def test_impact_phase_panel_counts_the_window(tmp_path):
     # wall +1 is the left end (w = +1), -1 the right end; (impacts, of them the same way)
     assert P.impact_phase_panel(axes[0, 0], ds, 0) == {"right end": (1, 0), "left end": (2, 1)}
     assert P.impact_phase_panel(axes[0, 1], ds, 1) == {"right end": (1, 1), "left end": (1, 1)}
+
+
+def test_stable_orbit_share_is_drawn_only_where_the_orbit_is_stable():
+    """The robust-TET map's census row at omega = 0.5 samples the narrow stable tongue
+    (|lambda_max| 0.945 at 0.5, 1.86 at 0.5067: edge at 0.500403); drawn finer than the
+    census grid, its value covers the tongue and not the half cell above it, where no stable
+    1:1 orbit exists and the fraction is 0."""
+    m = _map([1.5, 0.945, 1.86, 1.9, 1.9], [0.46, 0.5, 0.5067, 0.55, 0.6],
+             eta=(0.05, 0.1, 0.15, 0.2))
+    frac = np.array([[0.8, 0.6], [0.0, 0.0]])             # (omega 0.5, 0.55) x (eta 0.1, 0.15)
+    er, wr, zr, kept = P.stable_orbit_share([0.1, 0.15], [0.5, 0.55], frac, m, per_cell=40)
+    assert kept == 0
+    assert er.min() > 0.075 and er.max() < 0.175 and wr.min() > 0.475 and wr.max() < 0.575
+    edge = 0.5 + 0.0067 * 0.055 / 0.915
+    # the lower edge: 1.5 at 0.46 -> 0.945 at 0.5 crosses 1 at 0.46 + 0.04 * 0.5 / 0.555
+    low = 0.46 + 0.04 * 0.5 / 0.555
+    inside = (wr > low) & (wr < edge)
+    assert inside.any() and (~inside & (wr < 0.525)).any()
+    col = er < 0.125                                       # the eta = 0.1 cells
+    assert np.all(zr[inside][:, col] == 0.8) and np.all(zr[inside][:, ~col] == 0.6)
+    assert np.all(zr[~inside] == 0.0)
+    # a positive fraction where the map has no stable point anywhere in the cell is kept
+    frac2 = np.array([[0.8, 0.6], [0.3, 0.0]])
+    _, wr2, zr2, kept2 = P.stable_orbit_share([0.1, 0.15], [0.5, 0.55], frac2, m, per_cell=40)
+    assert kept2 == 1
+    upper = wr2 > 0.525
+    assert np.all(zr2[upper][:, col] == 0.3) and np.all(zr2[upper][:, ~col] == 0.0)
+    # a census point on the map's edge (eta 0.2): its cell's outer half (to 0.225) takes
+    # the edge's class, not the census value; a point off the map (0.25) is kept
+    er3, wr3, zr3, _ = P.stable_orbit_share([0.15, 0.2, 0.25], [0.5, 0.55],
+                                            np.array([[0.5] * 3, [0.0] * 3]), m, per_cell=40)
+    beyond = (er3 > 0.2) & (er3 < 0.225)
+    assert np.all(zr3[~inside][:, beyond] == 0.0) and np.all(zr3[inside][:, beyond] == 0.5)
+    assert np.all(zr3[:, er3 > 0.225] == np.repeat([0.5, 0.0], 40)[:, None])
+
+
+# ------------------------------------------------------------------ zoom insets (Figs 6, 15)
+
+def _panel(y_top):
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots()
+    x = np.linspace(0.0, 1.0, 400)
+    ax.scatter(np.repeat(x, 20), np.tile(np.linspace(-2.0, y_top, 20), 400), s=1)
+    ax.set_xlim(0.0, 1.0)
+    ax.set_ylim(-2.5, 2.5)
+    return fig, ax
+
+
+def test_inset_covers_no_drawn_point():
+    """An inset goes where nothing is drawn (with room for its tick labels); when the data
+    fill the panel, the panel gains headroom above them for it and the data stay whole."""
+    import matplotlib.pyplot as plt
+
+    from vines.plotting import bifurcation as B
+    for y_top in (0.0, 2.4):                  # room in the upper half / none anywhere
+        fig, ax = _panel(y_top)
+        box = B._inset_box(ax)
+        assert B._covered(B._drawn_points(ax), box) == 0
+        lo, hi = ax.get_ylim()
+        assert lo == -2.5 and (hi == 2.5) == (y_top == 0.0)
+        assert len(B._drawn_points(ax)) == 8000           # every point still inside
+        plt.close(fig)

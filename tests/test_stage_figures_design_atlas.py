@@ -113,3 +113,73 @@ def test_atlas_stage_same_numbers_whatever_workers_and_rows(n_workers, rows):
     for k in ("found", "admissible", "stable", "lambda_max"):
         np.testing.assert_array_equal(one[k].values, other[k].values)
     assert one["stable"].values.any()      # the test compares something
+
+
+def test_atlas_legend_lists_exactly_the_classes_drawn_in_their_colours():
+    g = {k: A.FIRST_GROUP + A.GROUPS.index(k) for k in A.GROUPS}
+    sim = {lab: c for c, (lab, _) in A.sim_classes().items()}
+    drawn_atlas = np.array([g["1:1 asymmetric"], A.NONE_STABLE, g["2:2"]])
+    drawn_sim = np.array([sim["1:1"], sim["chatter"], sim["3:2"]])
+    entries = dict(A.legend_entries(drawn_atlas, drawn_sim))
+    atlas_col = {lab: col for lab, col in A.atlas_classes().values()}
+    assert entries == {
+        "1:1 symmetric (simulation: 1:1 of either symmetry)": atlas_col["1:1 symmetric"],
+        "1:1 asymmetric": atlas_col["1:1 asymmetric"], "2:2": atlas_col["2:2"],
+        "3:2": atlas_col["3:2"],
+        "atlas: orbits found, none stable and admissible": atlas_col[
+            "orbits found, none stable and admissible"],
+        "simulation: chatter": A.sim_classes()[sim["chatter"]][1]}
+    # a simulated family is drawn in its group's colour, a simulated 1:1 in the symmetric's
+    for lab in ("2:2", "2:1", "3:2", "3:3", "period-2"):
+        assert A.sim_classes()[sim[lab]][1] == atlas_col[lab]
+    assert A.sim_classes()[sim["1:1"]][1] == atlas_col["1:1 symmetric"]
+
+
+#: Machado, Oliveira & Fernandes (2009) dichromacy matrices (severity 1) on linear sRGB
+CVD = {"protan": [[0.152286, 1.052583, -0.204868], [0.114503, 0.786281, 0.099216],
+                  [-0.003882, -0.048116, 1.051998]],
+       "deutan": [[0.367322, 0.860646, -0.227968], [0.280085, 0.672501, 0.047413],
+                  [-0.011820, 0.042940, 0.968881]],
+       "tritan": [[1.255528, -0.076749, -0.178779], [-0.078411, 0.930809, 0.147602],
+                  [0.004733, 0.691367, 0.303900]]}
+
+
+def _lab(colour, vision):
+    """CIELAB (D65) of a matplotlib colour as seen with ``vision`` (normal or a CVD key)."""
+    from matplotlib.colors import to_rgb
+    c = np.asarray(to_rgb(colour))
+    lin = np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
+    if vision != "normal":
+        lin = np.clip(np.asarray(CVD[vision]) @ lin, 0, 1)
+    xyz = np.array([[0.4124, 0.3576, 0.1805], [0.2126, 0.7152, 0.0722],
+                    [0.0193, 0.1192, 0.9505]]) @ lin / np.array([0.95047, 1.0, 1.08883])
+    f = np.where(xyz > (6 / 29) ** 3, np.cbrt(xyz), xyz / (3 * (6 / 29) ** 2) + 4 / 29)
+    return np.array([116 * f[1] - 16, 500 * (f[0] - f[1]), 200 * (f[1] - f[2])])
+
+
+def _min_distance(colours):
+    import itertools
+    return min(float(np.linalg.norm(_lab(a, v) - _lab(b, v)))
+               for a, b in itertools.combinations(colours, 2)
+               for v in ("normal", *CVD))
+
+
+#: smallest CIE76 colour difference asked of two classes of one figure: a pure red and green
+#: (the classic deutan confusion) come out at 12 under simulated deuteranopia
+MIN_DELTA_E = 15.0
+
+
+def test_atlas_colours_stay_apart_for_colour_blind_readers():
+    """Every two classes of the atlas figure (both panels share one legend) differ by at
+    least MIN_DELTA_E in normal vision and under the three simulated dichromacies, except
+    the two light greys of 'nothing' (no orbit found / no impact), which never share a
+    panel and differ by lightness; so do the regime colours of the regime figures."""
+    assert _min_distance(["#FF0000", "#00A000"]) < MIN_DELTA_E        # the check can fail
+    from vines.plotting import palette
+    atlas = {c for lab, c in A.atlas_classes().values()}
+    sim = {c for lab, c in A.sim_classes().values() if lab != "no-impact"}
+    assert _min_distance(sorted(atlas | sim)) >= MIN_DELTA_E
+    assert _min_distance([c for _, c in palette.REGIMES_SPLIT.values()]) >= MIN_DELTA_E
+    # the black 1:1 asymmetric class and chatter are far apart (chatter was near-black)
+    black, chatter = palette.FAMILY_GROUPS["1:1 asymmetric"], palette.SIM_OTHER["chatter"]
+    assert _min_distance([black, chatter]) > 40

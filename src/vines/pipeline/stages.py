@@ -218,6 +218,17 @@ def lyapunov(spec: dict, sweep: dict, *, model: dict, code: str, title: str,
 BRANCH_EVENT_TOL = 1e-12
 
 
+def switch_start(branch, start: float):
+    """Parameter value and orbit where the switching run along ``branch`` (a natural run
+    from ``start``) starts: ``(start, None)`` (the preferred orbit there) if the branch's
+    first point is admissible or none is, else its first admissible point and orbit."""
+    admissible = np.asarray(branch.admissible, dtype=bool)
+    if admissible.size == 0 or admissible[0] or not admissible.any():
+        return start, None
+    first = int(np.argmax(admissible))
+    return float(branch.values[first]), branch.orbits[first]
+
+
 def map_solve(spec: dict, *, model: dict, code: str, title: str):
     """Dataset of one 1:1 branch continued in ``spec['param']`` with stability and events,
     and (``spec['switch']``, default true) the asymmetric branches born at its
@@ -225,15 +236,19 @@ def map_solve(spec: dict, *, model: dict, code: str, title: str):
 
     The branch itself is continued in natural-parameter steps over the whole interval
     [start, stop], as the paper draws it (admissible or not at every step); the asymmetric
-    branches are those a pseudo-arclength run of the same branch switches onto (that run
-    may end before ``stop``, e.g. after a long non-admissible stretch)."""
+    branches are those a pseudo-arclength run of the same branch switches onto. That run
+    starts at the branch's first admissible point (a run started on a non-admissible
+    stretch stops there and never meets the symmetry-breaking points beyond it) and may end
+    before ``stop``, e.g. after a long non-admissible stretch."""
     from ..orbits.continuation import continue_branch
     fixed = {k: float(v) for k, v in spec["fixed"].items()}
     args = (spec["param"], spec["start"], spec["stop"], spec["step"], fixed)
     br = continue_branch(*args, r=model["r"], d=model["d"], method="natural",
                          event_tol=BRANCH_EVENT_TOL)
     if bool(spec.get("switch", True)):
-        br.switched = continue_branch(*args, r=model["r"], d=model["d"], method="arclength",
+        start, orbit = switch_start(br, spec["start"])
+        br.switched = continue_branch(spec["param"], start, *args[2:], orbit=orbit,
+                                      r=model["r"], d=model["d"], method="arclength",
                                       switch=True).switched
     attrs = provenance_attrs(title=title, config_subset={"spec": spec, "model": model},
                              settings=model, code_version=code)

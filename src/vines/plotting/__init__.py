@@ -37,8 +37,10 @@ from .draw import (
     CLASSES,
     LABELS,
     SYMBOLS,
+    MapStyle,
     bifurcation_dots,
     branch_lines,
+    cell_edges,
     class_handles,
     class_map,
     common_range,
@@ -47,6 +49,7 @@ from .draw import (
     figure,
     fmt,
     hatch_cells,
+    hatch_region,
     impact_handles,
     impact_phase_panel,
     metres,
@@ -62,7 +65,13 @@ from .draw import (
 )
 from .impacts import impact_direction, point_impacts, pre_impact_velocities
 from .layouts import ZOOM_PAD, time_history_figure, zoom_figure, zoom_legend, zoom_range
-from .stable_region import reaches_1to1, region_counts, stability_margin, stable_at
+from .stable_region import (
+    reaches_1to1,
+    region_counts,
+    stability_margin,
+    stable_at,
+    stable_orbit_share,
+)
 from .sweep_regimes import (
     REGIME_ASYM,
     REGIME_CHAOTIC,
@@ -81,9 +90,9 @@ __all__ = [
     "stability", "sweep", "sweep_fixed", "sweep_points", "timehistory",
     # draw
     "C_BALL", "C_BRANCH", "C_LO", "CLASSES", "LABELS", "SYMBOLS", "bifurcation_dots",
-    "branch_lines", "class_handles", "class_map", "common_range", "contour_map",
+    "branch_lines", "class_handles", "cell_edges", "class_map", "common_range", "contour_map", "MapStyle",
     "eigenvalue_panel", "figure", "fmt", "impact_handles", "impact_phase_panel", "metres",
-    "no_impact_handle", "panel_label", "save", "shared_colorbar", "stable_edge", "stable_edge_handle", "hatch_cells", "th_title",
+    "no_impact_handle", "panel_label", "save", "shared_colorbar", "stable_edge", "stable_edge_handle", "hatch_cells", "hatch_region", "th_title",
     "time_history", "twin_measures",
     # impacts
     "impact_direction", "point_impacts", "pre_impact_velocities",
@@ -92,7 +101,7 @@ __all__ = [
     # layouts
     "ZOOM_PAD", "time_history_figure", "zoom_figure", "zoom_legend", "zoom_range",
     # stable_region
-    "reaches_1to1", "region_counts", "stability_margin", "stable_at",
+    "reaches_1to1", "region_counts", "stability_margin", "stable_at", "stable_orbit_share",
     # sweep_regimes
     "REGIME_ASYM", "REGIME_CHAOTIC", "REGIME_QUASIPERIODIC", "REGIME_SYM", "REGIMES", "point_regime", "regime_grid", "sweep_regimes",
 ]

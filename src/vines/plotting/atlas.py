@@ -77,6 +77,30 @@ def sim_classes() -> dict:
     return {i: (lab, colours[lab]) for i, lab in enumerate(SIM_LABELS)}
 
 
+def legend_entries(atlas_drawn, sim_drawn) -> list[tuple[str, str]]:
+    """(label, colour) of every class drawn, as drawn: the family groups found in either
+    panel (a simulated family in its group's colour, a simulated 1:1 of either symmetry in
+    the symmetric one's), then the atlas-only classes (codes ``atlas_drawn`` of
+    ``atlas_classes``) and the simulation-only regimes (codes ``sim_drawn`` of
+    ``sim_classes``)."""
+    atlas_cls, sim_cls = atlas_classes(), sim_classes()
+    atlas_drawn = {int(c) for c in np.unique(atlas_drawn)}
+    sim_labels = {sim_cls[int(c)][0] for c in np.unique(sim_drawn)}
+    groups, atlas_only = [], []
+    for code, (label, colour) in atlas_cls.items():
+        simulated = ("1:1" if label == "1:1 symmetric" else label) in sim_labels
+        if code < FIRST_GROUP:
+            if code in atlas_drawn:
+                atlas_only.append((f"atlas: {label}", colour))
+        elif code in atlas_drawn or simulated:
+            if label == "1:1 symmetric" and simulated:
+                label += " (simulation: 1:1 of either symmetry)"
+            groups.append((label, colour))
+    sim_only = [(f"simulation: {lab}", col) for lab, col in sim_cls.values()
+                if lab in palette.SIM_OTHER and lab in sim_labels]
+    return groups + atlas_only + sim_only
+
+
 def _sim_label(regime: str) -> str:
     if regime in SIM_LABELS:
         return regime

@@ -93,15 +93,16 @@ def draw_switched(fig, branches, sweep=None, outer_dim=None):
 INSET_BELOW = 0.15
 
 
-#: candidate inset boxes (axes fraction: x0, y0, width, height), first the upper right
-INSET_BOXES = ([0.58, 0.56, 0.4, 0.4], [0.06, 0.56, 0.4, 0.4], [0.58, 0.06, 0.4, 0.4],
-               [0.06, 0.06, 0.4, 0.4])
+#: inset size (axes fraction: width, height) and the margins kept free around it: its tick
+#: labels below and left
+INSET_SIZE = (0.36, 0.34)
+INSET_MARGIN = {"left": 0.07, "right": 0.02, "below": 0.08, "above": 0.02}
 
 
-def _emptiest_corner(ax):
-    """The box of ``INSET_BOXES`` that covers the fewest drawn points of ``ax``."""
+def _drawn_points(ax) -> np.ndarray:
+    """Every drawn point of ``ax`` in axes fraction (lines sampled along their segments)."""
     pts = [np.asarray(c.get_offsets(), float).reshape(-1, 2) for c in ax.collections]
-    for ln in ax.lines:          # lines sampled along their segments, not only at vertices
+    for ln in ax.lines:
         xy = np.asarray(ln.get_xydata(), float).reshape(-1, 2)
         if len(xy) > 1:
             t = np.linspace(0.0, 1.0, 20)[:, None, None]
@@ -110,11 +111,36 @@ def _emptiest_corner(ax):
     xy = np.concatenate(pts or [np.empty((0, 2))])
     xy = xy[np.all(np.isfinite(xy), axis=1)]
     frac = (ax.transData + ax.transAxes.inverted()).transform(xy) if xy.size else xy
+    return frac[(frac[:, 0] >= 0) & (frac[:, 0] <= 1) & (frac[:, 1] >= 0) & (frac[:, 1] <= 1)]
 
-    def covered(b):
-        return int(np.sum((frac[:, 0] >= b[0] - 0.03) & (frac[:, 0] <= b[0] + b[2] + 0.03)
-                          & (frac[:, 1] >= b[1] - 0.03) & (frac[:, 1] <= b[1] + b[3] + 0.03)))
-    return min(INSET_BOXES, key=covered)
+
+def _covered(frac, box) -> int:
+    """Drawn points (axes fraction) inside ``box`` with its margins."""
+    m = INSET_MARGIN
+    return int(np.sum((frac[:, 0] >= box[0] - m["left"]) & (frac[:, 0] <= box[0] + box[2] + m["right"])
+                      & (frac[:, 1] >= box[1] - m["below"])
+                      & (frac[:, 1] <= box[1] + box[3] + m["above"])))
+
+
+def _inset_box(ax):
+    """An inset box (axes fraction) that covers no drawn point of ``ax``: the first empty
+    one on a grid of positions, upper right first; when there is none, the panel's y range
+    is extended upwards until a band at the top holds the inset (the data keep their
+    place, the panel gains headroom)."""
+    w, h = INSET_SIZE
+    m = INSET_MARGIN
+    xs = np.linspace(1 - m["right"] - w, m["left"], 13)
+    ys = np.linspace(1 - m["above"] - h, m["below"], 9)
+    frac = _drawn_points(ax)
+    for y0 in ys:
+        for x0 in xs:
+            if _covered(frac, [x0, y0, w, h]) == 0:
+                return [float(x0), float(y0), w, h]
+    lo, hi = ax.get_ylim()
+    top = lo + (hi - lo) * float(frac[:, 1].max()) if frac.size else lo
+    band = h + m["above"] + m["below"] + 0.02        # + a gap between data and labels
+    ax.set_ylim(lo, (top - band * lo) / (1 - band))
+    return [float(1 - m["right"] - w), float(1 - m["above"] - h), w, h]
 
 
 def _inset(ax, br, subs, sweep, outer_dim):
@@ -128,7 +154,7 @@ def _inset(ax, br, subs, sweep, outer_dim):
         return
     pad = max(0.5 * (b - a), 1e-3 * (hi - lo))
     a, b = a - pad, b + pad
-    ins = ax.inset_axes(_emptiest_corner(ax))
+    ins = ax.inset_axes(_inset_box(ax))
     ys = []
     if sweep is not None:
         from .checks import sweep_points
@@ -151,7 +177,6 @@ def _inset(ax, br, subs, sweep, outer_dim):
         top = float(np.max(np.abs(y)))
         ins.set_ylim(-1.1 * top, 1.1 * top)
     ins.tick_params(labelsize=6)
-    ins.set_title("asymmetric branches (zoom)", fontsize=6.5)
     ax.indicate_inset_zoom(ins, edgecolor="0.3")
 
 

@@ -3,6 +3,7 @@ from __future__ import annotations
 
 import os
 import tempfile
+from dataclasses import dataclass
 from pathlib import Path
 
 import matplotlib
@@ -235,16 +236,30 @@ def twin_measures(ax, x, ke, xmax_m, xlabel):
     return ax2
 
 
-def contour_map(fig, ax, x, y, z, *, label, vmin=None, vmax=None, log=False, cells=False,
-                colorbar=True, no_impact=None):
-    """Filled contour (20 levels of the configured colour map, ``palette.colormap``) with a
-    colour bar; needs at least 2 x 2 points. ``log``: levels equally spaced in log10(z)
-    (z > 0), so small values keep their detail next to a large resonance peak. ``cells``:
-    one flat cell per grid point in the same 20 colours instead of contours (coarse grids,
-    where contouring would invent shapes). ``colorbar=False``: none here (panels comparing
-    one quantity share one, ``shared_colorbar``). ``no_impact``: mask of the points without
-    impacts, not drawn as data but as the grey class ``palette.NO_IMPACT`` (around them
-    with contours). NaN points are left blank (no data). Returns the mappable."""
+@dataclass(frozen=True)
+class MapStyle:
+    """How ``contour_map`` draws one quantity: ``label`` of its colour bar (symbol and
+    unit), colour range ``vmin``..``vmax`` (None: the data's), ``log``: levels equally
+    spaced in log10 (values > 0, so small values keep their detail next to a large
+    resonance peak), ``cells``: one flat cell per grid point in the same 20 colours instead
+    of contours (coarse grids, where contouring would invent shapes), ``colorbar=False``:
+    none on this panel (panels comparing one quantity share one, ``shared_colorbar``)."""
+
+    label: str
+    vmin: float | None = None
+    vmax: float | None = None
+    log: bool = False
+    cells: bool = False
+    colorbar: bool = True
+
+
+def contour_map(fig, ax, x, y, z, style: MapStyle, *, no_impact=None):
+    """Filled contour (20 levels of the configured colour map, ``palette.colormap``) of
+    ``z`` (len(y), len(x)) drawn as ``style`` says; needs at least 2 x 2 points.
+    ``no_impact``: mask of the points without impacts, not drawn as data but as the grey
+    class ``palette.NO_IMPACT`` (around them with contours). NaN points are left blank (no
+    data). Returns the mappable."""
+    label, vmin, vmax, log = style.label, style.vmin, style.vmax, style.log
     if len(x) < 2 or len(y) < 2:
         raise FigureInputError(f"a contour map of {label} needs at least 2 x 2 grid points, "
                                f"got {len(x)} x {len(y)}")
@@ -263,14 +278,14 @@ def contour_map(fig, ax, x, y, z, *, label, vmin=None, vmax=None, log=False, cel
         levels, norm, ticks = np.geomspace(vmin, vmax, 21), LogNorm(vmin, vmax), None
     else:
         levels, norm, ticks = np.linspace(vmin, vmax, 21), None, MaxNLocator(6)
-    if cells:
+    if style.cells:
         cs = ax.pcolormesh(x, y, z, shading="nearest", cmap=palette.colormap(20),
                            norm=norm or BoundaryNorm(levels, 20), rasterized=True)
     else:
         cs = ax.contourf(x, y, z, levels=levels, cmap=palette.colormap(), norm=norm,
                          extend="neither")
     cs.vines_scale = (label, log, vmin, vmax, ticks)
-    if colorbar:
+    if style.colorbar:
         shared_colorbar(fig, cs, ax)
     return cs
 
@@ -313,19 +328,34 @@ def stable_edge_handle(label=r"edge of the stable 1:1 region ($|\lambda_{\max}| 
     return Line2D([], [], label=label, path_effects=_EDGE_HALO, **STABLE_EDGE)
 
 
+def cell_edges(v) -> np.ndarray:
+    """Edges of the cells of the grid points ``v`` (at least 2, increasing): half-way
+    between points, the end cells symmetric about their point."""
+    v = np.asarray(v, float)
+    mid = (v[1:] + v[:-1]) / 2
+    return np.concatenate([[2 * v[0] - mid[0]], mid, [2 * v[-1] - mid[-1]]])
+
+
 def hatch_cells(ax, x, y, mask, hatch="////", color="white"):
     """Hatch the cells (one per grid point, edges half-way between points) where ``mask``
     (len(y), len(x)) is True."""
     from matplotlib.patches import Rectangle
-
-    def edges(v):
-        v = np.asarray(v, float)
-        mid = (v[1:] + v[:-1]) / 2
-        return np.concatenate([[2 * v[0] - mid[0]], mid, [2 * v[-1] - mid[-1]]])
-    ex, ey = edges(x), edges(y)
+    ex, ey = cell_edges(x), cell_edges(y)
     for j, i in zip(*np.nonzero(mask), strict=True):
         ax.add_patch(Rectangle((ex[i], ey[j]), ex[i + 1] - ex[i], ey[j + 1] - ey[j],
                                fill=False, hatch=hatch, edgecolor=color, lw=0))
+
+
+def hatch_region(ax, x, y, mask, hatch="////", color="white"):
+    """Hatch where ``mask`` (len(y), len(x)) on a fine raster is True, as one artist (its
+    edge follows the raster; ``hatch_cells`` draws one patch per cell of a coarse grid)."""
+    if not np.any(mask):
+        return None
+    cs = ax.contourf(x, y, np.asarray(mask, float), levels=[0.5, 1.5], colors="none",
+                     hatches=[hatch])
+    cs.set_hatchcolor(color)
+    cs.set_linewidth(0)
+    return cs
 
 
 def no_impact_handle(what="no impact (the LO never reaches a wall)"):

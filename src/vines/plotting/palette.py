@@ -4,7 +4,10 @@ colours, the greys of "no impact" and "no data", and a categorical list for figu
 tell items apart (attractors, points of a study).
 
 Categorical colours are the Okabe-Ito set (distinct for the common colour-vision
-deficiencies, and apart in grey by lightness where two of them meet on a map). Colour map
+deficiencies, and apart in grey by lightness where two of them meet on a map), and for the
+orbit atlas, which tells more classes apart than that set has colours, three of Paul Tol's
+"muted" scheme (tests/test_stage_figures_design_atlas.py checks every pair of the atlas
+figure's colours under simulated protan-, deutan- and tritanopia). Colour map
 names appear here only: figure code asks ``colormap()`` for the configured one.
 """
 from __future__ import annotations
@@ -83,14 +86,19 @@ def sequence(n: int) -> list:
     return [cmap(0.85 * k / max(1, n - 1)) for k in range(n)]
 
 
+#: three colours of Paul Tol's colour-blind-safe "muted" scheme, for the atlas's periodic
+#: families beyond the Okabe-Ito colours the regimes take
+TOL_MUTED = {"green": "#117733", "indigo": "#332288", "purple": "#AA4499"}
+
 #: orbit atlas: groups of periodic families (the paper's wording, 1:1 split by symmetry)
-#: -> colour; the 1:1 colours are those of the stability classes (Fig 16)
-FAMILY_GROUPS = {"1:1 symmetric": OKABE_ITO["orange"], "1:1 asymmetric": OKABE_ITO["black"],
-                 "2:2": OKABE_ITO["bluish green"], "2:1": OKABE_ITO["sky blue"],
-                 "3:2": OKABE_ITO["reddish purple"], "3:3": OKABE_ITO["yellow"],
-                 "period-2": OKABE_ITO["vermillion"]}
+#: -> colour; the 1:1 colours are those of the regimes and stability classes (Fig 16), the
+#: other families take colours no regime of ``REGIMES`` uses (the simulation panel beside
+#: the atlas draws the regimes in their ``REGIMES`` colours)
+FAMILY_GROUPS = {"1:1 symmetric": REGIMES[1][1], "1:1 asymmetric": REGIMES[2][1],
+                 "2:2": TOL_MUTED["green"], "2:1": TOL_MUTED["indigo"], "3:2": TOL_MUTED["purple"],
+                 "3:3": OKABE_ITO["yellow"], "period-2": OKABE_ITO["vermillion"]}
 #: atlas points without a stable admissible family: none found / only unstable found
-ATLAS_NONE_FOUND, ATLAS_NONE_STABLE = "white", "0.6"
-#: simulated regimes beside the atlas that no atlas family describes
-SIM_OTHER = {"no-impact": "0.85", "other periodic": OKABE_ITO["blue"],
-             "irregular": "0.45", "chatter": "0.2"}
+ATLAS_NONE_FOUND, ATLAS_NONE_STABLE = "white", "0.35"
+#: simulated regimes beside the atlas that no atlas family describes: the regime colours
+SIM_OTHER = {"no-impact": REGIMES[0][1], "other periodic": REGIMES[3][1],
+             "irregular": REGIMES[4][1], "chatter": REGIMES[5][1]}

@@ -36,6 +36,46 @@ def stable_at(smap: xr.Dataset, eta, omega) -> np.ndarray:
     return f(np.stack([W, E], axis=-1)) > 0
 
 
+def _subdivide(v, per_cell: int) -> np.ndarray:
+    """``per_cell`` points to a cell of the grid ``v`` (centres of an even subdivision of
+    each cell, ``draw.cell_edges``)."""
+    from .draw import cell_edges
+    e = cell_edges(v)
+    k = (np.arange(per_cell) + 0.5) / per_cell
+    return (e[:-1, None] + k[None, :] * np.diff(e)[:, None]).ravel()
+
+
+def stable_orbit_share(eta, omega, fraction, smap: xr.Dataset, per_cell: int = 16):
+    """The basin fraction of the stable 1:1 orbit, ``fraction`` (len(omega), len(eta); one
+    census per grid point), on a raster of ``per_cell`` x ``per_cell`` points per census
+    cell: the cell's value where the stability map ``smap`` has a stable 1:1 orbit
+    (``stable_at``), 0 where it has none (the orbit whose basin the census measured does
+    not exist there). A narrow stable tongue sampled by a grid row then shows as the tongue,
+    not as a band one cell high. Kept as measured: cells whose census point is outside
+    ``smap``'s range (the outer half of a cell beyond the map's edge takes the edge's
+    class), and whole cells whose fraction is > 0 although none of their raster points is
+    stable (data are never hidden). Returns (eta_r, omega_r, fraction_r, kept): the raster axes,
+    the values (len(omega_r), len(eta_r)) and the number of cells kept whole."""
+    frac = np.asarray(fraction, dtype=float)
+    eta, omega = np.asarray(eta, float), np.asarray(omega, float)
+    m = int(per_cell)
+    er, wr = _subdivide(eta, m), _subdivide(omega, m)
+    se, sw = smap["eta"].values, smap["omega"].values
+    # cells whose census point lies in the map's range; their outer halves beyond the map's
+    # edge take the class at the edge
+    covered_eta = np.repeat((eta >= se.min()) & (eta <= se.max()), m)
+    covered_W = np.repeat((omega >= sw.min()) & (omega <= sw.max()), m)
+    inside = covered_W[:, None] & covered_eta[None, :]
+    stable = stable_at(smap, np.clip(er, se.min(), se.max()), np.clip(wr, sw.min(), sw.max()))
+    cell_shape = (len(omega), m, len(eta), m)
+    no_stable = ~(inside & stable).reshape(cell_shape).any(axis=(1, 3))
+    keep_whole = (frac > 0) & no_stable
+    by_cell = np.repeat(np.repeat(frac, m, axis=0), m, axis=1)
+    keep = np.repeat(np.repeat(keep_whole, m, axis=0), m, axis=1)
+    values = np.where(inside & ~stable & ~keep, 0.0, by_cell)
+    return er, wr, values, int(keep_whole.sum())
+
+
 def reaches_1to1(grid: xr.Dataset) -> np.ndarray:
     """True where the grid's from-rest run settles on a 1:1 orbit (regime '1:1'), over
     (omega, eta) with the fixed F squeezed."""

@@ -1,10 +1,14 @@
 """Orbit atlas (beyond the paper; docs/bifurcation.md): per F a row, (left) the periodic
 family group that is stable and admissible at each (eta, W) (orbit_atlas atlas_*; the
-group of the smallest lambda_max where several are stable, hatched there), grey where only
+group of the smallest lambda_max where several are stable, hatched there), dark grey where only
 unstable or non-admissible orbits were found, white where no seed reached any family;
 (right) the regime the simulation from rest settles on (Fig 12's grid at the same F,
-grids.fig12_*) in the same colours. The atlas is a finite search: absent means that no
-seed reached a family, not that none exists."""
+grids.fig12_*): its periodic families in the atlas's colours, the other regimes in the
+regime colours of every regime figure (palette.REGIMES). One legend of exactly the
+classes drawn. The atlas is a finite search: absent means that no seed reached a family,
+not that none exists."""
+
+import numpy as np
 
 import vines.plotting as P
 from vines.pipeline.jobs import run_job
@@ -50,6 +54,16 @@ def report(ds, grid, regime):
               f"and admissible in the atlas at {agr['agree']}; others {agr['misses']}")
 
 
+def legend(fig, drawn_atlas, drawn_sim, any_coexist):
+    """One legend of what the panels draw, in their colours."""
+    handles = [P.Patch(facecolor=col, edgecolor="black", lw=0.5, label=lab)
+               for lab, col in A.legend_entries(drawn_atlas, drawn_sim)]
+    if any_coexist:
+        handles.append(P.Patch(facecolor="white", edgecolor="0.5", hatch="xx",
+                               label="atlas: >= 2 groups stable"))
+    fig.legend(handles=handles, loc="outside lower center", ncol=3, fontsize=7, frameon=False)
+
+
 def main(sm):
     P.configure(sm)
     atlases = sorted(map(A.atlas, sm.input.atlases), key=lambda d: float(d.attrs["F"]))
@@ -57,8 +71,10 @@ def main(sm):
              for g in (P.load(p) for p in sm.input.measures)}
     n = len(atlases)
     fig, axes = P.figure(n, 2, width=9.8, height=3.5 * n + 0.6)
+    drawn_atlas, drawn_sim, any_coexist = [], [], False
     for i, ds in enumerate(atlases):
-        atlas_panel(axes[i, 0], ds, 2 * i)
+        drawn_atlas.append(atlas_panel(axes[i, 0], ds, 2 * i).ravel())
+        any_coexist |= bool(A.atlas_codes(ds)[1].any())
         grid = grids.get(round(float(ds.attrs["F"]), 9))
         regime = None
         if grid is None:
@@ -67,15 +83,10 @@ def main(sm):
                             transform=axes[i, 1].transAxes)
         else:
             regime = sim_panel(axes[i, 1], grid, 2 * i + 1)
+            drawn_sim.append(A.sim_codes(regime).ravel())
         report(ds, grid, regime)
-    handles = P.class_handles(A.atlas_classes())
-    handles.append(P.Patch(facecolor="white", edgecolor="0.5", hatch="xx",
-                           label="atlas: >= 2 groups stable"))
-    sim = A.sim_classes()
-    handles += [P.Patch(facecolor=sim[c][1], edgecolor="black", label=f"simulation: {sim[c][0]}")
-                for c in sorted(sim) if sim[c][0] in ("1:1", "other periodic", "irregular",
-                                                       "chatter", "no-impact")]
-    fig.legend(handles=handles, loc="outside lower center", ncol=4, fontsize=7, frameon=False)
+    legend(fig, np.concatenate(drawn_atlas), np.concatenate(drawn_sim or [[]]).astype(int),
+           any_coexist)
     fig.suptitle("atlas: finite search (absent = no seed reached the family); "
                  "simulation: finite-time regime from rest", fontsize=8)
     P.save(fig, sm.output.pdf, sm.output.png)

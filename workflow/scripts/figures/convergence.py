@@ -157,7 +157,9 @@ def grid_panels(fig, ax_e, ax_f, ax_leg, g):
     ax_e.minorticks_off()
     ax_e.set_xlabel("grid points per axis (nested grids)")
     ax_e.set_ylabel(r"distance to finest contour ($(\Omega, \eta)$ units)")
-    ax_e.legend(fontsize=6, loc="lower left")
+    # below the panel: inside, it hid points of the area-fraction curve
+    ax_e.legend(fontsize=6, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=2,
+                frameon=False)
     level, F = float(g.attrs["level"]), float(g.attrs["F"])
     P.panel_label(ax_e, 4, rf"KE ratio = {P.fmt(level)} contour vs grid "
                            rf"(finest {int(res.max())}$^2$)")

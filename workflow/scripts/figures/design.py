@@ -5,6 +5,7 @@ from rest marked; and the worst-case ratio from rest of every grid design over
 (L, eta) with the chosen design starred."""
 import numpy as np
 from matplotlib.colors import LogNorm
+from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
 import vines.plotting as P
 from vines.pipeline.jobs import run_job
@@ -32,10 +33,19 @@ def curve_panel(ax, ds, j, k):
     ax.plot(float(ds["vines_peak_omega"][j]), float(ds["vines_peak_ratio"][j]), "v",
             color="black", ms=6, label="VI NES worst from rest (refined)")
     ax.set_yscale("log")
+    _plain_log_ticks(ax.yaxis)
     ax.set_xlabel(P.LABELS["omega"])
     ax.set_ylabel(r"$x_{\max}/A$")
     A, F = float(ds["amplitude"][j]), float(ds["F"][j])
     P.panel_label(ax, k, rf"$A$ = {P.fmt(A * 1e3)} mm, $F$ = {F:.3g}")
+
+
+def _plain_log_ticks(axis):
+    """Plain numbers at 1, 2, 5 x 10^k on a log axis (the default labels every minor tick
+    of a short range, and they overlap)."""
+    axis.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
+    axis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+    axis.set_minor_formatter(NullFormatter())
 
 
 def _log_edges(v):
@@ -64,11 +74,22 @@ def search_panel(fig, ax, ds, i):
                          norm=norm, rasterized=True)
     fig.colorbar(mesh, ax=ax, label=r"worst $x_{\max}/A$ from rest (log scale)")
     ax.set_xscale("log")
+    _plain_log_ticks(ax.xaxis)
     ax.plot(float(ds["vines_clearance"]) * 1e3, float(ds["vines_eta"]), "*", color="white",
             mec="black", ms=16)
     ax.set_xlabel(r"clearance $L$ (mm)")
     ax.set_ylabel(P.LABELS["eta"])
     P.panel_label(ax, i, "search grid, star: chosen design")
+
+
+def _ratio_range(ds):
+    """y range (log) of a row's curve panels holding every curve of every amplitude (the
+    shared axis would otherwise keep the first panel's range and clip the others)."""
+    names = ("lo_alone_ratio", "tmd_ratio", "vines_ratio", "vines_ratio_any_attractor",
+             "vines_peak_ratio")
+    vals = np.concatenate([np.ravel(ds[v].values) for v in names if v in ds])
+    vals = vals[np.isfinite(vals) & (vals > 0)]
+    return 0.8 * float(vals.min()), 1.25 * float(vals.max())
 
 
 def summary(ds) -> str:
@@ -93,6 +114,7 @@ def main(sm):
             curve_panel(axes[i, j], ds, j, k)
             axes[i, j].sharey(axes[i, 0])
             k += 1
+        axes[i, 0].set_ylim(*_ratio_range(ds))
         if search:
             search_panel(fig, axes[i, n - 1], ds, k)
             k += 1

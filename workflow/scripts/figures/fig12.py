@@ -48,12 +48,11 @@ def main(sm):
                                      f"(stability maps at F = {sorted(maps)})")
         eta, W = ds["eta"].values, ds["omega"].values
         top = P.contour_map(fig, axes[0, j], eta, W, P.grid2d(ds, "xmax_m", "eta", "omega"),
-                            label=P.LABELS["xmax_m"], log=True, vmin=lo, vmax=hi,
-                            colorbar=False)
+                            P.MapStyle(P.LABELS["xmax_m"], lo, hi, log=True, colorbar=False))
         silent = P.grid2d(ds, "n_impacts", "eta", "omega") == 0
         bottom = P.contour_map(fig, axes[1, j], eta, W, P.grid2d(ds, "ke_ratio", "eta", "omega"),
-                               label=P.LABELS["ke_ratio"], vmin=0.0, vmax=1.0,
-                               colorbar=False, no_impact=silent)
+                               P.MapStyle(P.LABELS["ke_ratio"], 0.0, 1.0, colorbar=False),
+                               no_impact=silent)
         stable_edge(axes[1, j], ds, smap, F)
         e = np.linspace(eta.min(), eta.max(), 200)
         for i in range(2):

@@ -52,7 +52,7 @@ def main(sm):
         if zoom:
             W = m["omega"].values
             axes[1, j].set_ylim(max(TONGUE_ZOOM[0], W.min()), TONGUE_ZOOM[1])
-            P.panel_label(axes[1, j], n + j, rf"$F$ = {P.fmt(F)}, zoom on the tongue below "
+            P.panel_label(axes[1, j], n + j, rf"$F$ = {P.fmt(F)}, zoom: tongue below "
                                              rf"$\Omega$ = {P.fmt(OMEGA_PAPER_MIN)}")
             axes[0, j].axhspan(*axes[1, j].get_ylim(), fill=False, ec="0.3", lw=0.7, ls=":")
         keys = sorted(P.CLASSES)

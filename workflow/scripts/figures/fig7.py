@@ -25,8 +25,8 @@ def main(sm):
             ax = axes[i, j]
             silent = P.grid2d(ds, "n_impacts", "eta", "F") == 0 if var == "ke_ratio" else None
             any_silent |= bool(np.any(silent)) if silent is not None else False
-            cs = P.contour_map(fig, ax, eta, F, P.grid2d(ds, var, "eta", "F"), label=lab,
-                               colorbar=False, no_impact=silent, **kw)
+            cs = P.contour_map(fig, ax, eta, F, P.grid2d(ds, var, "eta", "F"),
+                               P.MapStyle(lab, colorbar=False, **kw), no_impact=silent)
             ax.set_xlabel(P.LABELS["eta"])
             ax.set_ylabel(P.LABELS["F"])
             P.panel_label(ax, i * n + j, rf"$\Omega$ = {P.fmt(P.fixed_value(ds, 'omega'))}")

@@ -2,11 +2,15 @@
 run from rest (Fig 12 (d-f); points without impacts a grey class, no data left blank),
 (d-f) the basin fraction of efficient motion (attractors with KE ratio above the map's
 threshold) and (g-i) the basin fraction of the stable 1:1 orbit, from a census of Sobol
-initial states per grid point (robust maps robust_*), hatched where the 95 % Wilson interval
-of the fraction is wider than 0.2. When the robust maps carry the asymptotic view (config
-t_max), (j-l) the efficient basin fraction of the same states at t_max, a cross where it
-differs from the window fraction (d-f). Each row one colour bar. On every panel the edge of
-the stable 1:1 region of Fig 16 (|lambda_max| = 1)."""
+initial states per grid point (robust maps robust_*), one cell per census point (whole
+cells drawn), hatched where the 95 % Wilson interval of the fraction is wider than 0.2;
+(g-i) drawn finer than the census grid: the cell's value only where the Fig 16 map has a
+stable 1:1 orbit, 0 elsewhere (no orbit, no basin), so that the W = 0.5 row, which samples
+the narrow stable tongue just below W = 0.5001, shows as that tongue and not as a band half
+a cell high. When the robust maps carry the asymptotic view (config t_max), (j-l) the
+efficient basin fraction of the same states at t_max, a cross where it differs from the
+window fraction (d-f). Each row one colour bar. On every panel the edge of the stable 1:1
+region of Fig 16 (|lambda_max| = 1)."""
 import numpy as np
 
 import vines.plotting as P
@@ -50,6 +54,30 @@ def mark_changed(ax, rob):
     return int(changed.sum())
 
 
+def census_cells(fig, ax, grid, style, wide, smap, F):
+    """A census row (d-l): one cell per census point, edges half-way between points (the
+    panel shows the whole cells: each is the census at its centre), hatched where ``wide``
+    (the Wilson interval); the stable 1:1 share (``smap`` given) finer, only where Fig. 16's
+    map has a stable 1:1 orbit (``P.stable_orbit_share``), hatched where it is drawn."""
+    eta, W, z = grid
+    if smap is None:
+        cs = P.contour_map(fig, ax, eta, W, z, style)
+        P.hatch_cells(ax, eta, W, wide)
+    else:
+        eta_r, W_r, z_r, kept = P.stable_orbit_share(eta, W, z, smap)
+        print(f"F = {F}: stable 1:1 share drawn where Fig. 16 has a stable 1:1 orbit; "
+              f"{kept} cells with a share > 0 and no stable point kept whole")
+        cs = P.contour_map(fig, ax, eta_r, W_r, z_r, style)
+        cell = np.ix_(np.searchsorted(P.cell_edges(W)[1:-1], W_r),
+                      np.searchsorted(P.cell_edges(eta)[1:-1], eta_r))
+        # a measured share > 0: hatched where drawn; a measured 0: the whole cell, as (d-f)
+        P.hatch_region(ax, eta_r, W_r, wide[cell] & ((z_r > 0) | (z[cell] == 0)))
+    for v, set_lim in ((eta, ax.set_xlim), (W, ax.set_ylim)):     # eta, W > 0
+        lo, hi = P.cell_edges(v)[[0, -1]]
+        set_lim(max(lo, 0.0), hi)
+    return cs
+
+
 def main(sm):
     P.configure(sm)
     grids = P.sorted_by_fixed([P.measures(p, axes=("eta", "omega"), fixed=("F",))
@@ -70,18 +98,20 @@ def main(sm):
         for i, (src, z, label, silent) in enumerate(panels(ds, rob, float(rob.attrs["threshold"]))):
             ax = axes[i, j]
             eta, W = src["eta"].values, src["omega"].values
-            # (d-i): a coarse census grid, drawn cell by cell (contours would invent shapes)
-            mappables[i] = P.contour_map(fig, ax, eta, W, z, label=label, vmin=0.0, vmax=1.0,
-                                         cells=i > 0, colorbar=False, no_impact=silent)
-            if i > 0:
-                P.hatch_cells(ax, eta, W, wilson_width(z, n_states) > WIDE_INTERVAL)
+            style = P.MapStyle(label, 0.0, 1.0, cells=i > 0, colorbar=False)
+            if i == 0:
+                mappables[i] = P.contour_map(fig, ax, eta, W, z, style, no_impact=silent)
+                # only the computed grid: no data is not zero
+                ax.set_xlim(eta.min(), eta.max())
+                ax.set_ylim(W.min(), W.max())
+            else:
+                wide = wilson_width(z, n_states) > WIDE_INTERVAL
+                mappables[i] = census_cells(fig, ax, (eta, W, z), style, wide,
+                                            smap if i == 2 else None, F)
             if i == 3:
                 print(f"F = {F}: efficient fraction at t_max differs at "
                       f"{mark_changed(ax, rob)} of {z.size} points")
             P.stable_edge(ax, smap)
-            # only the computed grid: no data is not zero
-            ax.set_xlim(eta.min(), eta.max())
-            ax.set_ylim(W.min(), W.max())
             ax.set_xlabel(P.LABELS["eta"])
             ax.set_ylabel(P.LABELS["omega"])
             P.panel_label(ax, i * n + j, rf"$F$ = {P.fmt(F)}")
