@@ -5,8 +5,8 @@ tell items apart (attractors, points of a study).
 
 Categorical colours are the Okabe-Ito set (distinct for the common colour-vision
 deficiencies, and apart in grey by lightness where two of them meet on a map), and for the
-orbit atlas, which tells more classes apart than that set has colours, three of Paul Tol's
-"muted" scheme (tests/test_stage_figures_design_atlas.py checks every pair of the atlas
+orbit atlas, which tells more classes apart than that set has colours, three of the
+colour-blind-safe "muted" scheme (tests/test_stage_figures_design_atlas.py checks every pair of the atlas
 figure's colours under simulated protan-, deutan- and tritanopia). Colour map
 names appear here only: figure code asks ``colormap()`` for the configured one.
 """
@@ -86,7 +86,7 @@ def sequence(n: int) -> list:
     return [cmap(0.85 * k / max(1, n - 1)) for k in range(n)]
 
 
-#: three colours of Paul Tol's colour-blind-safe "muted" scheme, for the atlas's periodic
+#: three colours of the colour-blind-safe "muted" qualitative scheme, for the atlas's periodic
 #: families beyond the Okabe-Ito colours the regimes take
 TOL_MUTED = {"green": "#117733", "indigo": "#332288", "purple": "#AA4499"}
 
