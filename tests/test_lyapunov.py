@@ -13,7 +13,7 @@ import pytest
 
 import vines
 from vines.attractors.lyapunov import spectrum
-from vines.core.exact import KernelRun, kernel_params, oscillators
+from vines.core.exact import KernelRun, Span, kernel_params, oscillators
 from vines.core.params import ModelParams, ParameterError, SolverSettings
 from vines.core.variational import (
     monodromy,
@@ -46,7 +46,7 @@ def _after_L_impact(p, orbit):
 
 def _flow_map(p, oscs, x0, t0, t1):
     run = KernelRun(p, SolverSettings(t_end=t1, t_transient=t0), oscs, np.asarray(x0, float),
-                    t0, t1, t0, t0, 0)
+                    t0, Span(t1, t0, t0), 0)
     run.run()
     return run.cur[1:5].copy(), int(run.cnt[0])
 

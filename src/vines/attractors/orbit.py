@@ -18,7 +18,7 @@ import math
 import numpy as np
 
 from ..core import kernel as eng
-from ..core.exact import KernelRun, Trajectory
+from ..core.exact import KernelRun, Span, Trajectory
 from ..core.flow import flow
 from ..core.params import ModelParams, SolverSettings
 from ..core.regime import CHATTER_RUN, longest_same_wall_run
@@ -38,7 +38,7 @@ def one_period(p: ModelParams, st: SolverSettings, osc, x0, t0: float, P: float,
     the period, impacts (total, on L), time stuck, the regime label of an orbit of period
     pp = round(P / T), ``return_error`` (rel. difference of the end state from x0) and the
     dense ``trajectory``."""
-    run = KernelRun(p, st, osc, np.asarray(x0, float), t0, t0 + P, t0, t0, mode)
+    run = KernelRun(p, st, osc, np.asarray(x0, float), t0, Span(t0 + P, t0, t0), mode)
     rc = run.run()
     if rc != eng.RC_DONE:
         raise RuntimeError(f"one period of the orbit from t = {t0} stopped: {eng.STATUS_TEXT.get(rc, rc)}")

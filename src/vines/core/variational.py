@@ -350,11 +350,11 @@ class TangentRun:
 
     def __init__(self, params, settings, oscs, state0, t0: float, edges, mode: int = 0,
                  frame=None):
-        from .exact import KernelRun
+        from .exact import KernelRun, Span
         self.p, self.oscs = params, oscs
         self.edges = np.ascontiguousarray(edges, dtype=float)
         self.run_ = KernelRun(params, settings, oscs, np.asarray(state0, float), t0,
-                              settings.t_end, settings.t_transient, t0, mode)
+                              Span(settings.t_end, settings.t_transient, t0), mode)
         self.Q = initial_frame() if frame is None else np.array(frame, float)
         self.tp = np.zeros(N_TP)
         self.tp[TP_K] = 4

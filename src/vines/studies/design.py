@@ -408,11 +408,26 @@ class DesignResult:
 
 # --------------------------------------------------------------------------- driver
 
-def solve(problem: DesignProblem, *, eta=None, clearance_m=None, eta_max=None,
-          clearance_range_m=None, n_eta=N_ETA_DEFAULT, n_clearance=N_CLEARANCE_DEFAULT,
-          n_threads=None, inputs=None) -> DesignResult:
-    """Evaluate the design (eta, clearance_m) or optimise one with eta <= eta_max over
-    clearance_range_m (validated inputs; ``design`` is the checked entry)."""
+@dataclass(frozen=True)
+class DesignSearch:
+    """What ``solve`` does with a problem (validated by ``design``): evaluate the design
+    (eta, clearance_m [m], half the cavity length) or, when eta_max is set, optimise one
+    with eta <= eta_max and the clearance in clearance_range_m (lo, hi) [m] on an
+    n_eta x n_clearance grid plus a compass search (``optimise``)."""
+
+    eta: float | None = None
+    clearance_m: float | None = None
+    eta_max: float | None = None
+    clearance_range_m: tuple | None = None
+    n_eta: int = N_ETA_DEFAULT
+    n_clearance: int = N_CLEARANCE_DEFAULT
+
+
+def solve(problem: DesignProblem, search: DesignSearch, *, n_threads=None,
+          inputs=None) -> DesignResult:
+    """Evaluate or optimise a design as ``search`` says (validated inputs; ``design`` is
+    the checked entry; ``inputs``: the inputs as the result reports them)."""
+    eta, clearance_m, eta_max = search.eta, search.clearance_m, search.eta_max
     t0, c0 = time.perf_counter(), time.process_time()
     d = problem.model.d
     mu = eta if eta_max is None else eta_max
@@ -421,10 +436,11 @@ def solve(problem: DesignProblem, *, eta=None, clearance_m=None, eta_max=None,
     lo_curve = np.asarray(_tmd.lo_ratio(omega, d), dtype=float)
     t1, c1 = time.perf_counter(), time.process_time()
     ev = Evaluator(problem, n_threads)
-    search = None
+    grid = None
     if eta_max is not None:
-        best = optimise(ev, eta_max, clearance_range_m, n_eta, n_clearance)
-        eta, clearance_m, search = best["eta"], best["clearance_m"], best["grid"]
+        best = optimise(ev, eta_max, search.clearance_range_m, search.n_eta,
+                        search.n_clearance)
+        eta, clearance_m, grid = best["eta"], best["clearance_m"], best["grid"]
     rest = ev.responses([(eta, clearance_m)])[0]
     t2, c2 = time.perf_counter(), time.process_time()
     any_, unsettled = None, None
@@ -442,7 +458,7 @@ def solve(problem: DesignProblem, *, eta=None, clearance_m=None, eta_max=None,
                         tmd_curve=np.asarray(tuned.ratio(omega, d), dtype=float),
                         eta=float(eta), clearance_m=float(clearance_m), rest=rest,
                         vines_any_attractor=any_, unsettled_fraction=unsettled,
-                        search=search, cost=cost)
+                        search=grid, cost=cost)
 
 
 def design(*, omega_band=DEFAULT_BAND, n_omega=DEFAULT_N_OMEGA,
@@ -501,4 +517,4 @@ def design(*, omega_band=DEFAULT_BAND, n_omega=DEFAULT_N_OMEGA,
                   **{k_: (list(v) if isinstance(v, tuple) else v) for k_, v in search.items()},
                   view=view, census_n=census_n, census_seed=census_seed,
                   basin_min=basin_min, settings=settings.as_dict() | {"state0": None})
-    return solve(problem, n_threads=n_threads, inputs=inputs, **search)
+    return solve(problem, DesignSearch(**search), n_threads=n_threads, inputs=inputs)
