@@ -21,9 +21,11 @@ fraction: the fractions of the attractors and the unsettled fraction sum to 1.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..core.exact import oscillators
 from ..core.params import (
@@ -274,10 +276,12 @@ def _check_states(states) -> np.ndarray:
     return arr
 
 
-def census(eta, omega, F, *, r=R_DEFAULT, d=D_DEFAULT, n=256, seed=0, box=DEFAULT_BOX,
-           states=None, t_end=T_END_DEFAULT, t_transient=T_TRANSIENT_DEFAULT,
-           v_stick=V_STICK_DEFAULT, max_impacts=MAX_IMPACTS_DEFAULT,
-           root_tol=ROOT_TOL_DEFAULT, n_threads=None, t_max=None) -> Census:
+def census(eta: float, omega: float, F: float, *, r: float = R_DEFAULT, d: float = D_DEFAULT,
+           n: int = 256, seed: int = 0, box: Sequence[Sequence[float]] = DEFAULT_BOX,
+           states: ArrayLike | None = None, t_end: float = T_END_DEFAULT,
+           t_transient: float = T_TRANSIENT_DEFAULT, v_stick: float = V_STICK_DEFAULT,
+           max_impacts: int = MAX_IMPACTS_DEFAULT, root_tol: float = ROOT_TOL_DEFAULT,
+           n_threads: int | None = None, t_max: float | None = None) -> Census:
     """Attractor census at (eta, omega, F) from n Sobol initial states in ``box``
     (``sampling``; forcing phase 0 at t = 0), or from the given ``states`` (n, 4) =
     (z_m, z_m', z_b, z_b') (then n, seed and box are not used), each run to t_end with the

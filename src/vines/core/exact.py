@@ -22,6 +22,9 @@ from .tally import ImpactTally
 #: rows of the impact buffer of a run that keeps no records (``KernelRun.stream``)
 STREAM_ROWS = 1 << 15
 
+#: the packed oscillators of ``oscillators``: free LO, stuck body
+Oscillators = tuple[np.ndarray, np.ndarray]
+
 
 def oscillators(p: ModelParams) -> tuple[np.ndarray, np.ndarray]:
     """Packed oscillators of the free LO (mass 1) and the stuck body (mass 1 + eta).
