@@ -1,13 +1,10 @@
 """Attractor census (vines.attractors): basins, reproducibility and independent checks."""
 import json
 import math
-import os
-import pathlib
-import subprocess
-import sys
 
 import numpy as np
 import pytest
+from conftest import run_vines
 
 import vines
 from vines.attractors import census, sample_states
@@ -15,8 +12,6 @@ from vines.attractors.census import _same_orbit
 from vines.attractors.endstate import EndState
 from vines.core.params import ParameterError
 from vines.orbits.periodic import find_1to1
-
-ROOT = pathlib.Path(__file__).resolve().parents[1]
 
 
 @pytest.fixture(scope="module")
@@ -136,9 +131,7 @@ def test_bad_input_api(kw, name):
 
 
 def _cli(*args):
-    env = dict(os.environ, PYTHONPATH=str(ROOT / "src"))
-    return subprocess.run([sys.executable, "-m", "vines", "attractors", *args],
-                          capture_output=True, text=True, env=env, cwd=ROOT, timeout=600)
+    return run_vines("attractors", *args)
 
 
 def test_cli_json_keys():

@@ -13,7 +13,7 @@ import pytest
 
 import vines
 from vines.attractors.lyapunov import spectrum
-from vines.core.exact import KernelRun, oscillators
+from vines.core.exact import KernelRun, Span, kernel_params, oscillators
 from vines.core.params import ModelParams, ParameterError, SolverSettings
 from vines.core.variational import (
     monodromy,
@@ -46,7 +46,7 @@ def _after_L_impact(p, orbit):
 
 def _flow_map(p, oscs, x0, t0, t1):
     run = KernelRun(p, SolverSettings(t_end=t1, t_transient=t0), oscs, np.asarray(x0, float),
-                    t0, t1, t0, t0, 0)
+                    t0, Span(t1, t0, t0), 0)
     run.run()
     return run.cur[1:5].copy(), int(run.cnt[0])
 
@@ -90,16 +90,16 @@ def test_saltation_determinant_and_sticking_rank():
     """det S = r^2 for any impact (det D R = -r, n.f+ = -r n.f-); an impact that sticks
     and the stick projection have rank 2 and map into the stuck manifold."""
     p = ModelParams(eta=0.3, omega=0.8, F=0.2, r=0.65)
-    osc_f = oscillators(p)[0]
+    kp = kernel_params(oscillators(p), p, SolverSettings(), 1.0, 0.0, 0.0)
     rng = np.random.default_rng(3)
     S = np.empty((4, 4))
     for _ in range(20):
         zm, vm, vb, t = rng.normal(size=4)
         if abs(vm - vb) < 0.05:
             continue
-        saltation_impact(osc_f, p.eta, p.r, p.phi, t, zm, vm, vb, S)
+        saltation_impact(kp, t, zm, vm, vb, S)
         assert np.linalg.det(S) == pytest.approx(p.r ** 2, rel=1e-12)
-        saltation_impact_stick(osc_f, p.eta, p.phi, t, zm, vm, vb, S)
+        saltation_impact_stick(kp, t, zm, vm, vb, S)
         assert np.linalg.matrix_rank(S) == 2
         assert np.array_equal(S[0], S[2]) and np.array_equal(S[1], S[3])
     stick_projection(p.eta, S)

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from vines.attractors.lyapunov_sweep import sweep_exponents
-from vines.core.sweep import bifurcation_sweep
+from vines.core.sweep import SweepLine, bifurcation_sweep
 from vines.pipeline import stages
 from vines.pipeline.axes import ConfigError
 from vines.pipeline.config_checks import check_attractor_maps, check_lyapunov_sweeps
@@ -21,7 +21,7 @@ def test_sweep_exponents_walk_the_sweeps_chain():
     vals = np.linspace(0.01, 0.2, 3)
     kw = dict(omega=1.0, F=0.1, t_settle=300.0, t_step=100.0, n_record=4)
     sw = bifurcation_sweep("eta", vals, **kw)
-    ex = sweep_exponents("eta", vals, t_window=100.0, n_batches=4, **kw)
+    ex = sweep_exponents(SweepLine("eta", vals, **kw), t_window=100.0, n_batches=4)
     assert np.array_equal(sw["phi"], ex["phi"])
     lam = ex["exponents"]
     assert lam.shape == (3, 4) and ex["ci"].shape == (3, 4, 2)
@@ -33,8 +33,8 @@ def test_sweep_exponents_walk_the_sweeps_chain():
 
 def test_t_window_longer_than_a_point_refused():
     with pytest.raises(Exception, match="t_window"):
-        sweep_exponents("eta", [0.05], omega=1.0, F=0.1, t_settle=300.0, t_step=100.0,
-                        n_record=4, t_window=150.0)
+        sweep_exponents(SweepLine("eta", [0.05], omega=1.0, F=0.1, t_settle=300.0,
+                                  t_step=100.0, n_record=4), t_window=150.0)
 
 
 def test_lyapunov_dataset_cf_and_order():

@@ -110,3 +110,26 @@ def test_config_readme_lists_every_key():
             listed |= {m.group(1) + x for x in m.group(2).split(",")} if m else {full}
     missing = set(_schema_keys(SCHEMA, "", SCHEMA["definitions"])) - listed
     assert not missing, f"config/README.md lacks {sorted(missing)}"
+
+
+def test_api_defaults_are_not_copied_into_the_schema_file():
+    """The schema file leaves the API's defaults out; loading fills them in from
+    ``core.params`` (one source), and a default written in the file is refused."""
+    from importlib.resources import files
+
+    import pytest
+    import yaml
+
+    from vines.pipeline.config import _fill_defaults, api_defaults
+    raw = yaml.safe_load(files("vines.pipeline").joinpath("config.schema.yaml").read_text())
+    for path, value in api_defaults().items():
+        node, loaded = raw, SCHEMA
+        for part in path.split("."):
+            key = "additionalProperties" if part == "*" else None
+            node = node[key] if key else node["properties"][part]
+            loaded = loaded[key] if key else loaded["properties"][part]
+        assert "default" not in node, path
+        assert loaded["default"] == value and type(loaded["default"]) is type(value), path
+    raw["properties"]["model"]["properties"]["r"]["default"] = 0.5
+    with pytest.raises(ValueError, match="model.r"):
+        _fill_defaults(raw)

@@ -48,7 +48,9 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import progress
+from ..core.exact import Oscillators
 from ..core.params import ModelParams, SolverSettings, check_int
+from ..core.result import RawRun
 from ..core.shortcut import rel_diff
 from .endstate import EndState, classify_end
 
@@ -79,8 +81,8 @@ def asymptotic_settings(st: SolverSettings, t_max: float) -> SolverSettings:
                           max_impacts=st.max_impacts, root_tol=st.root_tol)
 
 
-def continue_state(p: ModelParams, st: SolverSettings, st_max: SolverSettings, oscs,
-                   e: EndState) -> Continuation:
+def continue_state(p: ModelParams, st: SolverSettings, st_max: SolverSettings,
+                   oscs: Oscillators, e: EndState) -> Continuation:
     """Run the end state e of the t_end view (kind "motion") on to st_max.t_end."""
     from ..core.exact import run_exact
     t0 = st.t_end
@@ -94,7 +96,8 @@ def continue_state(p: ModelParams, st: SolverSettings, st_max: SolverSettings, o
     return Continuation(end, "censored")
 
 
-def orbit_sections(p: ModelParams, st: SolverSettings, oscs, end: EndState) -> np.ndarray:
+def orbit_sections(p: ModelParams, st: SolverSettings, oscs: Oscillators,
+                   end: EndState) -> np.ndarray:
     """States (pp, 4) of the periodic orbit of ``end`` on the sections t = k T."""
     if end.kind == "orbit":
         return np.asarray(end.section, float)
@@ -103,7 +106,8 @@ def orbit_sections(p: ModelParams, st: SolverSettings, oscs, end: EndState) -> n
                       float)[None, :]
 
 
-def escape_time(p: ModelParams, st: SolverSettings, oscs, raw, end: EndState) -> float:
+def escape_time(p: ModelParams, st: SolverSettings, oscs: Oscillators, raw: RawRun,
+                end: EndState) -> float:
     """First section time k T >= t_end after which the run stays within ESCAPE_TOL of the
     orbit of ``end`` (the run's records from t_end, up to its shortcut plus a period)."""
     T = p.period
@@ -123,8 +127,8 @@ def escape_time(p: ModelParams, st: SolverSettings, oscs, raw, end: EndState) ->
     return float(times[min(far[-1] + 1, k.size - 1)])
 
 
-def continue_states(p, st, oscs, ends: list, t_max: float,
-                    n_threads: int | None = None) -> dict:
+def continue_states(p: ModelParams, st: SolverSettings, oscs: Oscillators, ends: list,
+                    t_max: float, n_threads: int | None = None) -> dict:
     """{index: Continuation} for every end state of kind "motion", on threads (results by
     index: independent of the thread count)."""
     n_threads = check_int("n_threads", n_threads if n_threads is not None
@@ -185,7 +189,7 @@ def _km_median(residual: np.ndarray, escaped: np.ndarray) -> float | None:
     return None
 
 
-def class_status(life: dict, n_settled: int, n_members: int, lam_long,
+def class_status(life: dict, n_settled: int, n_members: int, lam_long: tuple | None,
                  t_end: float, t_max: float) -> tuple[str, float | None]:
     """(status, horizon) of a motion class (module docstring)."""
     span = t_max - t_end
@@ -202,7 +206,8 @@ def class_status(life: dict, n_settled: int, n_members: int, lam_long,
     return "unresolved", float(horizon)
 
 
-def window_lambda(p, st, states: np.ndarray, members: list, n_threads=None):
+def window_lambda(p: ModelParams, st: SolverSettings, states: np.ndarray, members: list,
+                  n_threads: int | None = None) -> tuple[float, list, list]:
     """Mean leading exponent of up to N_LYAP members over [t_transient, t_end] from their
     initial states (the census's trajectories) and the mean of their interval ends."""
     from .lyapunov import spectrum
@@ -214,7 +219,8 @@ def window_lambda(p, st, states: np.ndarray, members: list, n_threads=None):
     return lam, ci, [st.t_transient, st.t_end]
 
 
-def long_lambda(p, st, t_max: float, e: EndState):
+def long_lambda(p: ModelParams, st: SolverSettings, t_max: float,
+                e: EndState) -> tuple[float, list, list]:
     """Leading exponent of the continuation of e over [t_end, t_max] (the same trajectory
     as ``continue_state``'s run, bit for bit) and its interval."""
     from .lyapunov import spectrum
@@ -231,7 +237,8 @@ def _threaded(fn, items, n_threads):
         return list(progress.track(ex.map(fn, items), len(items), "lyapunov exponents", "runs"))
 
 
-def periodic_lambda(p, st, oscs, end: EndState) -> float:
+def periodic_lambda(p: ModelParams, st: SolverSettings, oscs: Oscillators,
+                    end: EndState) -> float:
     """log(max |multiplier|) / period of a periodic end state (1:1: the map's eigenvalues;
     other orbits: the monodromy matrix over pp periods from its first section state)."""
     if end.kind == "1:1":

@@ -21,9 +21,11 @@ fraction: the fractions of the attractors and the unsettled fraction sum to 1.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..core.exact import oscillators
 from ..core.params import (
@@ -274,10 +276,12 @@ def _check_states(states) -> np.ndarray:
     return arr
 
 
-def census(eta, omega, F, *, r=R_DEFAULT, d=D_DEFAULT, n=256, seed=0, box=DEFAULT_BOX,
-           states=None, t_end=T_END_DEFAULT, t_transient=T_TRANSIENT_DEFAULT,
-           v_stick=V_STICK_DEFAULT, max_impacts=MAX_IMPACTS_DEFAULT,
-           root_tol=ROOT_TOL_DEFAULT, n_threads=None, t_max=None) -> Census:
+def census(eta: float, omega: float, F: float, *, r: float = R_DEFAULT, d: float = D_DEFAULT,
+           n: int = 256, seed: int = 0, box: Sequence[Sequence[float]] = DEFAULT_BOX,
+           states: ArrayLike | None = None, t_end: float = T_END_DEFAULT,
+           t_transient: float = T_TRANSIENT_DEFAULT, v_stick: float = V_STICK_DEFAULT,
+           max_impacts: int = MAX_IMPACTS_DEFAULT, root_tol: float = ROOT_TOL_DEFAULT,
+           n_threads: int | None = None, t_max: float | None = None) -> Census:
     """Attractor census at (eta, omega, F) from n Sobol initial states in ``box``
     (``sampling``; forcing phase 0 at t = 0), or from the given ``states`` (n, 4) =
     (z_m, z_m', z_b, z_b') (then n, seed and box are not used), each run to t_end with the
@@ -316,8 +320,8 @@ def census(eta, omega, F, *, r=R_DEFAULT, d=D_DEFAULT, n=256, seed=0, box=DEFAUL
                  from_rest=groups.index(rest) if rest is not None else None,
                  unsettled_fraction=n_unsettled / len(ends), members=members)
     if t_max is not None:
-        _asymptotic_view(out, p, st, oscs, states, ends, groups, (rest, rest_end), t_max,
-                         n_threads)
+        runs = _Runs(p, st, oscs, states, ends, t_max, n_threads)
+        _asymptotic_view(out, runs, groups, (rest, rest_end))
     return out
 
 
@@ -333,36 +337,54 @@ def _group_of(groups: list, e: EndState, T: float, first: int) -> int:
     return len(groups) - 1
 
 
-def _asymptotic_view(out: Census, p, st, oscs, states, ends, groups, rest, t_max,
-                     n_threads) -> None:
-    """Add the asymptotic view to ``out`` (``asymptotic`` module docstring)."""
+@dataclass(frozen=True)
+class _Runs:
+    """The runs of one census that its asymptotic view continues: model, settings and
+    oscillators, the initial states (n, 4) and their end states at t_end, the horizon
+    t_max (dimensionless time) and the worker threads (None: all cores)."""
+
+    p: ModelParams
+    st: SolverSettings
+    oscs: tuple
+    states: np.ndarray
+    ends: list
+    t_max: float
+    n_threads: int | None
+
+
+def _asymptotic_view(out: Census, runs: _Runs, groups: list, rest: tuple) -> None:
+    """Add the asymptotic view to ``out`` (``asymptotic`` module docstring); rest = (group,
+    end state) of the start from rest."""
+    p, st, oscs, ends, t_max = runs.p, runs.st, runs.oscs, runs.ends, runs.t_max
     n, T = len(ends), p.period
-    conts = asy.continue_states(p, st, oscs, ends, t_max, n_threads)
+    conts = asy.continue_states(p, st, oscs, ends, t_max, runs.n_threads)
     n_old = len(groups)
     members = out.members.copy()
     for i, c in sorted(conts.items()):
         if c.outcome == "escaped":
             members[i] = _group_of(groups, c.end, T, i)
     for g in groups[n_old:]:            # attractors reached only asymptotically
-        a = _attractor(p, st, oscs, g, ends, states, n)
+        a = _attractor(p, st, oscs, g, ends, runs.states, n)
         a.window_regimes = {}
         out.attractors.append(a)
     for j, (g, a) in enumerate(zip(groups, out.attractors, strict=True)):
         k = int(np.count_nonzero(members == j))
         view = {"basin_fraction_asymptotic": k / n, "ci_asymptotic": _wilson(k, n)}
         if g.end.kind == "motion":
-            view |= _motion_view(p, st, states, ends, g, conts, members, t_max, n_threads)
+            view |= _motion_view(runs, g, conts, members)
         else:
             view |= {"status": "persistent",
                      "lyapunov_max": asy.periodic_lambda(p, st, oscs, g.end),
                      "lyapunov_window": None}
         a.asymptotic = view
     out.t_max, out.members_asymptotic = t_max, members
-    out.from_rest_asymptotic = _rest_asymptotic(out, p, st, oscs, groups, rest, t_max)
+    out.from_rest_asymptotic = _rest_asymptotic(out, runs, groups, rest)
 
 
-def _motion_view(p, st, states, ends, g, conts, members, t_max, n_threads) -> dict:
-    """Lifetime, escapes, status and leading exponent of a class of motions."""
+def _motion_view(runs: _Runs, g: _Group, conts: dict, members: np.ndarray) -> dict:
+    """Lifetime, escapes, status and leading exponent of a class of motions (conts: the
+    continuations by state index; members: attractor index of every state at t_max)."""
+    p, st, t_max = runs.p, runs.st, runs.t_max
     mem = g.members
     cs = [conts[i] for i in mem]
     escaped = np.array([c.outcome == "escaped" for c in cs], bool)
@@ -373,13 +395,13 @@ def _motion_view(p, st, states, ends, g, conts, members, t_max, n_threads) -> di
     lam_long = None
     if mem and life["escaped"] == 0 and n_settled < len(mem):
         first = next(i for i, c in zip(mem, cs, strict=True) if c.outcome == "censored")
-        lam_long = asy.long_lambda(p, st, t_max, ends[first])
+        lam_long = asy.long_lambda(p, st, t_max, runs.ends[first])
     status, horizon = asy.class_status(life, n_settled, len(mem), lam_long, st.t_end,
                                        t_max)
     if lam_long is not None:
         lam, ci, win = lam_long
     elif mem:
-        lam, ci, win = asy.window_lambda(p, st, states, mem, n_threads)
+        lam, ci, win = asy.window_lambda(p, st, runs.states, mem, runs.n_threads)
     else:
         lam, ci, win = math.nan, [math.nan, math.nan], None
     view = {"status": status, "lyapunov_max": lam, "lyapunov_max_ci": ci,
@@ -390,14 +412,15 @@ def _motion_view(p, st, states, ends, g, conts, members, t_max, n_threads) -> di
     return view
 
 
-def _rest_asymptotic(out: Census, p, st, oscs, groups, rest, t_max) -> int | None:
+def _rest_asymptotic(out: Census, runs: _Runs, groups: list, rest: tuple) -> int | None:
     """Attractor the start from rest is in at t_max (None: its run stopped early)."""
+    p, st, oscs = runs.p, runs.st, runs.oscs
     g, e = rest
     if g is None:
         return None
     if e.kind != "motion":
         return out.from_rest
-    c = asy.continue_state(p, st, asy.asymptotic_settings(st, t_max), oscs, e)
+    c = asy.continue_state(p, st, asy.asymptotic_settings(st, runs.t_max), oscs, e)
     if c.outcome != "escaped":
         return out.from_rest
     n_old = len(groups)

@@ -13,6 +13,7 @@
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..core.params import STATE_MAX, check_real, check_reals
 from .census import census
@@ -29,7 +30,8 @@ def _stable_1to1(a) -> bool:
     return a.regime == "1:1" and a.orbit is not None and a.orbit["stable"]
 
 
-def robust_point(eta, omega, F, *, threshold: float, **census_kw) -> dict:
+def robust_point(eta: float, omega: float, F: float, *, threshold: float,
+                 **census_kw) -> dict:
     """ROBUST_FIELDS at one point from ``census(eta, omega, F, **census_kw)``: basin
     fractions of the attractors with ke_ratio > threshold and of stable 1:1 orbits; with
     ``t_max`` in census_kw also ROBUST_ASYMPTOTIC_FIELDS (the same at t_max, the share of
@@ -64,7 +66,7 @@ def _asymptotic_fields(c, threshold: float) -> dict:
         from_rest_efficient_asymptotic=int(rest is not None and rest.ke_ratio > threshold))
 
 
-def slice_states(z_m0, v_m0) -> np.ndarray:
+def slice_states(z_m0: ArrayLike, v_m0: ArrayLike) -> np.ndarray:
     """States (len(z_m0) * len(v_m0), 4) of the slice, z_m0 varying slowest: LO at
     (z_m0, v_m0), ball at rest in the middle of the cavity (z_b = z_m0, z_b' = 0)."""
     zm, vm = np.meshgrid(check_reals("z_m0", z_m0, lo=-STATE_MAX, hi=STATE_MAX),
@@ -73,7 +75,8 @@ def slice_states(z_m0, v_m0) -> np.ndarray:
     return np.stack([zm, vm, zm, np.zeros_like(zm)], axis=1)
 
 
-def basin_slice(eta, omega, F, z_m0, v_m0, **census_kw) -> dict:
+def basin_slice(eta: float, omega: float, F: float, z_m0: ArrayLike, v_m0: ArrayLike,
+                **census_kw) -> dict:
     """Attractor index over the slice (shape (len(z_m0), len(v_m0)), -1: unsettled) and
     the attractor table (regime, period, ke_ratio, xmax_m, basin_fraction within the
     slice), from_rest (index into the table) and the census for further use. With ``t_max``

@@ -20,14 +20,16 @@ from __future__ import annotations
 
 import math
 import os
+from collections.abc import Sequence
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 import numpy as np
 
 from .. import progress
-from ..core.exact import oscillators
+from ..core.exact import Oscillators, oscillators
 from ..core.params import ModelParams, SolverSettings, check_int
+from ..core.result import RawRun
 from ..core.simulation import run_measured
 from ..orbits.periodic import PeriodicOrbit
 from .orbit import polish_1to1
@@ -71,15 +73,17 @@ def _section(raw, T: float, t_end: float, t_transient: float):
     return raw.state_at(times).T.copy(), seg[idx, 5].astype(np.int64), float(times[0])
 
 
-def settle(p: ModelParams, st: SolverSettings, oscs, state0) -> EndState:
+def settle(p: ModelParams, st: SolverSettings, oscs: Oscillators,
+           state0: Sequence[float]) -> EndState:
     """Run ``state0`` = (z_m, z_m', z_b, z_b') at t = 0 and classify its end state."""
     raw, m = run_measured(p, st, state0=tuple(float(v) for v in state0))
     return classify_end(p, st, oscs, raw, m["regime"], float(m["ke_ratio"]),
                         float(m["xmax"]))
 
 
-def classify_end(p: ModelParams, st: SolverSettings, oscs, raw, regime: str,
-                 ke_ratio: float = math.nan, xmax: float = math.nan) -> EndState:
+def classify_end(p: ModelParams, st: SolverSettings, oscs: Oscillators, raw: RawRun,
+                 regime: str, ke_ratio: float = math.nan,
+                 xmax: float = math.nan) -> EndState:
     """The end state of a finished run ``raw`` over [., st.t_end] (kinds as above)."""
     base = dict(regime=regime, ke_ratio=ke_ratio, xmax=xmax, status=raw.status,
                 final_state=np.asarray(raw.solver_info.get("final_state"), float),

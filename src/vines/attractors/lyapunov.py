@@ -26,6 +26,7 @@ a transient (``vines.attractors.census`` with ``t_max`` says whether it is).
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -143,7 +144,8 @@ class _WindowRecord:
         return classify(walls, times, self.strobe, self.ts, t_stuck_window, self.p.period)
 
 
-def spectrum(p: ModelParams, st: SolverSettings, state0=None, *, t0: float = 0.0,
+def spectrum(p: ModelParams, st: SolverSettings, state0: Sequence[float] | None = None, *,
+             t0: float = 0.0,
              mode: int = 0, n_batches: int = N_BATCHES_DEFAULT,
              with_regime: bool = True) -> LyapunovResult:
     """Lyapunov spectrum of the exact trajectory from ``state0`` (default st.state0) at t0
@@ -181,10 +183,12 @@ def spectrum(p: ModelParams, st: SolverSettings, state0=None, *, t0: float = 0.0
                           params=p, settings=st, batch_exponents=batch)
 
 
-def lyapunov(*, eta, omega, F, r=R_DEFAULT, d=D_DEFAULT, phi=0.0, state0=None,
-             t_end=T_END_DEFAULT, t_transient=T_TRANSIENT_DEFAULT, v_stick=V_STICK_DEFAULT,
-             max_impacts=MAX_IMPACTS_DEFAULT, root_tol=ROOT_TOL_DEFAULT,
-             n_batches=N_BATCHES_DEFAULT) -> LyapunovResult:
+def lyapunov(*, eta: float, omega: float, F: float, r: float = R_DEFAULT,
+             d: float = D_DEFAULT, phi: float = 0.0, state0: Sequence[float] | None = None,
+             t_end: float = T_END_DEFAULT, t_transient: float = T_TRANSIENT_DEFAULT,
+             v_stick: float = V_STICK_DEFAULT, max_impacts: int = MAX_IMPACTS_DEFAULT,
+             root_tol: float = ROOT_TOL_DEFAULT,
+             n_batches: int = N_BATCHES_DEFAULT) -> LyapunovResult:
     """Lyapunov spectrum at (eta, omega, F) from ``state0`` = (z_m, z_m', z_b, z_b') at t = 0
     (default: rest) over the window [t_transient, t_end] (module docstring).
 

@@ -14,11 +14,12 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 
 import numpy as np
 
 from ..core import kernel as eng
-from ..core.exact import KernelRun, Trajectory
+from ..core.exact import KernelRun, Oscillators, Span, Trajectory
 from ..core.flow import flow
 from ..core.params import ModelParams, SolverSettings
 from ..core.regime import CHATTER_RUN, longest_same_wall_run
@@ -32,13 +33,14 @@ N_TAIL = 16
 POLISH_TOL = 1e-3
 
 
-def one_period(p: ModelParams, st: SolverSettings, osc, x0, t0: float, P: float,
+def one_period(p: ModelParams, st: SolverSettings, osc: Oscillators, x0: Sequence[float],
+               t0: float, P: float,
                mode: int = eng.MODE_FREE) -> dict:
     """Kernel run over [t0, t0 + P] from state x0 (segment ``mode``): ke_ratio and xmax over
     the period, impacts (total, on L), time stuck, the regime label of an orbit of period
     pp = round(P / T), ``return_error`` (rel. difference of the end state from x0) and the
     dense ``trajectory``."""
-    run = KernelRun(p, st, osc, np.asarray(x0, float), t0, t0 + P, t0, t0, mode)
+    run = KernelRun(p, st, osc, np.asarray(x0, float), t0, Span(t0 + P, t0, t0), mode)
     rc = run.run()
     if rc != eng.RC_DONE:
         raise RuntimeError(f"one period of the orbit from t = {t0} stopped: {eng.STATUS_TEXT.get(rc, rc)}")
@@ -84,7 +86,8 @@ def alternating_tail(impacts: np.ndarray, t_end: float, T: float) -> int | None:
     return impacts.shape[0] - N_TAIL + int(last_L)
 
 
-def polish_1to1(p: ModelParams, osc, impacts: np.ndarray, t_end: float) -> PeriodicOrbit | None:
+def polish_1to1(p: ModelParams, osc: Oscillators, impacts: np.ndarray,
+                t_end: float) -> PeriodicOrbit | None:
     """The stable admissible 1:1 orbit a run converges to (module docstring), or None."""
     T = p.period
     k = alternating_tail(impacts, t_end, T)
@@ -106,7 +109,8 @@ def polish_1to1(p: ModelParams, osc, impacts: np.ndarray, t_end: float) -> Perio
         else None
 
 
-def section_of_1to1(p: ModelParams, st: SolverSettings, oscs, orbit: PeriodicOrbit) -> dict:
+def section_of_1to1(p: ModelParams, st: SolverSettings, oscs: Oscillators,
+                    orbit: PeriodicOrbit) -> dict:
     """``one_period`` of a 1:1 orbit started mid-flight after its L impact, plus
     ``section_state``: its state at the first t = k T after that start."""
     vm, vb, zb, t_L = orbit.x_L

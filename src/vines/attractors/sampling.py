@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 import warnings
+from collections.abc import Sequence
 
 import numpy as np
 
@@ -23,7 +24,7 @@ N_MAX = 1_000_000          # initial states of one census
 SEED_MAX = 2**63 - 1
 
 
-def check_box(box) -> tuple:
+def check_box(box: Sequence[Sequence[float]]) -> tuple:
     """``box`` as 4 (lo, hi) float pairs in BOX_NAMES order (lo <= hi, |w| <= 1); raises
     ParameterError naming the bad entry. A mapping {name: (lo, hi)} is accepted too."""
     if isinstance(box, dict):
@@ -46,7 +47,8 @@ def check_box(box) -> tuple:
     return tuple(out)
 
 
-def sample_states(n, seed=0, box=DEFAULT_BOX) -> np.ndarray:
+def sample_states(n: int, seed: int = 0,
+                  box: Sequence[Sequence[float]] = DEFAULT_BOX) -> np.ndarray:
     """n initial states (n, 4) = (z_m, z_m', z_b, z_b'): the first n points of a scrambled
     Sobol sequence (``scipy.stats.qmc.Sobol``, scramble seed ``seed``) mapped onto ``box``.
     The same (n, seed, box) gives the same states bit for bit; powers of 2 keep the

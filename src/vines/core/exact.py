@@ -7,6 +7,7 @@ motion has settled on a periodic orbit and completes the run from one period of 
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numpy as np
 
@@ -20,6 +21,9 @@ from .tally import ImpactTally
 
 #: rows of the impact buffer of a run that keeps no records (``KernelRun.stream``)
 STREAM_ROWS = 1 << 15
+
+#: the packed oscillators of ``oscillators``: free LO, stuck body
+Oscillators = tuple[np.ndarray, np.ndarray]
 
 
 def oscillators(p: ModelParams) -> tuple[np.ndarray, np.ndarray]:
@@ -64,16 +68,26 @@ def kernel_params(osc, p: ModelParams, st: SolverSettings, t_end: float, t_tr: f
                             float(st.root_tol), int(st.max_impacts), float(record_from))
 
 
+class Span(NamedTuple):
+    """Where a kernel run ends, where its measurement window starts and from when it
+    records impacts and segments (dimensionless times)."""
+
+    t_end: float
+    t_tr: float
+    record_from: float
+
+
 class KernelRun:
     """One kernel trajectory: its state (cur, acc, cnt) and growing impact/segment buffers.
 
     Starts at t0 in ``state0`` = (z_m, z_m', z_b, z_b') with segment ``mode`` (0 free, +-1
-    stuck on that wall); window [t_tr, t_end]; records from ``record_from``.
+    stuck on that wall); ``span``: end, window [t_tr, t_end] and records from record_from.
     """
 
     def __init__(self, p: ModelParams, st: SolverSettings, osc, state0, t0: float,
-                 t_end: float, t_tr: float, record_from: float, mode: int = 0):
+                 span: Span, mode: int = 0):
         self.p, self.st, self.osc = p, st, osc
+        t_end, t_tr, record_from = span
         self.t_end, self.t_tr, self.record_from = t_end, t_tr, record_from
         self.kp = kernel_params(osc, p, st, t_end, t_tr, record_from)
         self.cur = np.array([t0, state0[0], state0[1], state0[2], state0[3], mode, 0.0])
@@ -173,7 +187,7 @@ def run_exact(params: ModelParams, settings: SolverSettings, record_from: float 
     """
     p, st = params, settings
     s0 = st.state0 if state0 is None else state0
-    run = KernelRun(p, st, oscillators(p), s0, t0, st.t_end, st.t_transient, record_from)
+    run = KernelRun(p, st, oscillators(p), s0, t0, Span(st.t_end, st.t_transient, record_from))
     if not keep_records:
         ts = strobe_times(p.period, st.t_transient, st.t_end)
         run.stream(ImpactTally.for_window(st.t_transient, ts),
@@ -252,7 +266,7 @@ def _confirm(run: KernelRun, t_s, x_s, mode, pp, per) -> _Orbit | None:
     None."""
     p, st = run.p, run.st
     P = pp * p.period
-    one = KernelRun(p, st, run.osc, x_s, t_s, t_s + P, t_s, t_s, mode)
+    one = KernelRun(p, st, run.osc, x_s, t_s, Span(t_s + P, t_s, t_s), mode)
     if one.run() != eng.RC_DONE:
         return None
     back = sc.rel_diff(one.cur[1:5], x_s) <= sc.SEC_TOL
@@ -304,8 +318,8 @@ def _piece_sums(run: KernelRun, orbit: _Orbit, pieces: list, cache: dict) -> dic
         key = (tau1, tau2)
         if key not in cache:
             t_s = orbit.t_s
-            g = KernelRun(run.p, run.st, run.osc, orbit.x_s, t_s, t_s + tau2, t_s + tau1,
-                          t_s + tau1, orbit.mode)
+            g = KernelRun(run.p, run.st, run.osc, orbit.x_s, t_s,
+                          Span(t_s + tau2, t_s + tau1, t_s + tau1), orbit.mode)
             if g.run() != eng.RC_DONE:
                 raise RuntimeError(f"periodic shortcut: piece [{tau1}, {tau2}] of the orbit "
                                    f"from t = {t_s} did not finish")

@@ -35,6 +35,13 @@ V_STICK_DEFAULT = 1e-6
 MAX_IMPACTS_DEFAULT = 2_000_000
 ROOT_TOL_DEFAULT = 1e-13
 RTOL_DEFAULT = 1e-12          # rtol of the RK reference solver
+# Bifurcation sweeps (``core.sweep.SweepLine``): the first point's run from rest, each next
+# point's run (dimensionless time), forcing periods recorded at the end of each run, and
+# the impact budget per forcing period of a run
+T_SETTLE_DEFAULT = 4000.0
+T_STEP_DEFAULT = 1000.0
+N_RECORD_DEFAULT = 50
+MAX_IMPACTS_PER_PERIOD_DEFAULT = 400
 
 # Upper bounds of every numeric input (API and CLI alike). Each is far beyond any legitimate
 # use (the solver is tested at eta 1e-6..50, omega 0.05..8, F 0..20, d 0..3, runs to 1e5) and

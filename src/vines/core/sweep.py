@@ -14,6 +14,7 @@ from __future__ import annotations
 import math
 import os
 from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -21,11 +22,16 @@ from .exact import run_exact
 from .params import (
     D_DEFAULT,
     MAX_IMPACTS_MAX,
+    MAX_IMPACTS_PER_PERIOD_DEFAULT,
+    N_RECORD_DEFAULT,
     PARAM_BOUNDS,
     PARAM_NAMES,
     R_DEFAULT,
     T_END_MAX,
+    T_SETTLE_DEFAULT,
+    T_STEP_DEFAULT,
     V_STICK_DEFAULT,
+    V_STICK_MAX,
     ModelParams,
     ParameterError,
     SolverSettings,
@@ -79,10 +85,83 @@ def inside_cavity(z_m, v_m, z_b, v_b) -> tuple:
     return z_m, v_m, z_b, v_b
 
 
+@dataclass(frozen=True)
+class SweepLine:
+    """One sweep line, validated on construction (ParameterError naming a bad value).
+
+    ``param`` (one of PARAM_NAMES) runs through ``values`` in sweep order with the other two
+    of eta, omega, F fixed (the swept one's own field is not used); r and d as in
+    ``ModelParams``. Each point runs for t_settle (the first, from rest) or t_step (the
+    next ones, from the last state), plus n_record forcing periods that are recorded
+    (dimensionless time); v_stick as in ``SolverSettings``; each run may have
+    max_impacts_per_period impacts per forcing period (+ 100); periodic_shortcut as in
+    ``simulate``.
+    """
+
+    param: str
+    values: np.ndarray
+    eta: float | None = None
+    omega: float | None = None
+    F: float | None = None
+    r: float = R_DEFAULT
+    d: float = D_DEFAULT
+    t_settle: float = T_SETTLE_DEFAULT
+    t_step: float = T_STEP_DEFAULT
+    n_record: int = N_RECORD_DEFAULT
+    v_stick: float = V_STICK_DEFAULT
+    max_impacts_per_period: float = MAX_IMPACTS_PER_PERIOD_DEFAULT
+    periodic_shortcut: bool = True
+
+    def __post_init__(self):
+        set_ = object.__setattr__
+        param = check_choice("param", self.param, PARAM_NAMES)
+        for name in PARAM_NAMES:
+            if name != param and getattr(self, name) is None:
+                raise ParameterError(name, None, f"must be given when sweeping {param}")
+            if name != param:
+                set_(self, name, check_param(name, getattr(self, name)))
+        lo, lo_open, hi = PARAM_BOUNDS[param]
+        set_(self, "values", check_reals("values", self.values, lo=lo, lo_open=lo_open, hi=hi,
+                                         min_size=0))
+        set_(self, "t_settle", check_real("t_settle", self.t_settle, lo=0.0, lo_open=True,
+                                          hi=T_END_MAX))
+        set_(self, "t_step", check_real("t_step", self.t_step, lo=0.0, lo_open=True,
+                                        hi=T_END_MAX))
+        set_(self, "n_record", check_int("n_record", self.n_record, lo=1))
+        set_(self, "max_impacts_per_period",
+             check_real("max_impacts_per_period", self.max_impacts_per_period, lo=0.0,
+                        lo_open=True))
+        set_(self, "periodic_shortcut", check_bool("periodic_shortcut",
+                                                   self.periodic_shortcut))
+        set_(self, "r", check_param("r", self.r))
+        set_(self, "d", check_param("d", self.d))
+        set_(self, "v_stick", check_real("v_stick", self.v_stick, lo=0.0, hi=V_STICK_MAX))
+        _check_run_lengths(self)
+
+    def point(self, k: int, theta: float) -> ModelParams:
+        """The model of point k, its forcing phase phi = theta mod 2 pi (theta: the phase
+        omega t + phi the previous point reached)."""
+        kw = {"eta": self.eta, "omega": self.omega, "F": self.F, self.param: self.values[k]}
+        return ModelParams(eta=kw["eta"], omega=kw["omega"], F=kw["F"], r=self.r, d=self.d,
+                           phi=math.fmod(theta, 2.0 * math.pi))
+
+    def t_run(self, k: int, p: ModelParams) -> float:
+        """Length of point k's run (model p): t_settle or t_step plus n_record periods."""
+        return (self.t_settle if k == 0 else self.t_step) + self.n_record * p.period
+
+    def run_point(self, k: int, p: ModelParams, state):
+        """``sweep_point`` of point k (model p) from ``state``."""
+        return sweep_point(p, state, self.t_run(k, p), self.n_record, self.v_stick,
+                           self.max_impacts_per_period, self.periodic_shortcut)
+
+
 def bifurcation_sweep(param, values, *, eta=None, omega=None, F=None, r=R_DEFAULT, d=D_DEFAULT,
-                      t_settle=4000.0, t_step=1000.0, n_record=50, v_stick=V_STICK_DEFAULT,
-                      max_impacts_per_period=400, periodic_shortcut=True) -> dict:
-    """Sweep ``param`` through ``values`` (in the given order) with the other two fixed.
+                      t_settle=T_SETTLE_DEFAULT, t_step=T_STEP_DEFAULT,
+                      n_record=N_RECORD_DEFAULT, v_stick=V_STICK_DEFAULT,
+                      max_impacts_per_period=MAX_IMPACTS_PER_PERIOD_DEFAULT,
+                      periodic_shortcut=True) -> dict:
+    """Sweep ``param`` through ``values`` (in the given order) with the other two fixed
+    (arguments as the fields of ``SweepLine``).
 
     Returns dict with 1-D arrays over the values: value, row_size, phi (phase used at the
     start of each point), status, shortcut_time (time of the point's run, from its start,
@@ -93,23 +172,15 @@ def bifurcation_sweep(param, values, *, eta=None, omega=None, F=None, r=R_DEFAUL
     next point starts from the periodic orbit's state at the end of the run (equal to the
     full run's to ~1e-10; a chaotic point amplifies such differences).
     """
-    param = check_choice("param", param, PARAM_NAMES)
-    fixed = {"eta": eta, "omega": omega, "F": F}
-    for name in PARAM_NAMES:
-        if name != param and fixed[name] is None:
-            raise ParameterError(name, None, f"must be given when sweeping {param}")
-        if name != param:
-            fixed[name] = check_param(name, fixed[name])
-    lo, lo_open, hi = PARAM_BOUNDS[param]
-    values = check_reals("values", values, lo=lo, lo_open=lo_open, hi=hi, min_size=0)
-    t_settle = check_real("t_settle", t_settle, lo=0.0, lo_open=True, hi=T_END_MAX)
-    t_step = check_real("t_step", t_step, lo=0.0, lo_open=True, hi=T_END_MAX)
-    n_record = check_int("n_record", n_record, lo=1)
-    max_impacts_per_period = check_real("max_impacts_per_period", max_impacts_per_period,
-                                        lo=0.0, lo_open=True)
-    shortcut = check_bool("periodic_shortcut", periodic_shortcut)
-    _check_run_lengths(param, values, fixed["omega"], t_settle, t_step, n_record,
-                       max_impacts_per_period)
+    return sweep_line(SweepLine(
+        param, values, eta=eta, omega=omega, F=F, r=r, d=d, t_settle=t_settle, t_step=t_step,
+        n_record=n_record, v_stick=v_stick, max_impacts_per_period=max_impacts_per_period,
+        periodic_shortcut=periodic_shortcut))
+
+
+def sweep_line(line: SweepLine) -> dict:
+    """``bifurcation_sweep`` of a validated line."""
+    values = line.values
     state = (0.0, 0.0, 0.0, 0.0)
     theta = 0.0           # forcing phase omega t + phi carried from point to point
     dws, phases, walls = [], [], []
@@ -117,13 +188,9 @@ def bifurcation_sweep(param, values, *, eta=None, omega=None, F=None, r=R_DEFAUL
     phis = np.zeros(values.size)
     status = np.empty(values.size, dtype="U16")
     shortcut_time = np.full(values.size, np.nan)
-    for k, val in enumerate(values):
-        kw = {**fixed, param: val}
-        p = ModelParams(eta=kw["eta"], omega=kw["omega"], F=kw["F"], r=r, d=d,
-                        phi=math.fmod(theta, 2.0 * math.pi))
-        t_run = (t_settle if k == 0 else t_step) + n_record * p.period
-        raw, _, state, theta = sweep_point(p, state, t_run, n_record, v_stick,
-                                           max_impacts_per_period, shortcut)
+    for k in range(values.size):
+        p = line.point(k, theta)
+        raw, _, state, theta = line.run_point(k, p, state)
         imp = raw.impacts
         dws.append(imp["v_m"] - imp["v_b"])
         phases.append(np.mod(p.omega * imp["t"] + p.phi, 2.0 * math.pi))
@@ -141,11 +208,13 @@ def bifurcation_sweep(param, values, *, eta=None, omega=None, F=None, r=R_DEFAUL
             "phase": cat(phases, float), "wall": cat(walls, np.int8)}
 
 
-def _check_run_lengths(param, values, omega, t_settle, t_step, n_record,
-                       max_impacts_per_period) -> None:
+def _check_run_lengths(line: SweepLine) -> None:
     """Refuse a sweep whose runs (t_settle for the first point, t_step for the others, plus
     n_record forcing periods) exceed T_END_MAX or may need more than MAX_IMPACTS_MAX
     impacts (``sweep_point``)."""
+    param, values, omega = line.param, line.values, line.omega
+    t_settle, t_step, n_record = line.t_settle, line.t_step, line.n_record
+    max_impacts_per_period = line.max_impacts_per_period
     if values.size == 0:
         return
     omegas = values if param == "omega" else np.full(values.size, omega)

@@ -74,9 +74,11 @@ def _forcing_at(osc_f, t, phi):
 
 
 @njit(cache=True, nogil=True)
-def saltation_impact(osc_f, eta, r, phi, t, zm, vm, vb, S):
+def saltation_impact(kp, t, zm, vm, vb, S):
     """Fill S with the saltation matrix of an impact at time t from the pre-impact state
-    (z_m, v_m, ., v_b) (free flight on both sides, module docstring)."""
+    (z_m, v_m, ., v_b) (free flight on both sides, module docstring); kp: the run's
+    ``kernel.KernelParams`` (its free oscillator, eta, r and phi are used)."""
+    osc_f, eta, r, phi = kp.osc_f, kp.eta, kp.r, kp.phi
     one = 1.0 + eta
     a11, a12 = (1.0 - r * eta) / one, eta * (1.0 + r) / one
     a21, a22 = (1.0 + r) / one, (eta - r) / one
@@ -98,8 +100,10 @@ def saltation_impact(osc_f, eta, r, phi, t, zm, vm, vb, S):
 
 
 @njit(cache=True, nogil=True)
-def saltation_impact_stick(osc_f, eta, phi, t, zm, vm, vb, S):
-    """Fill S with the saltation matrix of an impact after which the ball sticks (rank 2)."""
+def saltation_impact_stick(kp, t, zm, vm, vb, S):
+    """Fill S with the saltation matrix of an impact after which the ball sticks (rank 2;
+    kp as in ``saltation_impact``)."""
+    osc_f, eta, phi = kp.osc_f, kp.eta, kp.phi
     one = 1.0 + eta
     c1, c2 = 1.0 / one, eta / one
     vc = c1 * vm + c2 * vb
@@ -189,9 +193,10 @@ def _matmul_cols(A, B, k, out):
 
 
 @njit(cache=True, nogil=True)
-def _event_matrix(seg, k, imp, n_imp, tp, osc_f, eta, r, phi, t_acc, S):
+def _event_matrix(kp, seg, k, imp, n_imp, tp, t_acc, S):
     """Saltation matrix at the end of segment k (start of segment k + 1) into S; returns
-    the kind: 0 none (identity), 1 impact, 2 stick (rank 2), 3 release."""
+    the kind: 0 none (identity), 1 impact, 2 stick (rank 2), 3 release. Impacts from
+    t_acc on are counted in tp[TP_NIMP]."""
     t1 = seg[k + 1, 0]
     m0 = int(seg[k, 5])
     m1 = int(seg[k + 1, 5])
@@ -207,12 +212,12 @@ def _event_matrix(seg, k, imp, n_imp, tp, osc_f, eta, r, phi, t_acc, S):
     if m0 == 0 and hit:
         zm, vm, vb = imp[ip, 1], imp[ip, 2], imp[ip, 4]
         if m1 == 0:
-            saltation_impact(osc_f, eta, r, phi, t1, zm, vm, vb, S)
+            saltation_impact(kp, t1, zm, vm, vb, S)
             return 1
-        saltation_impact_stick(osc_f, eta, phi, t1, zm, vm, vb, S)
+        saltation_impact_stick(kp, t1, zm, vm, vb, S)
         return 2
     if m0 == 0 and m1 != 0:
-        stick_projection(eta, S)
+        stick_projection(kp.eta, S)
         return 2
     if m0 != 0 and m1 == 0:
         return 3
@@ -256,11 +261,12 @@ def _accumulate(Y, Q, tp, rdiag, sums, b, collapse):
 
 
 @njit(cache=True, nogil=True)
-def tangent_pass(seg, n_seg, t_last, imp, n_imp, osc_f, osc_s, eta, r, phi, edges, Q, tp,
-                 sums):
+def tangent_pass(kp, seg, n_seg, t_last, imp, n_imp, edges, ts):
     """Carry the orthonormal frame Q (4x4, first tp[TP_K] columns active) along the
     recorded segments seg[:n_seg] (rows t0, z_m, z_m', z_b, z_b', mode as recorded by
-    ``kernel.run_kernel``) and the impacts imp[:n_imp] (from index tp[TP_IMP] on).
+    ``kernel.run_kernel``) and the impacts imp[:n_imp] (from index tp[TP_IMP] on) of the run
+    with ``kernel.KernelParams`` kp. ts = (Q, tp, sums): the tangent state, updated in place
+    (frame, slots TP_*, sums of log |R_ii| per batch).
 
     Segment i < n_seg - 1 ends where segment i + 1 starts, with the event found from the
     modes and the impact records (``_event_matrix``); the last one ends at t_last (no event;
@@ -270,6 +276,8 @@ def tangent_pass(seg, n_seg, t_last, imp, n_imp, osc_f, osc_s, eta, r, phi, edge
     added before edges[0]. Pieces end at every batch edge. Returns how many segments were
     completed.
     """
+    Q, tp, sums = ts
+    osc_f, osc_s = kp.osc_f, kp.osc_s
     Y = np.empty((4, 4))
     M = np.empty((4, 4))
     S = np.empty((4, 4))
@@ -301,7 +309,7 @@ def tangent_pass(seg, n_seg, t_last, imp, n_imp, osc_f, osc_s, eta, r, phi, edge
                 continue
             kind = 0
             if k + 1 < n_seg:
-                kind = _event_matrix(seg, k, imp, n_imp, tp, osc_f, eta, r, phi, t_acc, S)
+                kind = _event_matrix(kp, seg, k, imp, n_imp, tp, t_acc, S)
             if kind == 1 or kind == 2:
                 for j in range(int(tp[TP_K])):
                     for i in range(4):
@@ -343,11 +351,11 @@ class TangentRun:
 
     def __init__(self, params, settings, oscs, state0, t0: float, edges, mode: int = 0,
                  frame=None):
-        from .exact import KernelRun
+        from .exact import KernelRun, Span
         self.p, self.oscs = params, oscs
         self.edges = np.ascontiguousarray(edges, dtype=float)
         self.run_ = KernelRun(params, settings, oscs, np.asarray(state0, float), t0,
-                              settings.t_end, settings.t_transient, t0, mode)
+                              Span(settings.t_end, settings.t_transient, t0), mode)
         self.Q = initial_frame() if frame is None else np.array(frame, float)
         self.tp = np.zeros(N_TP)
         self.tp[TP_K] = 4
@@ -365,8 +373,8 @@ class TangentRun:
             done = rc != eng.RC_PAUSED
             n_seg, n_imp = int(run.cnt[eng.C_NSEG_REC]), int(run.cnt[eng.C_NIMP_REC])
             t_last = float(run.cur[eng.CUR_T]) if done else math.nan
-            n_done = tangent_pass(run.seg, n_seg, t_last, run.imp, n_imp, *self.oscs,
-                                  p.eta, p.r, p.phi, self.edges, self.Q, self.tp, self.sums)
+            n_done = tangent_pass(run.kp, run.seg, n_seg, t_last, run.imp, n_imp, self.edges,
+                                  (self.Q, self.tp, self.sums))
             if on_chunk is not None and n_done > 0:
                 on_chunk(run.seg, n_done, t_last if done else float(run.seg[n_done, 0]))
             self._compact(n_seg, n_done, n_imp)

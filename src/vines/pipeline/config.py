@@ -54,18 +54,53 @@ def check_names(config, schema: dict, path: str = "") -> None:
             check_names(value, sub, where)
 
 
-#: the config schema (with every default), shipped inside the package
+#: the config schema, shipped inside the package (the defaults of ``api_defaults`` are
+#: filled in when it is loaded)
 SCHEMA_FILE = "config.schema.yaml"
 
 
+def api_defaults() -> dict:
+    """Schema defaults that are the API's own, taken from ``core.params`` (the dataclass
+    defaults of ``ModelParams`` and ``SolverSettings``, the sweep constants) and not written
+    in the schema file: dotted property path ('*': every entry of a named section) ->
+    value. ``core.params`` loads no numba: the Snakefile reads the schema at parse time."""
+    from dataclasses import fields
+
+    from ..core import params as P
+    model = {f.name: f.default for f in fields(P.ModelParams)}
+    run = {f.name: f.default for f in fields(P.SolverSettings)}
+    out = {"model.r": model["r"]}
+    out |= {f"simulation.{k}": run[k]
+            for k in ("t_end", "t_transient", "v_stick", "max_impacts", "root_tol")}
+    out |= {"sweeps.*.t_settle": P.T_SETTLE_DEFAULT, "sweeps.*.t_step": P.T_STEP_DEFAULT,
+            "sweeps.*.n_record": P.N_RECORD_DEFAULT, "sweeps.*.v_stick": run["v_stick"]}
+    return out
+
+
+def _fill_defaults(schema: dict) -> dict:
+    """``schema`` with the defaults of ``api_defaults`` filled in (a default already in
+    the file would be a second source: refused)."""
+    for path, value in api_defaults().items():
+        node = schema
+        for part in path.split("."):
+            node = node["additionalProperties"] if part == "*" else node["properties"][part]
+        if "default" in node:
+            raise ValueError(f"config schema: {path} has a default of its own; it comes from "
+                             "vines.core.params (pipeline.config.api_defaults)")
+        node["default"] = value
+    return schema
+
+
 def load_schema(path=None) -> dict:
-    """The config schema: the package's own (default) or the file at ``path``."""
+    """The config schema: the package's own (default) or the file at ``path``, with the
+    API's defaults (``api_defaults``)."""
     import yaml
     if path is None:
         from importlib.resources import files
-        return yaml.safe_load(files(__package__).joinpath(SCHEMA_FILE).read_text())
+        return _fill_defaults(yaml.safe_load(files(__package__).joinpath(SCHEMA_FILE)
+                                             .read_text()))
     with open(path) as fh:
-        return yaml.safe_load(fh)
+        return _fill_defaults(yaml.safe_load(fh))
 
 
 def _strict_loader():

@@ -170,9 +170,10 @@ def bifurcation_sweep(spec: dict, *, model: dict, code: str, title: str, n_worke
 
 # ------------------------------------------------------------------ lyapunov
 
-def _lyapunov_line(param, values, fixed, kw):
+def _lyapunov_line(param, values, fixed, kw, window):
     from ..attractors.lyapunov_sweep import sweep_exponents
-    return sweep_exponents(param, values, **fixed, **kw)
+    from ..core.sweep import SweepLine
+    return sweep_exponents(SweepLine(param, values, **fixed, **kw), **window)
 
 
 def lyapunov(spec: dict, sweep: dict, *, model: dict, code: str, title: str,
@@ -182,10 +183,10 @@ def lyapunov(spec: dict, sweep: dict, *, model: dict, code: str, title: str,
     point, over the last ``spec['t_window']`` of the point's run (one dask task per line)."""
     import dask
     kw = dict(t_settle=sweep["t_settle"], t_step=sweep["t_step"], n_record=sweep["n_record"],
-              v_stick=sweep["v_stick"], periodic_shortcut=periodic_shortcut,
-              t_window=spec["t_window"], n_batches=spec["n_batches"], **model)
+              v_stick=sweep["v_stick"], periodic_shortcut=periodic_shortcut, **model)
+    window = dict(t_window=spec["t_window"], n_batches=spec["n_batches"])
     lines = _sweep_lines(sweep)
-    tasks = [dask.delayed(_lyapunov_line, pure=True)(sweep["param"], vals, fixed, kw)
+    tasks = [dask.delayed(_lyapunov_line, pure=True)(sweep["param"], vals, fixed, kw, window)
              for (_, _, vals, fixed) in lines]
     res = compute(tasks, max(1, int(n_workers)), scheduler, True)
     cat = {k: np.concatenate([r[k] for r in res]) for k in res[0]}

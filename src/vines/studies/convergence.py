@@ -26,7 +26,7 @@ import os
 import time
 from collections.abc import Sequence
 from concurrent.futures import ThreadPoolExecutor
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass
 
 import numpy as np
 
@@ -159,13 +159,50 @@ def _check_points(points) -> list[dict]:
     return out
 
 
-def _check_solver(*, t_end, t_transient, v_stick, r, d, max_impacts, root_tol,
-                  periodic_shortcut, n_threads) -> None:
-    """The settings shared by every run of a study (each raises ParameterError)."""
-    SolverSettings(t_end=t_end, t_transient=t_transient, v_stick=v_stick,
-                   max_impacts=max_impacts, root_tol=root_tol)
-    ModelParams(eta=1.0, omega=1.0, F=0.0, r=r, d=d)
-    check_bool("periodic_shortcut", periodic_shortcut)
+@dataclass(frozen=True)
+class StudySolver:
+    """The settings shared by every run of a study, validated on construction (each bad
+    value raises ParameterError naming it): the run's end t_end and window start
+    t_transient (dimensionless time), v_stick (units of L w0), max_impacts and root_tol as
+    in ``SolverSettings``; restitution r and LO damping d as in ``ModelParams``;
+    periodic_shortcut as in ``simulate_batch``. A study may vary some of them per case."""
+
+    t_end: float
+    t_transient: float
+    v_stick: float
+    r: float
+    d: float
+    max_impacts: int
+    root_tol: float
+    periodic_shortcut: bool
+
+    def __post_init__(self):
+        st = SolverSettings(t_end=self.t_end, t_transient=self.t_transient,
+                            v_stick=self.v_stick, max_impacts=self.max_impacts,
+                            root_tol=self.root_tol)
+        model = ModelParams(eta=1.0, omega=1.0, F=0.0, r=self.r, d=self.d)
+        set_ = object.__setattr__
+        for name in ("t_end", "t_transient", "v_stick", "max_impacts", "root_tol"):
+            set_(self, name, getattr(st, name))
+        set_(self, "r", model.r)
+        set_(self, "d", model.d)
+        set_(self, "periodic_shortcut", check_bool("periodic_shortcut",
+                                                   self.periodic_shortcut))
+
+    def run_kwargs(self, *varied: str) -> dict:
+        """Keyword arguments of ``simulate_batch`` for every case, less the ``varied``
+        ones (set per case)."""
+        return {k: v for k, v in asdict(self).items() if k not in varied}
+
+    def record(self, *varied: str) -> dict:
+        """The settings as a study's result stores them (``solver``; the flag as 0/1),
+        less the ``varied`` ones (its axes)."""
+        out = self.run_kwargs(*varied)
+        out["periodic_shortcut"] = int(out["periodic_shortcut"])
+        return out
+
+
+def _check_threads(n_threads) -> None:
     if n_threads is not None:
         check_int("n_threads", n_threads, lo=1)
 
@@ -294,9 +331,9 @@ def window_convergence(points: Sequence[dict],
     equals the reference's. Arrays over (point, window, t_end).
     """
     pts = _check_points(points)
-    _check_solver(t_end=t_end, t_transient=t_transient, v_stick=v_stick, r=r, d=d,
-                  max_impacts=max_impacts, root_tol=root_tol,
-                  periodic_shortcut=periodic_shortcut, n_threads=n_threads)
+    run = StudySolver(t_end, t_transient, v_stick, r, d, max_impacts, root_tol,
+                      periodic_shortcut)
+    _check_threads(n_threads)
     ke_tol, xmax_rtol = _check_tols(ke_tol, xmax_rtol)
     whole_periods = check_bool("whole_periods", whole_periods)
     t_ends, rules, tested_len = _window_rules(t_ends, window_lengths, window_fractions,
@@ -306,12 +343,7 @@ def window_convergence(points: Sequence[dict],
     cases = [dict(eta=p["eta"], omega=p["omega"], F=p["F"], t_end=float(t_ends[k]),
                   t_transient=float(t_tr[i, j, k]))
              for i, p in enumerate(pts) for j in range(n_w) for k in range(n_t)]
-    solver = dict(v_stick=float(v_stick), r=float(r), d=float(d),
-                  max_impacts=int(max_impacts), root_tol=float(root_tol),
-                  periodic_shortcut=int(bool(periodic_shortcut)))
-    f, _ = _run_cases(cases, dict(v_stick=v_stick, r=r, d=d, max_impacts=max_impacts,
-                                  root_tol=root_tol, periodic_shortcut=periodic_shortcut),
-                      n_threads)
+    f, _ = _run_cases(cases, run.run_kwargs("t_end", "t_transient"), n_threads)
     m = _measures(f, (n_p, n_w, n_t))
     # reference: longest run, widest window (smallest t_transient of the last t_end column)
     j_ref = np.argmin(t_tr[:, :, -1], axis=1)
@@ -331,7 +363,8 @@ def window_convergence(points: Sequence[dict],
         tested={k: v[:, j_t, k_t] for k, v in diff.items()}, tested_window=j_t,
         tested_t_end_index=k_t, tested_t_end=float(t_end),
         tested_t_transient=float(t_transient), ke_tol=float(ke_tol),
-        xmax_rtol=float(xmax_rtol), whole_periods=bool(whole_periods), solver=solver)
+        xmax_rtol=float(xmax_rtol), whole_periods=bool(whole_periods),
+        solver=run.record("t_end", "t_transient"))
 
 
 # ------------------------------------------------------------------ (b) sticking threshold
@@ -356,9 +389,9 @@ def vstick_convergence(points: Sequence[dict], v_sticks: Sequence[float] = V_STI
     v_stick), v_stick increasing.
     """
     pts = _check_points(points)
-    _check_solver(t_end=t_end, t_transient=t_transient, v_stick=v_stick, r=r, d=d,
-                  max_impacts=max_impacts, root_tol=root_tol,
-                  periodic_shortcut=periodic_shortcut, n_threads=n_threads)
+    run = StudySolver(t_end, t_transient, v_stick, r, d, max_impacts, root_tol,
+                      periodic_shortcut)
+    _check_threads(n_threads)
     ke_tol, xmax_rtol = _check_tols(ke_tol, xmax_rtol)
     vs = np.unique(np.append(check_reals("v_sticks", v_sticks, lo=0.0, lo_open=True,
                                          hi=V_STICK_MAX, min_size=0), float(v_stick)))
@@ -366,12 +399,7 @@ def vstick_convergence(points: Sequence[dict], v_sticks: Sequence[float] = V_STI
         raise ParameterError("v_stick", v_stick, "must be > 0 in a v_stick study")
     cases = [dict(eta=p["eta"], omega=p["omega"], F=p["F"], v_stick=float(v))
              for p in pts for v in vs]
-    solver = dict(t_end=float(t_end), t_transient=float(t_transient), r=float(r),
-                  d=float(d), max_impacts=int(max_impacts), root_tol=float(root_tol),
-                  periodic_shortcut=int(bool(periodic_shortcut)))
-    f, run_time = _run_cases(cases, dict(t_end=t_end, t_transient=t_transient, r=r, d=d,
-                                         max_impacts=max_impacts, root_tol=root_tol,
-                                         periodic_shortcut=periodic_shortcut), n_threads)
+    f, run_time = _run_cases(cases, run.run_kwargs("v_stick"), n_threads)
     shape = (len(pts), vs.size)
     m = _measures(f, shape)
     diff = _differences(m, m["ke_ratio"][:, :1], m["xmax"][:, :1], m["regime"][:, :1],
@@ -384,7 +412,7 @@ def vstick_convergence(points: Sequence[dict], v_sticks: Sequence[float] = V_STI
         run_time=run_time.reshape(shape), converged_below=below,
         tested={k: v[:, k_t] for k, v in diff.items()}, tested_index=k_t,
         tested_v_stick=float(v_stick), ke_tol=float(ke_tol), xmax_rtol=float(xmax_rtol),
-        solver=solver)
+        solver=run.record("v_stick"))
 
 
 # ------------------------------------------------------------------ (c) grid resolution
@@ -450,9 +478,9 @@ def grid_convergence(eta_range: Sequence[float] = (0.01, 1.0),
     ``ke_ratio``/``xmax``/``regime`` over (eta, omega): the coarse grids are
     ``[::stride, ::stride]``.
     """
-    _check_solver(t_end=t_end, t_transient=t_transient, v_stick=v_stick, r=r, d=d,
-                  max_impacts=max_impacts, root_tol=root_tol,
-                  periodic_shortcut=periodic_shortcut, n_threads=n_threads)
+    run = StudySolver(t_end, t_transient, v_stick, r, d, max_impacts, root_tol,
+                      periodic_shortcut)
+    _check_threads(n_threads)
     F = check_param("F", F)
     level = check_real("level", level)
     counts = check_reals("resolutions", resolutions, lo=2, hi=RESOLUTION_MAX)
@@ -471,21 +499,16 @@ def grid_convergence(eta_range: Sequence[float] = (0.01, 1.0),
     eta = np.linspace(e0, e1, n_f)
     omega = np.linspace(w0, w1, n_f)
     E, OM = np.meshgrid(eta, omega, indexing="ij")
-    f = simulate_batch(E, OM, float(F), r=r, d=d, t_end=t_end, t_transient=t_transient,
-                       v_stick=v_stick, max_impacts=max_impacts, root_tol=root_tol,
-                       periodic_shortcut=periodic_shortcut, n_threads=n_threads)
+    f = simulate_batch(E, OM, float(F), n_threads=n_threads, **run.run_kwargs())
     per_res = {"stride": np.array(strides),
                "spacing_eta": (e1 - e0) / (np.array(res) - 1.0),
                "spacing_omega": (w1 - w0) / (np.array(res) - 1.0),
                **_contour_measures(eta, omega, f["ke_ratio"], strides, level,
                                   (e1 - e0) * (w1 - w0))}
-    solver = dict(t_end=float(t_end), t_transient=float(t_transient), v_stick=float(v_stick),
-                  r=float(r), d=float(d), max_impacts=int(max_impacts),
-                  root_tol=float(root_tol), periodic_shortcut=int(bool(periodic_shortcut)))
     return GridConvergence(eta=eta, omega=omega,
                            fields={k: f[k] for k in ("ke_ratio", "xmax", "regime")},
                            resolution=np.array(res), per_resolution=per_res, F=float(F),
-                           level=float(level), solver=solver)
+                           level=float(level), solver=run.record())
 
 
 #: the studies by name (the ``convergence`` config section's keys)

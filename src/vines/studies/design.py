@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -159,20 +160,20 @@ class Evaluator:
     ~d fall between grid points. Results depend only on the design, not on the batch or
     the threads."""
 
-    def __init__(self, problem: DesignProblem, n_threads=None):
+    def __init__(self, problem: DesignProblem, n_threads: int | None = None):
         self.problem = problem
         self.n_threads = n_threads
         self.cache: dict = {}
         self.n_runs = 0
 
-    def responses(self, designs) -> list[Response]:
+    def responses(self, designs: Sequence[tuple[float, float]]) -> list[Response]:
         keys = [(float(e), float(L)) for e, L in designs]
         new = list(dict.fromkeys(k for k in keys if k not in self.cache))
         if new:
             self._run(new)
         return [self.cache[k] for k in keys]
 
-    def worst(self, designs) -> list[float]:
+    def worst(self, designs: Sequence[tuple[float, float]]) -> list[float]:
         return [r.worst for r in self.responses(designs)]
 
     def _ratio(self, eta, omega, F) -> np.ndarray:
@@ -220,7 +221,8 @@ class Evaluator:
 
 
 def attractor_curves(problem: DesignProblem, eta: float, clearance_m: float,
-                     from_rest: np.ndarray, n_threads=None) -> tuple[np.ndarray, float]:
+                     from_rest: np.ndarray,
+                     n_threads: int | None = None) -> tuple[np.ndarray, float]:
     """Worst x_max/A over the attractors of ``problem.view`` at every (amplitude, omega)
     of a design: those holding >= basin_min of the census's states and the one reached
     from rest, and the from-rest run itself (``from_rest``: its curves). Also the largest
@@ -244,7 +246,8 @@ def attractor_curves(problem: DesignProblem, eta: float, clearance_m: float,
 
 # --------------------------------------------------------------------------- search
 
-def search_grid(eta_max: float, clearance_range_m, n_eta: int, n_clearance: int):
+def search_grid(eta_max: float, clearance_range_m: tuple[float, float], n_eta: int,
+                n_clearance: int) -> tuple[np.ndarray, np.ndarray]:
     """(eta grid eta_max k/n_eta, k = 1..n_eta; clearance grid 10**v, v evenly spaced over
     log10 of the range: the compass search maps log10 L to L the same way, so a grid
     design is the same float wherever it is met)."""
@@ -285,8 +288,8 @@ def _compass(ev: Evaluator, start, value, steps, lower, upper) -> tuple:
     return x, value
 
 
-def optimise(ev: Evaluator, eta_max: float, clearance_range_m, n_eta: int,
-             n_clearance: int) -> dict:
+def optimise(ev: Evaluator, eta_max: float, clearance_range_m: tuple[float, float],
+             n_eta: int, n_clearance: int) -> dict:
     """Best (eta, L) of the brute-force grid, then compass searches from the N_STARTS best
     grid points (steps half the grid's). Returns eta, clearance_m, worst_ratio and the
     grid (eta, clearance_m, worst_ratio (n_eta, n_clearance))."""
@@ -411,11 +414,26 @@ class DesignResult:
 
 # --------------------------------------------------------------------------- driver
 
-def solve(problem: DesignProblem, *, eta=None, clearance_m=None, eta_max=None,
-          clearance_range_m=None, n_eta=N_ETA_DEFAULT, n_clearance=N_CLEARANCE_DEFAULT,
-          n_threads=None, inputs=None) -> DesignResult:
-    """Evaluate the design (eta, clearance_m) or optimise one with eta <= eta_max over
-    clearance_range_m (validated inputs; ``design`` is the checked entry)."""
+@dataclass(frozen=True)
+class DesignSearch:
+    """What ``solve`` does with a problem (validated by ``design``): evaluate the design
+    (eta, clearance_m [m], half the cavity length) or, when eta_max is set, optimise one
+    with eta <= eta_max and the clearance in clearance_range_m (lo, hi) [m] on an
+    n_eta x n_clearance grid plus a compass search (``optimise``)."""
+
+    eta: float | None = None
+    clearance_m: float | None = None
+    eta_max: float | None = None
+    clearance_range_m: tuple | None = None
+    n_eta: int = N_ETA_DEFAULT
+    n_clearance: int = N_CLEARANCE_DEFAULT
+
+
+def solve(problem: DesignProblem, search: DesignSearch, *, n_threads: int | None = None,
+          inputs: dict | None = None) -> DesignResult:
+    """Evaluate or optimise a design as ``search`` says (validated inputs; ``design`` is
+    the checked entry; ``inputs``: the inputs as the result reports them)."""
+    eta, clearance_m, eta_max = search.eta, search.clearance_m, search.eta_max
     t0, c0 = time.perf_counter(), time.process_time()
     d = problem.model.d
     mu = eta if eta_max is None else eta_max
@@ -424,11 +442,12 @@ def solve(problem: DesignProblem, *, eta=None, clearance_m=None, eta_max=None,
     lo_curve = np.asarray(_tmd.lo_ratio(omega, d), dtype=float)
     t1, c1 = time.perf_counter(), time.process_time()
     ev = Evaluator(problem, n_threads)
-    search = None
+    grid = None
     with progress.task(None, "design: runs from rest", "runs"):
         if eta_max is not None:
-            best = optimise(ev, eta_max, clearance_range_m, n_eta, n_clearance)
-            eta, clearance_m, search = best["eta"], best["clearance_m"], best["grid"]
+            best = optimise(ev, eta_max, search.clearance_range_m, search.n_eta,
+                            search.n_clearance)
+            eta, clearance_m, grid = best["eta"], best["clearance_m"], best["grid"]
         rest = ev.responses([(eta, clearance_m)])[0]
     t2, c2 = time.perf_counter(), time.process_time()
     any_, unsettled = None, None
@@ -448,17 +467,21 @@ def solve(problem: DesignProblem, *, eta=None, clearance_m=None, eta_max=None,
                         tmd_curve=np.asarray(tuned.ratio(omega, d), dtype=float),
                         eta=float(eta), clearance_m=float(clearance_m), rest=rest,
                         vines_any_attractor=any_, unsettled_fraction=unsettled,
-                        search=search, cost=cost)
+                        search=grid, cost=cost)
 
 
-def design(*, omega_band=DEFAULT_BAND, n_omega=DEFAULT_N_OMEGA,
-           amplitudes_m=DEFAULT_AMPLITUDES_M, M_kg=None, k_N_per_m=None, c_Ns_per_m=None,
-           d=None, r=R_DEFAULT, eta=None, clearance_m=None, eta_max=None,
-           clearance_range_m=None, n_eta=N_ETA_DEFAULT, n_clearance=N_CLEARANCE_DEFAULT,
-           view="t_end", census_n=CENSUS_N_DEFAULT, census_seed=0,
-           basin_min=BASIN_MIN_DEFAULT, t_end=T_END_DEFAULT, t_transient=T_TRANSIENT_DEFAULT,
-           v_stick=V_STICK_DEFAULT, max_impacts=MAX_IMPACTS_DEFAULT,
-           root_tol=ROOT_TOL_DEFAULT, n_threads=None) -> DesignResult:
+def design(*, omega_band: Sequence[float] = DEFAULT_BAND, n_omega: int = DEFAULT_N_OMEGA,
+           amplitudes_m: float | Sequence[float] = DEFAULT_AMPLITUDES_M,
+           M_kg: float | None = None, k_N_per_m: float | None = None,
+           c_Ns_per_m: float | None = None, d: float | None = None, r: float = R_DEFAULT,
+           eta: float | None = None, clearance_m: float | None = None,
+           eta_max: float | None = None, clearance_range_m: Sequence[float] | None = None,
+           n_eta: int = N_ETA_DEFAULT, n_clearance: int = N_CLEARANCE_DEFAULT,
+           view: str = "t_end", census_n: int = CENSUS_N_DEFAULT, census_seed: int = 0,
+           basin_min: float = BASIN_MIN_DEFAULT, t_end: float = T_END_DEFAULT,
+           t_transient: float = T_TRANSIENT_DEFAULT, v_stick: float = V_STICK_DEFAULT,
+           max_impacts: int = MAX_IMPACTS_DEFAULT, root_tol: float = ROOT_TOL_DEFAULT,
+           n_threads: int | None = None) -> DesignResult:
     """Choose (or judge) a VI NES for a structure shaken through its base over a band.
 
     omega_band (lo, hi) of omega = w/w0 with n_omega grid points; amplitudes_m: base
@@ -507,4 +530,4 @@ def design(*, omega_band=DEFAULT_BAND, n_omega=DEFAULT_N_OMEGA,
                   **{k_: (list(v) if isinstance(v, tuple) else v) for k_, v in search.items()},
                   view=view, census_n=census_n, census_seed=census_seed,
                   basin_min=basin_min, settings=settings.as_dict() | {"state0": None})
-    return solve(problem, n_threads=n_threads, inputs=inputs, **search)
+    return solve(problem, DesignSearch(**search), n_threads=n_threads, inputs=inputs)

@@ -3,6 +3,7 @@ argument, the value and what is allowed. Numbers only; no simulation is loaded h
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 
 from ..core.params import (
     C_DAMP_NS_PER_M,
@@ -29,7 +30,7 @@ def _pair(name, value) -> tuple:
     return pair
 
 
-def check_band(band, name: str = "omega_band") -> tuple[float, float]:
+def check_band(band: Sequence[float], name: str = "omega_band") -> tuple[float, float]:
     """omega band (lo, hi): 0 < lo < hi <= OMEGA_MAX."""
     lo, hi = _pair(name, band)
     lo = check_real(name, lo, lo=0.0, lo_open=True, hi=OMEGA_MAX)
@@ -37,7 +38,8 @@ def check_band(band, name: str = "omega_band") -> tuple[float, float]:
     return lo, hi
 
 
-def check_amplitudes(amplitudes, amplitude_max: float, n_max: int) -> tuple:
+def check_amplitudes(amplitudes: float | Sequence[float], amplitude_max: float,
+                     n_max: int) -> tuple:
     """Base amplitudes [m]: 1..n_max numbers, each > 0 and <= amplitude_max."""
     if isinstance(amplitudes, (int, float, str)):
         amplitudes = [amplitudes]
@@ -51,7 +53,8 @@ def check_amplitudes(amplitudes, amplitude_max: float, n_max: int) -> tuple:
                  for a in values)
 
 
-def check_structure(M_kg, k_N_per_m, c_Ns_per_m, d) -> tuple[float, float, float, float]:
+def check_structure(M_kg: float | None, k_N_per_m: float | None, c_Ns_per_m: float | None,
+                    d: float | None) -> tuple[float, float, float, float]:
     """(M, k, c, d) of the LO: M, k > 0; give c >= 0 or d >= 0 (not both; default: Table 1's
     c); d = c / (M w0) = c / sqrt(k M)."""
     M = check_real("M", M_LO_KG if M_kg is None else M_kg, lo=0.0, lo_open=True)
@@ -70,7 +73,8 @@ def check_structure(M_kg, k_N_per_m, c_Ns_per_m, d) -> tuple[float, float, float
     return M, k, c, d
 
 
-def check_mode(eta, clearance_m, eta_max, clearance_range_m) -> str:
+def check_mode(eta: float | None, clearance_m: float | None, eta_max: float | None,
+               clearance_range_m: Sequence[float] | None) -> str:
     """'evaluate' (eta and clearance given) or 'optimise' (eta_max given, clearance range
     optional); anything else is refused."""
     if eta_max is not None:
@@ -88,13 +92,14 @@ def check_mode(eta, clearance_m, eta_max, clearance_range_m) -> str:
     return "evaluate"
 
 
-def check_clearance(name, L, amplitudes) -> float:
+def check_clearance(name: str, L: float, amplitudes: Sequence[float]) -> float:
     """A clearance [m] large enough that F = A/L <= F_MAX for every amplitude A."""
     lo = max(amplitudes) / F_MAX
     return check_real(name, L, lo=lo, hi=1e6)
 
 
-def check_clearance_range(rng, amplitudes, factors) -> tuple[float, float]:
+def check_clearance_range(rng: Sequence[float] | None, amplitudes: Sequence[float],
+                          factors: tuple[float, float]) -> tuple[float, float]:
     """(lo, hi) [m], lo < hi, F = A/lo <= F_MAX; default (factors[0] A_max,
     factors[1] A_min), or (factors[0] A_max, factors[1] A_max) if that is empty."""
     if rng is None:
@@ -106,9 +111,9 @@ def check_clearance_range(rng, amplitudes, factors) -> tuple[float, float]:
     return lo, hi
 
 
-def check_eta(name, eta) -> float:
+def check_eta(name: str, eta: float) -> float:
     return check_real(name, eta, lo=0.0, lo_open=True, hi=ETA_MAX)
 
 
-def check_count(name, value, lo, hi) -> int:
+def check_count(name: str, value: int, lo: int, hi: int) -> int:
     return check_int(name, value, lo=lo, hi=hi)

@@ -21,9 +21,11 @@ approximation of its solution.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Sequence
 from dataclasses import asdict, dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..core.linear import stuck_amplitude, stuck_peak
 from ..core.params import check_param
@@ -36,12 +38,12 @@ F_BOUNDS = (0.05, 20.0)
 ZETA_BOUNDS = (1e-5, 10.0)
 
 
-def lo_ratio(omega, d):
+def lo_ratio(omega: ArrayLike, d: float) -> np.ndarray:
     """Transmissibility |X/Y| of the LO alone (closed form; broadcasts)."""
     return stuck_amplitude(0.0, omega, 1.0, d)
 
 
-def lo_worst(band, d) -> tuple[float, float]:
+def lo_worst(band: Sequence[float], d: float) -> tuple[float, float]:
     """Exact (max, argmax) of ``lo_ratio`` over omega in band = (lo, hi): the closed-form
     peak (``core.linear.stuck_peak`` with eta = 0) when it lies in the band, else the larger
     band edge (the curve rises up to the peak and falls after it). inf at omega = 1 for
@@ -54,7 +56,7 @@ def lo_worst(band, d) -> tuple[float, float]:
     return float(lo_ratio(edge, d)), float(edge)
 
 
-def tmd_ratio(omega, d, mu, f, zeta):
+def tmd_ratio(omega: ArrayLike, d: float, mu: float, f: float, zeta: float) -> np.ndarray:
     """Transmissibility |X/Y| of the LO with a TMD (module docstring); broadcasts."""
     w = np.asarray(omega, dtype=float)
     iw = 1j * w
@@ -62,7 +64,8 @@ def tmd_ratio(omega, d, mu, f, zeta):
     return np.abs((1.0 + d * iw) / (1.0 - w * w + d * iw - mu * w * w * g))
 
 
-def band_max(fun, band, n=N_BAND_GRID) -> tuple[float, float]:
+def band_max(fun: Callable[[float], float], band: Sequence[float],
+             n: int = N_BAND_GRID) -> tuple[float, float]:
     """(max, argmax) of a smooth fun(omega) over the closed band: its values on n points,
     then each interior local maximum within 10 % of the largest is refined by a bounded
     scalar search between its grid neighbours."""
@@ -92,7 +95,7 @@ class TunedMassDamper:
     worst_ratio: float
     worst_omega: float
 
-    def ratio(self, omega, d):
+    def ratio(self, omega: ArrayLike, d: float) -> np.ndarray:
         """Transmissibility at omega for LO damping d."""
         return tmd_ratio(omega, d, self.eta, self.frequency_ratio, self.damping_ratio)
 
@@ -119,7 +122,7 @@ def _coarse_tuning(mu, d, band) -> tuple[float, float]:
     return float(f_grid[i]), float(z_grid[j])
 
 
-def optimal_tmd(mu: float, d: float, band) -> TunedMassDamper:
+def optimal_tmd(mu: float, d: float, band: Sequence[float]) -> TunedMassDamper:
     """TMD of mass ratio mu minimising the largest transmissibility over omega in band
     (module docstring). Deterministic: a fixed grid, then Nelder-Mead in (log f, log zeta)
     within F_BOUNDS x ZETA_BOUNDS to xatol 1e-9."""

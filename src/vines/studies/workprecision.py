@@ -22,7 +22,9 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, replace
+from typing import Any
 
 import numpy as np
 
@@ -43,10 +45,12 @@ from ..core.params import (
     check_real,
     check_reals,
 )
+from ..core.result import SimulationResult
 from ..reference.hiprec import (
     DPS_DEFAULT,
     H_SAMPLE_DEFAULT,
     V_STICK_REFERENCE,
+    Reference,
     check_reference_params,
     reference_run,
 )
@@ -58,7 +62,8 @@ H_SAMPLE_MAX = 0.5                # largest sampling step of the reference
 MIN_TIME_MAX = 3600.0             # longest timing of one setting [s]
 
 
-def timed(fn, min_time: float = 0.05, rounds: int = 3, max_calls: int = 10_000):
+def timed(fn: Callable[[], Any], min_time: float = 0.05, rounds: int = 3,
+          max_calls: int = 10_000) -> tuple[float, Any]:
     """Best wall-clock seconds per call of ``fn()`` and its (last) result.
 
     A call slower than ``min_time`` is timed once; faster ones are repeated in ``rounds``
@@ -84,7 +89,8 @@ def visible(impacts: np.ndarray, v_visible: float) -> np.ndarray:
     return impacts[np.abs(impacts["v_m"] - impacts["v_b"]) >= v_visible]
 
 
-def errors(res, ref, v_visible: float = V_VISIBLE_DEFAULT) -> dict:
+def errors(res: SimulationResult, ref: Reference,
+           v_visible: float = V_VISIBLE_DEFAULT) -> dict:
     """Errors of a SimulationResult against a hiprec.Reference (see module docstring)."""
     a, b = visible(res.impacts, v_visible), visible(ref.impacts, v_visible)
     ok = (res.status == "ok" and a.size == b.size
@@ -162,12 +168,17 @@ def _references(p, st, v_sticks, v_stick_reference, dps, h_sample, say):
     return ref, ref_limit
 
 
-def work_precision(eta, omega, F, *, t_end, t_transient, r=R_DEFAULT, d=D_DEFAULT,
-                   v_stick=V_STICK_DEFAULT, root_tols=(ROOT_TOL_DEFAULT,), v_sticks=(),
-                   rk_methods=("RK45", "DOP853", "LSODA"), rtols=(1e-4, 1e-6, 1e-8, 1e-10, 1e-12),
-                   v_stick_reference=V_STICK_REFERENCE, dps=DPS_DEFAULT,
-                   h_sample=H_SAMPLE_DEFAULT, v_visible=V_VISIBLE_DEFAULT, min_time=0.05,
-                   max_impacts=200_000, progress=None) -> WorkPrecisionResult:
+def work_precision(eta: float, omega: float, F: float, *, t_end: float, t_transient: float,
+                   r: float = R_DEFAULT, d: float = D_DEFAULT,
+                   v_stick: float = V_STICK_DEFAULT,
+                   root_tols: Sequence[float] = (ROOT_TOL_DEFAULT,),
+                   v_sticks: Sequence[float] = (),
+                   rk_methods: Sequence[str] = ("RK45", "DOP853", "LSODA"),
+                   rtols: Sequence[float] = (1e-4, 1e-6, 1e-8, 1e-10, 1e-12),
+                   v_stick_reference: float = V_STICK_REFERENCE, dps: int = DPS_DEFAULT,
+                   h_sample: float = H_SAMPLE_DEFAULT, v_visible: float = V_VISIBLE_DEFAULT,
+                   min_time: float = 0.05, max_impacts: int = 200_000,
+                   progress: Callable[[str], None] | None = None) -> WorkPrecisionResult:
     """Error and cost of every solver setting on one case, as a :class:`WorkPrecisionResult`.
 
     Runs: the exact solver at each of ``root_tols``, then at each of ``v_sticks``, then
