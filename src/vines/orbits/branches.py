@@ -38,13 +38,12 @@ import math
 
 import numpy as np
 
-from ..core.exact import oscillators
 from ..core.params import ModelParams, ParameterError
 from ..core.walls import WALL_L, WALL_R
 from . import shooting as sh
 from .arclength import Step, Tracer
 from .branch_result import make_branch
-from .maps import map_kernel
+from .maps import impact_map, model_array
 from .periodic import PeriodicOrbit, _orbit
 
 TESTS = {"symmetric": ("fold", "symmetry-breaking", "neimark-sacker"),
@@ -81,17 +80,17 @@ class FamilySystem:
 
 def orbit_at(p: ModelParams, family: str, u) -> PeriodicOrbit | None:
     """The PeriodicOrbit of shooting unknowns u (maps, admissibility, eigenvalues)."""
-    osc = oscillators(p)[0]
+    mdl = model_array(p)
     x = np.array(u[:4], dtype=float)
     s1, s2 = sh.flight_times(family, u, p.omega)
     xR, y2 = np.empty(4), np.empty(4)
     J1, J2 = np.empty((4, 4)), np.empty((4, 4))
-    f1 = map_kernel(osc, p.eta, p.r, p.omega, p.phi, x, WALL_L, WALL_R, s1, xR, J1)
-    f2 = map_kernel(osc, p.eta, p.r, p.omega, p.phi, xR, WALL_R, WALL_L, s2, y2, J2)
+    f1 = impact_map(mdl, x, (WALL_L, WALL_R), s1, xR, J1)
+    f2 = impact_map(mdl, xR, (WALL_R, WALL_L), s2, y2, J2)
     if not (math.isfinite(f1) and math.isfinite(f2)):
         return None
     res = float(np.max(np.abs(y2 - x - np.array([0.0, 0.0, 0.0, p.period]))))
-    o = _orbit(p, osc, x, xR, J1, J2, np.array([f1, f2]), res)
+    o = _orbit(p, mdl, x, xR, (J1, J2), np.array([f1, f2]), res)
     o.J1, o.J2 = J1, J2
     return o
 
