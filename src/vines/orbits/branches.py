@@ -1,4 +1,5 @@
-"""Pseudo-arclength continuation of 1:1 branches (symmetric or asymmetric) with events.
+"""Pseudo-arclength branches of 1:1 orbits (symmetric or asymmetric) and their events: the
+family's system, the test functions and the ``Follower`` that ``continuation.follow`` runs.
 
 The unknowns are those of the family's shooting system (``shooting``) plus the continued
 parameter; ``arclength.Tracer`` follows the curve, through folds. Every accepted point is
@@ -28,9 +29,9 @@ located and kept), the branch closes on itself, ``max_inadmissible`` consecutive
 non-admissible, ``max_points`` points, the asymmetric branch reaches the symmetric one, or
 the step falls below ``min_step``.
 
-``switch_at`` starts the asymmetric branch born at a symmetry-breaking point of the
-symmetric branch: the direction is the null vector of the asymmetric system's Jacobian
-there that is not the symmetric branch's tangent.
+``switch_direction`` gives the start of the asymmetric branch born at a symmetry-breaking
+point of the symmetric branch (``continuation.switch_at``): the null vector of the
+asymmetric system's Jacobian there that is not the symmetric branch's tangent.
 """
 from __future__ import annotations
 
@@ -42,7 +43,6 @@ from ..core.params import ModelParams, ParameterError
 from ..core.walls import WALL_L, WALL_R
 from . import shooting as sh
 from .arclength import Step, Tracer
-from .branch_result import make_branch
 from .maps import impact_map, model_array
 from .periodic import PeriodicOrbit, _orbit
 
@@ -117,7 +117,7 @@ def is_ns(family: str, o: PeriodicOrbit, tol: float = NS_TOL) -> bool:
     return abs(ev[k].imag) > 1e-6 and abs(abs(ev[k]) - 1.0) < tol
 
 
-class _Follower:
+class Follower:
     """State of one branch continuation (points, events, termination)."""
 
     def __init__(self, system: FamilySystem, tracer: Tracer, bounds):
@@ -313,28 +313,6 @@ class _Follower:
         return test_values(self.sys.family, o, z, t)[typ]
 
 
-def follow(model: sh.Model, family: str, param: str, fixed: dict, u0, start: float,
-           bounds, direction, step: float, min_step: float, max_points: int,
-           max_inadmissible: int):
-    """Continue the branch through (u0, start); returns a ``Branch``.
-
-    direction: the initial tangent's orientation (a vector of len(u0) + 1), or the sign of
-    the parameter's initial change (a number).
-    """
-    system = FamilySystem(model, family, param, fixed)
-    z0 = np.append(np.asarray(u0, dtype=float), start)
-    if np.isscalar(direction):
-        d = np.zeros(len(z0))
-        d[-1] = float(direction)
-        direction = d
-    tracer = Tracer(system, z0, direction, h=step, h_min=min_step, h_max=step)
-    f = _Follower(system, tracer, bounds)
-    f.run(max_points, max_inadmissible)
-    for e in f.events:
-        e.pop("t", None)
-    return make_branch(param, f.pts, f.events, f.stopped, family=family, arclength=f.arc)
-
-
 def start_unknowns(o: PeriodicOrbit, family: str) -> np.ndarray:
     u = list(o.x_L)
     if family == "asymmetric":
@@ -358,24 +336,3 @@ def switch_direction(model: sh.Model, param: str, fixed: dict, z_sym, t_sym=None
     v = V.T @ (V @ c)
     v /= np.linalg.norm(v)
     return z, v
-
-
-def switch_at(model: sh.Model, param: str, fixed: dict, z_sym, bounds, step: float,
-              min_step: float, max_points: int, max_inadmissible: int):
-    """The asymmetric branch born at the symmetry-breaking point z_sym of the symmetric
-    branch (a ``Branch`` starting one step away from the branch point), or None."""
-    z, v = switch_direction(model, param, fixed, z_sym)
-    system = FamilySystem(model, "asymmetric", param, fixed)
-    tracer = Tracer(system, z, v, h=step, h_min=min_step, h_max=step)
-    h = step
-    while h >= min_step:
-        got = tracer.correct(z + h * v, v, z, h)
-        if got is not None and abs(got[0][4] - z[4]) > 0.1 * h * abs(v[4]):
-            break
-        h *= 0.5
-    else:
-        return None
-    z1 = got[0]
-    br = follow(model, "asymmetric", param, fixed, z1[:-1], z1[-1], bounds, z1 - z, step,
-                min_step, max_points, max_inadmissible)
-    return br
