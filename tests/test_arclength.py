@@ -1,7 +1,7 @@
 """Pseudo-arclength continuation of 1:1 branches (issue 14, steps 1-2): derivatives of the
 shooting systems, fold passing, events, asymmetric branches and branch switching.
 
-Oracles: the independent map solver (``periodic.find_1to1``, ``maps.map_kernel``), the
+Oracles: the independent map solver (``periodic.find_1to1``, ``maps.impact_map``), the
 closed-form symmetric seeds (a line-circle intersection: two orbits on one side of a fold,
 none on the other), central finite differences, analytic derivatives."""
 import math

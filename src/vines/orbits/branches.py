@@ -38,6 +38,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..core.params import ModelParams, ParameterError
 from ..core.walls import WALL_L, WALL_R
@@ -54,23 +55,23 @@ NS_TOL = 1e-3          # |(|lambda| - 1)| of the complex pair at a located neima
 class FamilySystem:
     """The shooting system of one family with one free parameter: z = (u, param)."""
 
-    def __init__(self, model: sh.Model, family: str, param: str, fixed: dict):
+    def __init__(self, model: sh.Model, family: str, param: str, fixed: dict) -> None:
         self.m, self.family, self.param, self.fixed = model, family, param, dict(fixed)
 
-    def par(self, z) -> dict:
+    def par(self, z: np.ndarray) -> dict:
         p = dict(self.fixed)
         p[self.param] = float(z[-1])
         return p
 
-    def __call__(self, z):
+    def __call__(self, z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         return sh.residual_jacobian(self.m, self.family, z[:-1], self.par(z), (self.param,))
 
-    def params(self, z) -> ModelParams:
+    def params(self, z: np.ndarray) -> ModelParams:
         p = self.par(z)
         return ModelParams(eta=p["eta"], omega=p["omega"], F=p["F"], r=self.m.r, d=self.m.d,
                            phi=self.m.phi)
 
-    def orbit(self, z) -> PeriodicOrbit | None:
+    def orbit(self, z: np.ndarray) -> PeriodicOrbit | None:
         """The orbit at z; None where the maps fail or a step left the valid parameters."""
         try:
             return orbit_at(self.params(z), self.family, z[:-1])
@@ -78,7 +79,7 @@ class FamilySystem:
             return None
 
 
-def orbit_at(p: ModelParams, family: str, u) -> PeriodicOrbit | None:
+def orbit_at(p: ModelParams, family: str, u: ArrayLike) -> PeriodicOrbit | None:
     """The PeriodicOrbit of shooting unknowns u (maps, admissibility, eigenvalues)."""
     mdl = model_array(p)
     x = np.array(u[:4], dtype=float)
@@ -95,7 +96,7 @@ def orbit_at(p: ModelParams, family: str, u) -> PeriodicOrbit | None:
     return o
 
 
-def test_values(family: str, o: PeriodicOrbit, z, t) -> dict:
+def test_values(family: str, o: PeriodicOrbit, z: np.ndarray, t: np.ndarray) -> dict:
     """The test functions of the module docstring at one point."""
     if family == "symmetric":
         A = sh.MIRROR @ o.J1
@@ -120,14 +121,16 @@ def is_ns(family: str, o: PeriodicOrbit, tol: float = NS_TOL) -> bool:
 class Follower:
     """State of one branch continuation (points, events, termination)."""
 
-    def __init__(self, system: FamilySystem, tracer: Tracer, bounds):
+    def __init__(self, system: FamilySystem, tracer: Tracer,
+                 bounds: tuple[float, float]) -> None:
         self.sys, self.tr = system, tracer
         self.lo, self.hi = bounds
         self.tr_start = tracer.z.copy()
         self.pts, self.arc, self.events = [], [], []
         self.stopped = "done"
 
-    def add(self, z, t, s):
+    def add(self, z: np.ndarray, t: np.ndarray, s: float) -> tuple | None:
+        """Append the orbit at z (arclength s) and return it with its test values, or None."""
         o = self.sys.orbit(z)
         if o is None:
             return None
@@ -135,7 +138,8 @@ class Follower:
         self.arc.append(s)
         return o, test_values(self.sys.family, o, z, t)
 
-    def run(self, max_points, max_inadmissible):
+    def run(self, max_points: int, max_inadmissible: int) -> None:
+        """Follow the branch until a termination (module docstring); sets ``stopped``."""
         z0, t0 = self.tr.z, self.tr.t
         got = self.add(z0, t0, 0.0)
         if got is None:
@@ -320,7 +324,8 @@ def start_unknowns(o: PeriodicOrbit, family: str) -> np.ndarray:
     return np.array(u)
 
 
-def switch_direction(model: sh.Model, param: str, fixed: dict, z_sym, t_sym=None):
+def switch_direction(model: sh.Model, param: str, fixed: dict,
+                     z_sym: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(z, v): the symmetric point z_sym = (u, param) as an asymmetric-system point and the
     unit direction of the asymmetric branch born there."""
     u = np.asarray(z_sym[:-1], dtype=float)

@@ -130,9 +130,11 @@ def _interp(v, va, oa, vb, ob):
     return a + (b - a) * (v - va) / (vb - va)
 
 
-def continue_branch(param: str, start, stop, step=None, fixed: dict | None = None,
-                    orbit: PeriodicOrbit | None = None, r=R_DEFAULT, d=D_DEFAULT, phi=0.0,
-                    min_step=1e-6, event_tol=1e-6, max_points=MAX_POINTS_DEFAULT,
+def continue_branch(param: str, start: float, stop: float, step: float | None = None,
+                    fixed: dict | None = None, orbit: PeriodicOrbit | None = None,
+                    r: float = R_DEFAULT, d: float = D_DEFAULT, phi: float = 0.0,
+                    min_step: float = 1e-6, event_tol: float = 1e-6,
+                    max_points: int = MAX_POINTS_DEFAULT,
                     method: str = "arclength", branch: str = "symmetric",
                     switch: bool = False,
                     max_inadmissible: int = MAX_INADMISSIBLE_DEFAULT) -> Branch:

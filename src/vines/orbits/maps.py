@@ -24,6 +24,7 @@ import math
 
 import numpy as np
 from numba import njit
+from numpy.typing import ArrayLike
 
 from ..core.exact import oscillators
 from ..core.flow import I_RATE, I_W, N_OSC, flow
@@ -252,18 +253,19 @@ def admissible_kernel(mdl, x, walls, s):
 
 # --------------------------------------------------------------------------- Python API
 
-def _walls(from_wall, to_wall):
+def _walls(from_wall: int, to_wall: int) -> tuple[int, int]:
     for name, w in (("from_wall", from_wall), ("to_wall", to_wall)):
         if w not in (WALL_L, WALL_R):
             raise ValueError(f"{name} must be +1 (L) or -1 (R), got {w!r}")
     return int(from_wall), int(to_wall)
 
 
-def _s_guess(x, t_guess):
+def _s_guess(x: np.ndarray, t_guess: float | None) -> float:
     return -1.0 if t_guess is None else float(t_guess) - float(x[3])
 
 
-def map_with_jacobian(params: ModelParams, x, from_wall: int, to_wall: int, t_guess=None):
+def map_with_jacobian(params: ModelParams, x: ArrayLike, from_wall: int, to_wall: int,
+                      t_guess: float | None = None) -> tuple[np.ndarray, float, np.ndarray]:
     """(y, s, J): next pre-impact state, flight time and the 4x4 Jacobian dy/dx.
 
     y and J are nan (and s nan) when no impact time was found.
@@ -276,7 +278,8 @@ def map_with_jacobian(params: ModelParams, x, from_wall: int, to_wall: int, t_gu
     return y, float(s), J
 
 
-def apply_map(params: ModelParams, x, from_wall: int, to_wall: int, t_guess=None):
+def apply_map(params: ModelParams, x: ArrayLike, from_wall: int, to_wall: int,
+              t_guess: float | None = None) -> tuple[np.ndarray, float]:
     """Next pre-impact state y = (z_m', z_b', z_b, t) and the flight time s.
 
     ``t_guess``: optional guess of the absolute time of the next impact (Newton starts
@@ -287,13 +290,14 @@ def apply_map(params: ModelParams, x, from_wall: int, to_wall: int, t_guess=None
     return y, s
 
 
-def map_jacobian(params: ModelParams, x, from_wall: int, to_wall: int, t_guess=None):
+def map_jacobian(params: ModelParams, x: ArrayLike, from_wall: int, to_wall: int,
+                 t_guess: float | None = None) -> np.ndarray:
     """4x4 Jacobian of the map at x (columns d/d z_m', d/d z_b', d/d z_b, d/d t)."""
     return map_with_jacobian(params, x, from_wall, to_wall, t_guess)[2]
 
 
-def is_admissible(params: ModelParams, x, from_wall: int, to_wall: int, t_guess=None,
-                  s=None) -> bool:
+def is_admissible(params: ModelParams, x: ArrayLike, from_wall: int, to_wall: int,
+                  t_guess: float | None = None, s: float | None = None) -> bool:
     """True when the map's flight from x has no earlier wall contact and approaches its wall."""
     from_wall, to_wall = _walls(from_wall, to_wall)
     x = np.ascontiguousarray(x, dtype=float)
@@ -304,7 +308,7 @@ def is_admissible(params: ModelParams, x, from_wall: int, to_wall: int, t_guess=
     return bool(admissible_kernel(model_array(params), x, (from_wall, to_wall), float(s)))
 
 
-def mirror(x, T: float):
+def mirror(x: ArrayLike, T: float) -> np.ndarray:
     """Symmetry of the model: (z, velocities) -> -(z, velocities), t -> t + T/2."""
     x = np.asarray(x, dtype=float)
     return np.array([-x[0], -x[1], -x[2], x[3] + 0.5 * T])

@@ -1,16 +1,17 @@
 """1:1 periodic orbits: fixed points of P2∘P1 with the time shifted by T = 2 pi / omega.
 
 Unknowns x_L = (z_m', z_b', z_b, t_L), the pre-impact state at wall L. The orbit solves
-P2(P1(x_L)) = x_L + (0, 0, 0, T); Newton uses the exact Jacobian J_P2(x_R) J_P1(x_L) - I.
+P2(P1(x_L)) = x_L + (0, 0, 0, T): the sequence "LR", 1 of ``newton.newton_sequence`` (exact
+Jacobian J_P2(x_R) J_P1(x_L) - I).
 
 Seeds (every seed is polished by that Newton iteration on the true maps, then deduplicated):
 
 * symmetric ansatz: P1(x_L) = mirror(x_L) + (0, 0, 0, T/2), mirror flipping the signs of
   positions and velocities (the model is invariant under z -> -z, t -> t + T/2). With the
   flight time fixed at T/2 every condition is affine in (z_m', z_b', z_b, sin theta_L,
-  cos theta_L) (the flow is linear in the initial state and in the forcing phase's sine and
-  cosine), so the symmetric orbits are the intersections of a line with the unit circle:
-  zero or two per parameter point, in closed form. This replaces a scan of t_L over [0, T).
+  cos theta_L) (``affine``), so the symmetric orbits are the intersections of a line with
+  the unit circle: zero or two per parameter point, in closed form. This replaces a scan of
+  t_L over [0, T).
 * asymmetric scan: with the L->R flight time s1 fixed (R->L flight T - s1) the five
   conditions (arrival at R, arrival at L, periodicity of z_m', z_b', z_b) are again affine in
   those five unknowns; the orbit exists where the solution has sin^2 + cos^2 = 1. s1 is
@@ -18,17 +19,21 @@ Seeds (every seed is polished by that Newton iteration on the true maps, then de
 * a short simulation (t_end ~ 600) from rest: its last L impact followed by R and L.
 * caller-supplied seeds (continuation): x_L arrays, optionally with flight times.
 
-``orbit_solve``/``orbit_classify``/``seed_kernel`` (end of the module) are nogil versions
-of ``solve_orbit``/``seed_orbits(simulation=False)`` on float rows, bitwise equal to them,
-for threaded per-point drivers (``stability_map``).
+One solver serves both interfaces: ``orbit_solve``/``orbit_classify``/``seed_kernel`` (end
+of the module) work nogil on float rows, for threaded per-point drivers
+(``stability_map``); ``solve_orbit``/``seed_orbits`` wrap the same compiled Newton and seeds
+into ``PeriodicOrbit`` objects (eigenvalues by numpy, which the compiled dgeev of
+``_lapack`` reproduces).
 """
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable
 from dataclasses import dataclass, field
 
 import numpy as np
 from numba import njit
+from numpy.typing import ArrayLike
 
 from ..core.flow import I_F, I_W
 from ..core.params import (
@@ -113,7 +118,7 @@ class PeriodicOrbit:
         }
 
 
-def solve_orbit(p: ModelParams, x0: np.ndarray, s1: float = -1.0, s2: float = -1.0,
+def solve_orbit(p: ModelParams, x0: ArrayLike, s1: float = -1.0, s2: float = -1.0,
                 osc: np.ndarray | None = None) -> PeriodicOrbit | None:
     """Newton from x0 (flight-time guesses s1, s2, <= 0: first contact); the orbit, or None
     (``orbit_solve``). osc: the free oscillator of p, if already built."""
@@ -196,12 +201,13 @@ def _simulation_seed(p: ModelParams, osc: np.ndarray, t_end: float = 600.0) -> l
                         osc)]
 
 
-def _sort_key(o: PeriodicOrbit):
+def _sort_key(o: PeriodicOrbit) -> tuple:
     return (not o.admissible, not o.stable, not o.symmetric, o.lambda_max)
 
 
 def find_1to1(eta: float, omega: float, F: float, r: float = R_DEFAULT, d: float = D_DEFAULT,
-              phi: float = 0.0, seeds=None, simulation: bool = True) -> list[PeriodicOrbit]:
+              phi: float = 0.0, seeds: Iterable | None = None,
+              simulation: bool = True) -> list[PeriodicOrbit]:
     """Every distinct 1:1 orbit found (admissible or not), stable admissible ones first.
 
     ``seeds``: extra starting points, each an x_L = (z_m', z_b', z_b, t_L) or a pair
@@ -217,7 +223,7 @@ SEEDS_ALLOWED = ("must be None or a list of seeds, each a PeriodicOrbit, an x_L 
                  "(z_m', z_b', z_b, t_L) of 4 finite numbers or a pair (x_L, (s1, s2))")
 
 
-def check_seeds(seeds) -> list:
+def check_seeds(seeds: Iterable | None) -> list:
     """The seeds of ``find_1to1`` as a list of PeriodicOrbit or (x_L, (s1, s2)) (s <= 0: first
     contact, as ``solve_orbit``); ParameterError naming ``seeds`` otherwise."""
     if seeds is None:
@@ -239,7 +245,8 @@ def check_seeds(seeds) -> list:
     return out
 
 
-def orbits_1to1(p: ModelParams, *, seeds=None, simulation: bool = True) -> list[PeriodicOrbit]:
+def orbits_1to1(p: ModelParams, *, seeds: list | None = None,
+                simulation: bool = True) -> list[PeriodicOrbit]:
     """``find_1to1`` at the validated model ``p``."""
     mdl = model_array(p)
     found = seed_orbits(p, mdl, simulation=simulation)

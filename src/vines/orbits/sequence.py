@@ -5,9 +5,9 @@ bifurcation.md, "Families of periodic orbits"): ``walls`` = "LLRR", ``periods`` 
 orbit with pre-impact states x_0 .. x_{n-1} (x = (z_m', z_b', z_b, t), ``orbits.maps``) at
 walls L, L, R, R, in that order, whose maps P(walls[k] -> walls[k+1]) (cyclically) bring
 x_0 back to x_0 + (0, 0, 0, periods T). Unknown x_0; Newton on the composed map with the
-exact Jacobian J_{n-1} ... J_0 - I (the same damped iteration as ``periodic.newton_1to1``,
-which it reproduces bit for bit on "LR", 1). Admissibility flight by flight
-(``maps.admissible_kernel``), stability from the eigenvalues of J_{n-1} ... J_0.
+exact Jacobian J_{n-1} ... J_0 - I (``newton.newton_sequence``, the iteration of
+``periodic`` as well). Admissibility flight by flight (``maps.admissible_kernel``), stability
+from the eigenvalues of J_{n-1} ... J_0.
 
 Seeds (each polished by that Newton iteration, then deduplicated):
 
@@ -15,7 +15,7 @@ Seeds (each polished by that Newton iteration, then deduplicated):
   so that the 1:1 orbits are those of ``find_1to1``;
 * half-period symmetry (n even, walls[k + n/2] = opposite of walls[k]): with the flight
   times fixed, the conditions for x_{n/2} = mirror(x_0) + (0, 0, 0, periods T / 2) are affine
-  in (z_m', z_b', z_b, sin theta_0, cos theta_0) (as in ``periodic``): closed form for
+  in (z_m', z_b', z_b, sin theta_0, cos theta_0) (``affine``, as in ``periodic``): closed form for
   n = 2 (the symmetric "LR" orbits of any period), a scan of the first flight time for n = 4
   ("LLRR");
 * short simulations (exact kernel) from a few initial states: the last occurrence of the
@@ -30,9 +30,11 @@ orbit of this family and is dropped.
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..core.exact import oscillators
 from ..core.flow import flow
@@ -72,7 +74,7 @@ SIM_STATES = ((0.0, 0.0, 0.0, 0.0), (0.0, 0.0, 0.9, 0.0), (0.0, 0.5, 0.0, -0.5),
 
 # --------------------------------------------------------------------------- names
 
-def check_walls(walls) -> str:
+def check_walls(walls: object) -> str:
     """The wall sequence as an upper-case string of L and R; ParameterError otherwise."""
     allowed = (f"must be a sequence of 1 to {MAX_IMPACTS_PER_ORBIT} walls, each L or R "
                "(e.g. LR, LLRR, LLR)")
@@ -84,7 +86,8 @@ def check_walls(walls) -> str:
     return s
 
 
-def check_periods(periods) -> int:
+def check_periods(periods: object) -> int:
+    """The number of forcing periods as an int in [1, MAX_PERIODS]; ParameterError otherwise."""
     return check_int("periods", periods, lo=1, hi=MAX_PERIODS)
 
 
@@ -183,7 +186,7 @@ class SequenceOrbit:
         }
 
 
-def monodromy(jacobians) -> np.ndarray:
+def monodromy(jacobians: Sequence[np.ndarray]) -> np.ndarray:
     """J_{n-1} ... J_0 by numpy matmul (for n = 2: J2 @ J1 as ``periodic._orbit``)."""
     P = jacobians[0]
     for J in jacobians[1:]:
@@ -191,7 +194,8 @@ def monodromy(jacobians) -> np.ndarray:
     return P
 
 
-def is_symmetric(walls: str, periods: int, flight_times) -> bool:
+def is_symmetric(walls: str, periods: int, flight_times: ArrayLike) -> bool:
+    """The orbit with these flight times has the half-period symmetry (class docstring)."""
     n = len(walls)
     if periods % 2 == 0 or not has_half_symmetry(walls):
         return False
@@ -217,8 +221,9 @@ def _orbit(p: ModelParams, mdl: np.ndarray, walls: str, periods: int, xs: np.nda
         jacobians=Js.copy(), params=p)
 
 
-def solve_sequence(p: ModelParams, walls: str, periods: int, x0, flight_times=None,
-                   osc=None) -> SequenceOrbit | None:
+def solve_sequence(p: ModelParams, walls: str, periods: int, x0: ArrayLike,
+                   flight_times: ArrayLike | None = None,
+                   osc: np.ndarray | None = None) -> SequenceOrbit | None:
     """Newton from x0 (pre-impact state at walls[0]) with optional flight-time guesses.
 
     The orbit found (any admissibility), or None when Newton fails, a flight time is not
@@ -280,7 +285,8 @@ def same_orbit(a: SequenceOrbit, b: SequenceOrbit, T: float) -> bool:
     return False
 
 
-def dedup(orbits, T) -> list:
+def dedup(orbits: Iterable[SequenceOrbit | None], T: float) -> list[SequenceOrbit]:
+    """The orbits without None and repeats (``same_orbit``), first occurrences kept."""
     out = []
     for o in orbits:
         if o is not None and not any(same_orbit(o, q, T) for q in out):
@@ -338,7 +344,7 @@ def _mirror_record(imp, T) -> dict:
             "z_b": -imp["z_b"], "t": imp["t"] + 0.5 * T}
 
 
-def record_seed(imp, walls: str):
+def record_seed(imp: Mapping[str, np.ndarray], walls: str) -> tuple[list, list] | None:
     """(x_0, flight times) at the last occurrence of the sequence (and its first wall
     again) in an impact record (fields wall, v_m, v_b, z_b, t), or None."""
     n = len(walls)
@@ -351,8 +357,8 @@ def record_seed(imp, walls: str):
     return x0, list(np.diff(t[k:k + n + 1]))
 
 
-def simulation_seeds(p: ModelParams, walls: str, states=SIM_STATES,
-                     t_end=SIM_T_END) -> list:
+def simulation_seeds(p: ModelParams, walls: str, states: Sequence = SIM_STATES,
+                     t_end: float = SIM_T_END) -> list:
     """Seeds from short exact simulations from ``states`` (and their mirror images)."""
     from ..core.simulation import simulate_exact
     out = []
@@ -374,8 +380,9 @@ def _sort_key(o: SequenceOrbit):
     return (not o.admissible, not o.stable, not o.symmetric, o.lambda_max)
 
 
-def find_sequence(params: ModelParams, walls: str, periods: int = 1, *, seeds=None,
-                  simulation=True, sim_states=SIM_STATES) -> list[SequenceOrbit]:
+def find_sequence(params: ModelParams, walls: str, periods: int = 1, *,
+                  seeds: list | None = None, simulation: bool = True,
+                  sim_states: Sequence = SIM_STATES) -> list[SequenceOrbit]:
     """Every distinct orbit of the sequence found (admissible or not), stable admissible
     ones first (the order of ``find_1to1``).
 
@@ -412,7 +419,7 @@ def _check_list(name, values) -> list:
     return list(values)
 
 
-def check_sequence_seeds(seeds, walls: str) -> list:
+def check_sequence_seeds(seeds: object, walls: str) -> list:
     """The seeds of ``find_sequence``: SequenceOrbits or pairs (x_0, flight times) with x_0
     4 finite numbers and one flight time per wall of ``walls``; ParameterError otherwise."""
     allowed = ("must be None or a list of seeds, each a SequenceOrbit or a pair (x_0, flight "
@@ -432,7 +439,7 @@ def check_sequence_seeds(seeds, walls: str) -> list:
     return out
 
 
-def check_states(name, states) -> list:
+def check_states(name: str, states: object) -> list:
     """Initial states (z_m, z_m', z_b, z_b') as ``SolverSettings.state0`` accepts them."""
     out = []
     for s0 in _check_list(name, states):
@@ -443,12 +450,13 @@ def check_states(name, states) -> list:
     return out
 
 
-def check_sim_t_end(value) -> float:
+def check_sim_t_end(value: object) -> float:
     """Length of a seeding simulation (0 < sim_t_end <= T_END_MAX)."""
     return check_real("sim_t_end", value, lo=0.0, lo_open=True, hi=T_END_MAX)
 
 
-def solve_seeds(p: ModelParams, osc, walls: str, periods: int, starts, seeds=()) -> list:
+def solve_seeds(p: ModelParams, osc: np.ndarray | None, walls: str, periods: int,
+                starts: Iterable, seeds: Iterable = ()) -> list[SequenceOrbit]:
     """Newton from every (x_0, flights) in ``starts`` and every seed of ``seeds`` (see
     ``find_sequence``); distinct orbits, stable admissible ones first."""
     starts = list(starts)
@@ -493,7 +501,7 @@ def _real_eigenvector(orbit: SequenceOrbit, negative: bool):
     return V[:, k].real / np.linalg.norm(V[:, k].real)
 
 
-def flip_seeds(orbit: SequenceOrbit, eps=(1e-3, 1e-2, 3e-2)) -> list:
+def flip_seeds(orbit: SequenceOrbit, eps: Sequence[float] = (1e-3, 1e-2, 3e-2)) -> list:
     """Seeds of the period-doubled sequence (walls twice, 2 periods) near ``orbit``: its
     start displaced by +- eps along the eigenvector of its most negative real eigenvalue
     (a flip point of the family gives birth to that branch). Empty without such an
@@ -505,7 +513,7 @@ def flip_seeds(orbit: SequenceOrbit, eps=(1e-3, 1e-2, 3e-2)) -> list:
     return [(orbit.states[0] + sg * e * v, fl) for e in eps for sg in (1.0, -1.0)]
 
 
-def pitchfork_seeds(orbit: SequenceOrbit, eps=(1e-2, 5e-2)) -> list:
+def pitchfork_seeds(orbit: SequenceOrbit, eps: Sequence[float] = (1e-2, 5e-2)) -> list:
     """Seeds of asymmetric orbits of the same sequence near a symmetric ``orbit``: its start
     displaced by +- eps along the eigenvector of its largest positive real eigenvalue (a
     symmetry-breaking point gives birth to the asymmetric pair there)."""
