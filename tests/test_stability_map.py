@@ -7,11 +7,11 @@ import pytest
 
 import vines
 from vines.core.exact import oscillators
-from vines.core.flow import I_W, make_osc
+from vines.core.flow import I_NRES, I_W, flow, flow_zv, make_osc, s_factors
 from vines.core.params import ModelParams
 from vines.orbits import periodic as P
 from vines.orbits._lapack import eigvals, lambda_max_4
-from vines.orbits.affine import _chain, affine_chain
+from vines.orbits.affine import _chain, _lr_chain, affine_chain, chain_workspace
 from vines.orbits.maps import model_array, pack_model
 from vines.orbits.stability_map import stability_map, stability_map_python
 
@@ -66,7 +66,7 @@ def _symmetric_seeds_numpy(mdl):
     compiled ``affine.closed_form_kernel``)."""
     T = 2.0 * math.pi / mdl[I_W]
     A, b = np.empty((4, 5)), np.empty(4)
-    affine_chain(mdl, P.LR, np.array([0.5 * T]), -1, False, A, b)
+    affine_chain(mdl, (P.LR, np.array([0.5 * T]), (-1, False)), A, b, chain_workspace(1))
     _, sv, Vt = np.linalg.svd(A)
     if sv[-1] <= 1e-14 * sv[0]:
         return []
@@ -110,17 +110,38 @@ def test_flight_chains_are_affine_in_the_start(d, w):
     ``affine_chain`` (damped, resonant, undamped, near-resonant, overdamped oscillators)."""
     rng = np.random.default_rng(1)
     T = 2.0 * math.pi / w
-    A, b, E = np.empty((5, 5)), np.empty(5), np.empty(5)
+    A, b, E, ws = np.empty((5, 5)), np.empty(5), np.empty(5), chain_workspace(2)
     for _ in range(20):
         mdl = pack_model(make_osc(1.0, d, w, 0.3), rng.uniform(0.01, 1.0), 0.65, 0.0)
         s1 = rng.uniform(0.0, T)
         s = np.array([s1, T - s1])
         for carry in (False, True):
-            affine_chain(mdl, P.LR, s, 1, carry, A, b)
+            chain = (P.LR, s, (1, carry))
+            affine_chain(mdl, chain, A, b, ws)
             u = rng.normal(size=5)
-            _chain(mdl, u, P.LR, s, 1, carry, E)
+            f1, f2 = s_factors(mdl, s[0]), s_factors(mdl, s[1])
+            if mdl[I_NRES] > 0.5:
+                f1 = f2 = None
+            _chain(mdl, u, (2, P.LR[0], P.LR[1], s[0], s[1], 1, carry), f1, f2, E)
             scale = np.abs(A).sum(axis=1) * np.abs(u).max() + np.abs(b) + 1.0
             assert np.all(np.abs(A @ u + b - E) <= 1e-9 * scale)
+            if carry and f1 is not None:     # the 1:1 scan's written-out chain: same bits
+                E1 = np.empty(5)
+                _lr_chain(mdl, u, s[0], s[1], f1, f2, E1)
+                assert np.array_equal(E1, E)
+
+
+@pytest.mark.parametrize("d, w", [(0.011998, 0.9), (0.0, 1.0), (0.0, 0.8), (2.5, 1.2)])
+def test_flow_zv_is_flow_bitwise(d, w):
+    """``flow_zv`` (z, z' with shared s-factors, written out) equals ``flow`` bit for bit
+    (damped, resonant, undamped, overdamped oscillators)."""
+    osc = make_osc(1.0, d, w, 0.3)
+    rng = np.random.default_rng(3)
+    for _ in range(50):
+        x0, v0, th, s = rng.normal(), rng.normal(), rng.uniform(0, 6.3), rng.uniform(0, 20.0)
+        start = (x0, v0, math.sin(th), math.cos(th))
+        z, v, _, _, _ = flow(osc, *start, s)
+        assert flow_zv(osc, start, s, s_factors(osc, s)) == (z, v)
 
 
 def test_compiled_dgeev_is_numpys():
