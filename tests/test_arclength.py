@@ -1,7 +1,7 @@
 """Pseudo-arclength continuation of 1:1 branches (issue 14, steps 1-2): derivatives of the
 shooting systems, fold passing, events, asymmetric branches and branch switching.
 
-Oracles: the independent map solver (``periodic.find_1to1``, ``maps.map_kernel``), the
+Oracles: the independent map solver (``periodic.find_1to1``, ``maps.impact_map``), the
 closed-form symmetric seeds (a line-circle intersection: two orbits on one side of a fold,
 none on the other), central finite differences, analytic derivatives."""
 import math
@@ -9,12 +9,12 @@ import math
 import numpy as np
 import pytest
 
-from vines.core.exact import oscillators
 from vines.core.params import D_DEFAULT, R_DEFAULT, ModelParams
 from vines.orbits import jets
 from vines.orbits import shooting as sh
 from vines.orbits.branches import orbit_at
 from vines.orbits.continuation import continue_branch
+from vines.orbits.maps import model_array
 from vines.orbits.periodic import find_1to1, symmetric_seeds
 
 MODEL = sh.Model(R_DEFAULT, D_DEFAULT)
@@ -96,9 +96,9 @@ def test_fold_is_passed(fold_branch):
     assert br.values.min() == pytest.approx(F_fold, abs=1e-12)
     assert br.values[folds[0]["index"]:].max() > 0.05
     # independent: the closed-form symmetric orbits exist just above the fold, not below
-    osc = lambda F: oscillators(ModelParams(0.2, 1.0, F))[0]            # noqa: E731
-    assert len(symmetric_seeds(osc(F_fold * (1 + 1e-6)), 0.2, R_DEFAULT, 1.0)) == 2
-    assert symmetric_seeds(osc(F_fold * (1 - 1e-6)), 0.2, R_DEFAULT, 1.0) == []
+    mdl = lambda F: model_array(ModelParams(0.2, 1.0, F))            # noqa: E731
+    assert len(symmetric_seeds(mdl(F_fold * (1 + 1e-6)))) == 2
+    assert symmetric_seeds(mdl(F_fold * (1 - 1e-6))) == []
     # every point is an orbit of the maps (the non-admissible sheet has |lambda| up to 1e7)
     assert max(o.residual / (1.0 + o.lambda_max) for o in br.orbits) < 1e-10
 

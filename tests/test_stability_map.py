@@ -7,10 +7,12 @@ import pytest
 
 import vines
 from vines.core.exact import oscillators
-from vines.core.flow import I_NRES, flow, make_osc
+from vines.core.flow import I_NRES, I_W, flow, flow_zv, make_osc, s_factors
 from vines.core.params import ModelParams
 from vines.orbits import periodic as P
 from vines.orbits._lapack import eigvals, lambda_max_4
+from vines.orbits.affine import _chain, _lr_chain, affine_chain, chain_workspace
+from vines.orbits.maps import model_array, pack_model
 from vines.orbits.stability_map import stability_map, stability_map_python
 
 KEYS = ("lambda_max", "cls", "dw_L", "symmetric")
@@ -59,13 +61,37 @@ def _points(n, seed=0):
             for _ in range(n)]
 
 
+def _symmetric_seeds_numpy(mdl):
+    """The closed-form symmetric 1:1 seeds by numpy's svd and lstsq (the reference of the
+    compiled ``affine.closed_form_kernel``)."""
+    T = 2.0 * math.pi / mdl[I_W]
+    A, b = np.empty((4, 5)), np.empty(4)
+    affine_chain(mdl, (P.LR, np.array([0.5 * T]), (-1, False)), A, b, chain_workspace(1))
+    _, sv, Vt = np.linalg.svd(A)
+    if sv[-1] <= 1e-14 * sv[0]:
+        return []
+    q = Vt[-1]
+    p = np.linalg.lstsq(A, -b, rcond=None)[0]
+    a2 = q[3] * q[3] + q[4] * q[4]
+    a1 = 2.0 * (p[3] * q[3] + p[4] * q[4])
+    a0 = p[3] * p[3] + p[4] * p[4] - 1.0
+    disc = a1 * a1 - 4.0 * a2 * a0
+    if a2 == 0.0 or disc < 0.0:
+        return []
+    out = []
+    for lam in ((-a1 - math.sqrt(disc)) / (2.0 * a2), (-a1 + math.sqrt(disc)) / (2.0 * a2)):
+        u = p + lam * q
+        out.append((u[0], u[1], u[2], math.atan2(u[3], u[4])))
+    return out
+
+
 @pytest.mark.parametrize("eta, w, F", _points(25))
 def test_seed_kernel_rows_equal_seed_orbits(eta, w, F):
     p = ModelParams(eta, w, F)
-    osc = oscillators(p)[0]
-    orbits = P.seed_orbits(p, osc, simulation=False)
+    mdl = model_array(p)
+    orbits = P.seed_orbits(p, mdl, simulation=False)
     rows = np.zeros((P.N_SEED_MAX, P.N_ROW))
-    n = P.seed_kernel(osc, p.eta, p.r, p.omega, p.phi, p.F, rows, P.orbit_workspace())
+    n = P.seed_kernel(mdl, rows, P.orbit_workspace())
     assert n == len(orbits)
     for row, o in zip(rows[:n], orbits, strict=False):
         assert np.array_equal(row[P.ROW_X:P.ROW_X + 4], o.x_L)
@@ -74,30 +100,48 @@ def test_seed_kernel_rows_equal_seed_orbits(eta, w, F):
         assert row[P.ROW_DWL] == o.dw_L
         if o.admissible:
             assert row[P.ROW_LAM] == o.lambda_max
-    buf = np.empty((2, 4))
-    ns = P.symmetric_seeds_kernel(osc, p.eta, p.r, p.omega, buf)
-    assert [tuple(b) for b in buf[:ns]] == P.symmetric_seeds(osc, p.eta, p.r, p.omega)
+    assert P.symmetric_seeds(mdl) == _symmetric_seeds_numpy(mdl)
 
 
 @pytest.mark.parametrize("d, w", [(0.011998, 0.9), (0.0, 1.0), (0.0, 0.8), (0.0, 0.9999),
                                   (2.5, 1.2)])
-def test_cached_flow_and_scan_residual_are_bitwise_the_originals(d, w):
-    osc = make_osc(1.0, d, w, 0.3)   # damped, resonant, undamped, near-resonant, overdamped
+def test_flight_chains_are_affine_in_the_start(d, w):
+    """E(u) of the chains (walls restarted or carried) is A u + b to round-off, A and b from
+    ``affine_chain`` (damped, resonant, undamped, near-resonant, overdamped oscillators)."""
     rng = np.random.default_rng(1)
     T = 2.0 * math.pi / w
-    ws = (np.empty((5, 5)), np.empty(5), np.empty(5), np.empty((5, 5)), np.empty(5))
+    A, b, E, ws = np.empty((5, 5)), np.empty(5), np.empty(5), chain_workspace(2)
+    for _ in range(20):
+        mdl = pack_model(make_osc(1.0, d, w, 0.3), rng.uniform(0.01, 1.0), 0.65, 0.0)
+        s1 = rng.uniform(0.0, T)
+        s = np.array([s1, T - s1])
+        for carry in (False, True):
+            chain = (P.LR, s, (1, carry))
+            affine_chain(mdl, chain, A, b, ws)
+            u = rng.normal(size=5)
+            f1, f2 = s_factors(mdl, s[0]), s_factors(mdl, s[1])
+            if mdl[I_NRES] > 0.5:
+                f1 = f2 = None
+            _chain(mdl, u, (2, P.LR[0], P.LR[1], s[0], s[1], 1, carry), f1, f2, E)
+            scale = np.abs(A).sum(axis=1) * np.abs(u).max() + np.abs(b) + 1.0
+            assert np.all(np.abs(A @ u + b - E) <= 1e-9 * scale)
+            if carry and f1 is not None:     # the 1:1 scan's written-out chain: same bits
+                E1 = np.empty(5)
+                _lr_chain(mdl, u, s[0], s[1], f1, f2, E1)
+                assert np.array_equal(E1, E)
+
+
+@pytest.mark.parametrize("d, w", [(0.011998, 0.9), (0.0, 1.0), (0.0, 0.8), (2.5, 1.2)])
+def test_flow_zv_is_flow_bitwise(d, w):
+    """``flow_zv`` (z, z' with shared s-factors, written out) equals ``flow`` bit for bit
+    (damped, resonant, undamped, overdamped oscillators)."""
+    osc = make_osc(1.0, d, w, 0.3)
+    rng = np.random.default_rng(3)
     for _ in range(50):
-        x0, v0, th, s = rng.normal(), rng.normal(), rng.uniform(0, 6.3), rng.uniform(0, T)
-        z, v, _, _, _ = flow(osc, x0, v0, math.sin(th), math.cos(th), s)
-        assert osc[I_NRES] > 0.5 or P._flow_zv(osc, x0, v0, math.sin(th), math.cos(th), s,
-                          P._s_factors(osc, s)) == (z, v)
-        eta = rng.uniform(0.01, 1.0)
-        A, b, u = np.empty((5, 5)), np.empty(5), np.empty(5)
-        P._affine(osc, eta, 0.65, w, s, T - s, False, A, b)      # the original formulation
-        ok = P._solve(A, -b, u)
-        h_ref = u[3] * u[3] + u[4] * u[4] - 1.0 if ok else math.nan
-        h = P._circle_residual(osc, eta, 0.65, w, s, T, np.empty(5), ws)
-        assert h == h_ref or (math.isnan(h) and math.isnan(h_ref))
+        x0, v0, th, s = rng.normal(), rng.normal(), rng.uniform(0, 6.3), rng.uniform(0, 20.0)
+        start = (x0, v0, math.sin(th), math.cos(th))
+        z, v, _, _, _ = flow(osc, *start, s)
+        assert flow_zv(osc, start, s, s_factors(osc, s)) == (z, v)
 
 
 def test_compiled_dgeev_is_numpys():

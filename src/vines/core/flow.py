@@ -471,3 +471,41 @@ def v2_integral(osc, x0, v0, sth0, cth0, L):
         if big <= 1e3 * res:       # else the terms cancel (near resonance)
             return res
     return _v2_modes_gauss(Ah, lam, Bp, omega, L, npan, _GL_X, _GL_W)
+
+
+@njit(cache=True, nogil=True)
+def s_factors(osc, s):
+    """The factors of ``flow`` that depend on s only: (C, C', S, S', sin, cos of omega s)."""
+    C, dC, S, dS = fundamentals(osc, s)
+    w = osc[I_W]
+    return C, dC, S, dS, math.sin(w * s), math.cos(w * s)
+
+
+@njit(cache=True, nogil=True)
+def flow_zv(osc, start, s, fs):
+    """(z, z') of ``flow`` from start = (x0, v0, sin, cos of theta0) given fs =
+    ``s_factors(osc, s)``: flows of one length s from many starts (the affine seeds of
+    ``orbits``) share fs. The arithmetic of ``flow`` (``particular0``, ``fundamentals``,
+    ``particular``) for z and z' only, bit for bit (tests); not for the near-resonant
+    undamped form (osc[I_NRES]: use ``flow``). Written out here because ``flow`` built from
+    these pieces runs about 20 % slower."""
+    x0, v0, sth0, cth0 = start
+    C, dC, S, dS, sw, cw = fs
+    omega = osc[I_W]
+    zp0, zp10 = particular0(osc, sth0, cth0)
+    xh = x0 - zp0
+    vh = v0 - zp10
+    zh = xh * C + vh * S
+    zh1 = xh * dC + vh * dS
+    sth = sth0 * cw + cth0 * sw
+    cth = cth0 * cw - sth0 * sw
+    if osc[I_RES] > 0.5:
+        A = osc[I_ARES]
+        zp = A * s * cth
+        zp1 = A * cth - A * omega * s * sth
+    else:
+        ps = osc[I_PS]
+        pc = osc[I_PC]
+        zp = ps * sth + pc * cth
+        zp1 = omega * (ps * cth - pc * sth)
+    return zp + zh, zp1 + zh1

@@ -76,7 +76,7 @@ def lambda_max_4(M, a, wr, wi, work):
     return lam
 
 
-def eigvals(M) -> np.ndarray:
+def eigvals(M: np.ndarray) -> np.ndarray:
     """Eigenvalues of a real square matrix by the compiled dgeev (numpy's eigvals; tests)."""
     M = np.asarray(M, dtype=float)
     n = M.shape[0]

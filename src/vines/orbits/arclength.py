@@ -17,9 +17,11 @@ defines the norm t . t = sum (scale_k t_k)^2 used for steps and tangents.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 MAX_TURN = math.radians(30.0)
 NEWTON_TOL = 1e-11
@@ -40,7 +42,9 @@ class Step:
 class Tracer:
     """Pseudo-arclength continuation (module docstring)."""
 
-    def __init__(self, fun, z0, direction, h, h_min, h_max, scale=None):
+    def __init__(self, fun: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]],
+                 z0: ArrayLike, direction: ArrayLike, h: float, h_min: float, h_max: float,
+                 scale: ArrayLike | None = None) -> None:
         self.fun = fun
         self.scale = np.ones(len(z0)) if scale is None else np.asarray(scale, float)
         self.h, self.h_min, self.h_max = float(h), float(h_min), float(h_max)
@@ -49,7 +53,7 @@ class Tracer:
         self.t = self.tangent(Rz, np.asarray(direction, dtype=float))
 
     # ----------------------------------------------------------------- geometry
-    def tangent(self, Rz, t_ref):
+    def tangent(self, Rz: np.ndarray, t_ref: np.ndarray) -> np.ndarray:
         """Unit tangent (scaled norm) of the curve, oriented along t_ref."""
         w = self.scale
         A = np.vstack([Rz / w, (t_ref * w)[None, :]])
@@ -63,10 +67,12 @@ class Tracer:
         t = y / w
         return t if np.dot(t * w, t_ref * w) >= 0.0 else -t
 
-    def dot(self, a, b) -> float:
+    def dot(self, a: np.ndarray, b: np.ndarray) -> float:
+        """The scaled inner product a . b."""
         return float(np.dot(a * self.scale, b * self.scale))
 
-    def correct(self, z_pred, t_ref, z_ref, tau):
+    def correct(self, z_pred: np.ndarray, t_ref: np.ndarray, z_ref: np.ndarray,
+                tau: float) -> tuple[np.ndarray, np.ndarray, int] | None:
         """Newton on R(z) = 0, t_ref . (z - z_ref) = tau from z_pred: (z, Rz, iterations)
         or None."""
         z = z_pred.copy()
@@ -91,7 +97,7 @@ class Tracer:
                 return None
         return None
 
-    def point_at(self, step: Step, tau: float):
+    def point_at(self, step: Step, tau: float) -> tuple[np.ndarray, np.ndarray] | None:
         """(z, t) on the curve where t0 . (z - z0) = tau within a step, or None."""
         got = self.correct(step.z0 + tau * step.t0, step.t0, step.z0, tau)
         if got is None:
@@ -100,7 +106,7 @@ class Tracer:
         return z, self.tangent(Rz, step.t0)
 
     # ----------------------------------------------------------------- stepping
-    def step(self):
+    def step(self) -> Step | None:
         """Advance one step; the Step, or None when the step fell below h_min."""
         while self.h >= self.h_min:
             h = self.h
@@ -117,7 +123,8 @@ class Tracer:
             self.h = 0.5 * h
         return None
 
-    def locate(self, step: Step, test, f0, f1, tol=1e-10, max_iter=60):
+    def locate(self, step: Step, test: Callable[[np.ndarray, np.ndarray], float], f0: float,
+               f1: float, tol: float = 1e-10, max_iter: int = 60) -> tuple | None:
         """(tau, z, t) of a root of test(z, t) (scalar) along a step, given its values f0 at
         z0 and f1 at z1 of opposite signs; None when a point cannot be corrected."""
         a, fa, b, fb = 0.0, f0, step.h, f1
@@ -148,7 +155,8 @@ class Tracer:
                 break
         return best
 
-    def bisect(self, step: Step, flag, flag0, tol=1e-10):
+    def bisect(self, step: Step, flag: Callable[[np.ndarray, np.ndarray], bool], flag0: bool,
+               tol: float = 1e-10) -> tuple[tuple, tuple]:
         """Where the boolean flag(z, t) changes from flag0 along a step: the (tau, z, t)
         just after the change and the one just before it (flag still flag0)."""
         a, b = 0.0, step.h

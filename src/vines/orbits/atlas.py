@@ -20,9 +20,11 @@ The answer is a finite search: a family reported absent may exist (no seed reach
 """
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..core.exact import oscillators
 from ..core.params import ModelParams, ParameterError, SolverSettings, check_bool
@@ -102,8 +104,8 @@ def _rest_records(p: ModelParams, t_end: float) -> list:
     return [res.impacts, _mirror_record(res.impacts, p.period)]
 
 
-def sequence_orbits(p: ModelParams, seeds=None, simulation=True,
-                    sim_t_end=SIM_T_END) -> dict:
+def sequence_orbits(p: ModelParams, seeds: dict | None = None, simulation: bool = True,
+                    sim_t_end: float = SIM_T_END) -> dict:
     """Every orbit found of each sequence of the atlas: {walls: [SequenceOrbit, ...]}.
 
     ``seeds``: orbits of a neighbouring point ({walls: orbits}, as returned here). Two
@@ -175,8 +177,8 @@ def _check_atlas_seeds(seeds) -> dict:
     return seeds
 
 
-def atlas_point(params: ModelParams, seeds=None, simulation=True,
-                sim_t_end=SIM_T_END) -> tuple[dict, dict]:
+def atlas_point(params: ModelParams, seeds: dict | None = None, simulation: bool = True,
+                sim_t_end: float = SIM_T_END) -> tuple[dict, dict]:
     """(families, orbits): ``classify_families`` of the point and the orbits found (pass
     them as ``seeds`` to the next point of a sweep)."""
     if not isinstance(params, ModelParams):
@@ -188,8 +190,10 @@ def atlas_point(params: ModelParams, seeds=None, simulation=True,
     return classify_families(orbits), orbits
 
 
-def atlas_arrays(eta, omega, F, *, r=None, d=None, simulation=True,
-                 sim_t_end=SIM_T_END, progress=None) -> dict:
+def atlas_arrays(eta: ArrayLike, omega: ArrayLike, F: float, *, r: float | None = None,
+                 d: float | None = None, simulation: bool = True,
+                 sim_t_end: float = SIM_T_END,
+                 progress: Callable[[int, int], None] | None = None) -> dict:
     """The atlas over an (eta, omega) grid at one F, swept along omega for each eta with
     the previous point's orbits as seeds: arrays (eta, omega) per family key of ``found``,
     ``admissible``, ``stable`` (bool) and ``lambda_max`` (float), under keys

@@ -4,6 +4,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..core.params import PARAM_NAMES
 
@@ -70,7 +71,8 @@ def _event_dict(e: dict) -> dict:
     return out
 
 
-def make_branch(param, pts, events, stopped, family="symmetric", arclength=None) -> Branch:
+def make_branch(param: str, pts: list, events: list, stopped: str, family: str = "symmetric",
+                arclength: ArrayLike | None = None) -> Branch:
     """Branch from [(parameter value, PeriodicOrbit)] in continuation order."""
     n = len(pts)
     vals = np.array([v for v, _ in pts], float)

@@ -1,4 +1,5 @@
-"""Pseudo-arclength continuation of 1:1 branches (symmetric or asymmetric) with events.
+"""Pseudo-arclength branches of 1:1 orbits (symmetric or asymmetric) and their events: the
+family's system, the test functions and the ``Follower`` that ``continuation.follow`` runs.
 
 The unknowns are those of the family's shooting system (``shooting``) plus the continued
 parameter; ``arclength.Tracer`` follows the curve, through folds. Every accepted point is
@@ -28,24 +29,23 @@ located and kept), the branch closes on itself, ``max_inadmissible`` consecutive
 non-admissible, ``max_points`` points, the asymmetric branch reaches the symmetric one, or
 the step falls below ``min_step``.
 
-``switch_at`` starts the asymmetric branch born at a symmetry-breaking point of the
-symmetric branch: the direction is the null vector of the asymmetric system's Jacobian
-there that is not the symmetric branch's tangent.
+``switch_direction`` gives the start of the asymmetric branch born at a symmetry-breaking
+point of the symmetric branch (``continuation.switch_at``): the null vector of the
+asymmetric system's Jacobian there that is not the symmetric branch's tangent.
 """
 from __future__ import annotations
 
 import math
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from .. import progress
-from ..core.exact import oscillators
 from ..core.params import ModelParams, ParameterError
 from ..core.walls import WALL_L, WALL_R
 from . import shooting as sh
 from .arclength import Step, Tracer
-from .branch_result import make_branch
-from .maps import map_kernel
+from .maps import impact_map, model_array
 from .periodic import PeriodicOrbit, _orbit
 
 TESTS = {"symmetric": ("fold", "symmetry-breaking", "neimark-sacker"),
@@ -56,23 +56,23 @@ NS_TOL = 1e-3          # |(|lambda| - 1)| of the complex pair at a located neima
 class FamilySystem:
     """The shooting system of one family with one free parameter: z = (u, param)."""
 
-    def __init__(self, model: sh.Model, family: str, param: str, fixed: dict):
+    def __init__(self, model: sh.Model, family: str, param: str, fixed: dict) -> None:
         self.m, self.family, self.param, self.fixed = model, family, param, dict(fixed)
 
-    def par(self, z) -> dict:
+    def par(self, z: np.ndarray) -> dict:
         p = dict(self.fixed)
         p[self.param] = float(z[-1])
         return p
 
-    def __call__(self, z):
+    def __call__(self, z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         return sh.residual_jacobian(self.m, self.family, z[:-1], self.par(z), (self.param,))
 
-    def params(self, z) -> ModelParams:
+    def params(self, z: np.ndarray) -> ModelParams:
         p = self.par(z)
         return ModelParams(eta=p["eta"], omega=p["omega"], F=p["F"], r=self.m.r, d=self.m.d,
                            phi=self.m.phi)
 
-    def orbit(self, z) -> PeriodicOrbit | None:
+    def orbit(self, z: np.ndarray) -> PeriodicOrbit | None:
         """The orbit at z; None where the maps fail or a step left the valid parameters."""
         try:
             return orbit_at(self.params(z), self.family, z[:-1])
@@ -80,24 +80,24 @@ class FamilySystem:
             return None
 
 
-def orbit_at(p: ModelParams, family: str, u) -> PeriodicOrbit | None:
+def orbit_at(p: ModelParams, family: str, u: ArrayLike) -> PeriodicOrbit | None:
     """The PeriodicOrbit of shooting unknowns u (maps, admissibility, eigenvalues)."""
-    osc = oscillators(p)[0]
+    mdl = model_array(p)
     x = np.array(u[:4], dtype=float)
     s1, s2 = sh.flight_times(family, u, p.omega)
     xR, y2 = np.empty(4), np.empty(4)
     J1, J2 = np.empty((4, 4)), np.empty((4, 4))
-    f1 = map_kernel(osc, p.eta, p.r, p.omega, p.phi, x, WALL_L, WALL_R, s1, xR, J1)
-    f2 = map_kernel(osc, p.eta, p.r, p.omega, p.phi, xR, WALL_R, WALL_L, s2, y2, J2)
+    f1 = impact_map(mdl, x, (WALL_L, WALL_R), s1, xR, J1)
+    f2 = impact_map(mdl, xR, (WALL_R, WALL_L), s2, y2, J2)
     if not (math.isfinite(f1) and math.isfinite(f2)):
         return None
     res = float(np.max(np.abs(y2 - x - np.array([0.0, 0.0, 0.0, p.period]))))
-    o = _orbit(p, osc, x, xR, J1, J2, np.array([f1, f2]), res)
+    o = _orbit(p, mdl, x, xR, (J1, J2), np.array([f1, f2]), res)
     o.J1, o.J2 = J1, J2
     return o
 
 
-def test_values(family: str, o: PeriodicOrbit, z, t) -> dict:
+def test_values(family: str, o: PeriodicOrbit, z: np.ndarray, t: np.ndarray) -> dict:
     """The test functions of the module docstring at one point."""
     if family == "symmetric":
         A = sh.MIRROR @ o.J1
@@ -119,17 +119,19 @@ def is_ns(family: str, o: PeriodicOrbit, tol: float = NS_TOL) -> bool:
     return abs(ev[k].imag) > 1e-6 and abs(abs(ev[k]) - 1.0) < tol
 
 
-class _Follower:
+class Follower:
     """State of one branch continuation (points, events, termination)."""
 
-    def __init__(self, system: FamilySystem, tracer: Tracer, bounds):
+    def __init__(self, system: FamilySystem, tracer: Tracer,
+                 bounds: tuple[float, float]) -> None:
         self.sys, self.tr = system, tracer
         self.lo, self.hi = bounds
         self.tr_start = tracer.z.copy()
         self.pts, self.arc, self.events = [], [], []
         self.stopped = "done"
 
-    def add(self, z, t, s):
+    def add(self, z: np.ndarray, t: np.ndarray, s: float) -> tuple | None:
+        """Append the orbit at z (arclength s) and return it with its test values, or None."""
         o = self.sys.orbit(z)
         if o is None:
             return None
@@ -137,7 +139,8 @@ class _Follower:
         self.arc.append(s)
         return o, test_values(self.sys.family, o, z, t)
 
-    def run(self, max_points, max_inadmissible):
+    def run(self, max_points: int, max_inadmissible: int) -> None:
+        """Follow the branch until a termination (module docstring); sets ``stopped``."""
         z0, t0 = self.tr.z, self.tr.t
         got = self.add(z0, t0, 0.0)
         if got is None:
@@ -316,29 +319,6 @@ class _Follower:
         return test_values(self.sys.family, o, z, t)[typ]
 
 
-def follow(model: sh.Model, family: str, param: str, fixed: dict, u0, start: float,
-           bounds, direction, step: float, min_step: float, max_points: int,
-           max_inadmissible: int):
-    """Continue the branch through (u0, start); returns a ``Branch``.
-
-    direction: the initial tangent's orientation (a vector of len(u0) + 1), or the sign of
-    the parameter's initial change (a number).
-    """
-    system = FamilySystem(model, family, param, fixed)
-    z0 = np.append(np.asarray(u0, dtype=float), start)
-    if np.isscalar(direction):
-        d = np.zeros(len(z0))
-        d[-1] = float(direction)
-        direction = d
-    tracer = Tracer(system, z0, direction, h=step, h_min=min_step, h_max=step)
-    f = _Follower(system, tracer, bounds)
-    with progress.task(None, f"{family} branch in {param}", "points"):
-        f.run(max_points, max_inadmissible)
-    for e in f.events:
-        e.pop("t", None)
-    return make_branch(param, f.pts, f.events, f.stopped, family=family, arclength=f.arc)
-
-
 def start_unknowns(o: PeriodicOrbit, family: str) -> np.ndarray:
     u = list(o.x_L)
     if family == "asymmetric":
@@ -346,7 +326,8 @@ def start_unknowns(o: PeriodicOrbit, family: str) -> np.ndarray:
     return np.array(u)
 
 
-def switch_direction(model: sh.Model, param: str, fixed: dict, z_sym, t_sym=None):
+def switch_direction(model: sh.Model, param: str, fixed: dict,
+                     z_sym: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """(z, v): the symmetric point z_sym = (u, param) as an asymmetric-system point and the
     unit direction of the asymmetric branch born there."""
     u = np.asarray(z_sym[:-1], dtype=float)
@@ -362,24 +343,3 @@ def switch_direction(model: sh.Model, param: str, fixed: dict, z_sym, t_sym=None
     v = V.T @ (V @ c)
     v /= np.linalg.norm(v)
     return z, v
-
-
-def switch_at(model: sh.Model, param: str, fixed: dict, z_sym, bounds, step: float,
-              min_step: float, max_points: int, max_inadmissible: int):
-    """The asymmetric branch born at the symmetry-breaking point z_sym of the symmetric
-    branch (a ``Branch`` starting one step away from the branch point), or None."""
-    z, v = switch_direction(model, param, fixed, z_sym)
-    system = FamilySystem(model, "asymmetric", param, fixed)
-    tracer = Tracer(system, z, v, h=step, h_min=min_step, h_max=step)
-    h = step
-    while h >= min_step:
-        got = tracer.correct(z + h * v, v, z, h)
-        if got is not None and abs(got[0][4] - z[4]) > 0.1 * h * abs(v[4]):
-            break
-        h *= 0.5
-    else:
-        return None
-    z1 = got[0]
-    br = follow(model, "asymmetric", param, fixed, z1[:-1], z1[-1], bounds, z1 - z, step,
-                min_step, max_points, max_inadmissible)
-    return br

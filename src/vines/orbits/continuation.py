@@ -1,11 +1,13 @@
-"""Continuation of a 1:1 orbit in eta, omega or F: ``continue_branch``.
+"""Continuation of a 1:1 orbit in eta, omega or F: ``continue_branch``, the one home of
+continuation. Its keywords become one ``ContinuationSettings`` (validated once) that every
+step below receives, with the model's fixed constants as a ``ModelParams``.
 
 Two methods:
 
 * ``arclength`` (default): pseudo-arclength continuation of the family's shooting system
   through folds, events located along the arclength (``branches``); symmetric or
   asymmetric orbits (``branch``), and with ``switch`` the asymmetric branches born at the
-  symmetric branch's symmetry-breaking points.
+  symmetric branch's symmetry-breaking points (``follow``, ``switch_at``).
 * ``natural``: natural-parameter continuation. Predictor: secant through the last two
   points (the orbit's x_L with unwrapped impact time and the flight times, extrapolated
   linearly in the parameter); corrector: the Newton iteration of ``vines.periodic`` on
@@ -26,7 +28,7 @@ the parameter:
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -50,11 +52,15 @@ from ..core.params import (
     check_step_points,
 )
 from ..core.walls import WALL_L, WALL_R
+from . import shooting as sh
+from .arclength import Tracer
 from .branch_result import EVENT_TYPES, Branch, make_branch
+from .branches import FamilySystem, Follower, start_unknowns, switch_direction
+from .maps import map_jacobian
 from .periodic import PeriodicOrbit, orbits_1to1, solve_orbit
 
 MIRROR = np.diag([-1.0, -1.0, -1.0, 1.0])
-__all__ = ["continue_branch", "ContinuationSettings", "Branch", "EVENT_TYPES"]
+__all__ = ["continue_branch", "continue_orbit", "ContinuationSettings", "Branch", "EVENT_TYPES"]
 
 
 def _n_outside(o: PeriodicOrbit) -> int:
@@ -78,18 +84,16 @@ def _crossing_type(o: PeriodicOrbit, J1=None) -> str:
 
 
 class _Continuer:
-    def __init__(self, param, fixed, r, d, phi):
-        self.param = param
-        self.fixed = dict(fixed)
-        self.r, self.d, self.phi = r, d, phi
+    """Orbits along the continued parameter (natural mode): the model p0 with the parameter
+    set to a value."""
 
-    def params(self, value) -> ModelParams:
-        kw = dict(self.fixed)
-        kw[self.param] = value
-        return ModelParams(eta=kw["eta"], omega=kw["omega"], F=kw["F"], r=self.r, d=self.d,
-                           phi=self.phi)
+    def __init__(self, cs: ContinuationSettings, p0: ModelParams):
+        self.param, self.p0 = cs.param, p0
 
-    def solve(self, value, x, s1, s2):
+    def params(self, value: float) -> ModelParams:
+        return replace(self.p0, **{self.param: value})
+
+    def solve(self, value: float, x: np.ndarray, s1: float, s2: float) -> PeriodicOrbit | None:
         p = self.params(value)
         o = solve_orbit(p, x, s1, s2)
         if o is None:
@@ -102,8 +106,7 @@ class _Continuer:
             o.x_R[3] += k * T
         return o
 
-    def jac1(self, value, o):
-        from .maps import map_jacobian
+    def jac1(self, value: float, o: PeriodicOrbit) -> np.ndarray:
         return map_jacobian(self.params(value), o.x_L, WALL_L, WALL_R,
                             t_guess=o.x_L[3] + o.flight_times[0])
 
@@ -128,9 +131,11 @@ def _interp(v, va, oa, vb, ob):
     return a + (b - a) * (v - va) / (vb - va)
 
 
-def continue_branch(param: str, start, stop, step=None, fixed: dict | None = None,
-                    orbit: PeriodicOrbit | None = None, r=R_DEFAULT, d=D_DEFAULT, phi=0.0,
-                    min_step=1e-6, event_tol=1e-6, max_points=MAX_POINTS_DEFAULT,
+def continue_branch(param: str, start: float, stop: float, step: float | None = None,
+                    fixed: dict | None = None, orbit: PeriodicOrbit | None = None,
+                    r: float = R_DEFAULT, d: float = D_DEFAULT, phi: float = 0.0,
+                    min_step: float = 1e-6, event_tol: float = 1e-6,
+                    max_points: int = MAX_POINTS_DEFAULT,
                     method: str = "arclength", branch: str = "symmetric",
                     switch: bool = False,
                     max_inadmissible: int = MAX_INADMISSIBLE_DEFAULT) -> Branch:
@@ -155,26 +160,34 @@ def continue_branch(param: str, start, stop, step=None, fixed: dict | None = Non
                               switch=switch, max_inadmissible=max_inadmissible)
     if orbit is not None and not isinstance(orbit, PeriodicOrbit):
         raise ParameterError("orbit", orbit, "must be None or a PeriodicOrbit (find_1to1)")
-    cont = _Continuer(cs.param, cs.fixed, r, d, phi)
-    p0 = cont.params(cs.start)              # validates every parameter
-    cont.params(cs.stop)
+    kw = dict(cs.fixed)
+    kw[cs.param] = cs.start
+    p0 = ModelParams(eta=kw["eta"], omega=kw["omega"], F=kw["F"], r=r, d=d, phi=phi)
+    return continue_orbit(cs, p0, orbit)
+
+
+def continue_orbit(cs: ContinuationSettings, p0: ModelParams,
+                   orbit: PeriodicOrbit | None = None) -> Branch:
+    """``continue_branch`` with validated settings from the model p0 (its ``cs.param`` at
+    ``cs.start``, the other two at ``cs.fixed``)."""
+    cont = _Continuer(cs, p0)
+    cont.params(cs.stop)                     # validates the end point
     if orbit is None:
         cands = [o for o in orbits_1to1(p0)
                  if o.symmetric == (cs.branch == "symmetric")]
         if not cands:
-            return _make_branch(cs.param, [], [], f"no {cs.branch} 1:1 orbit at start")
+            return make_branch(cs.param, [], [], f"no {cs.branch} 1:1 orbit at start")
         orbit = cands[0]
     else:
         orbit = cont.solve(cs.start, orbit.x_L, *orbit.flight_times)
         if orbit is None:
-            return _make_branch(cs.param, [], [],
-                                "the given orbit does not converge at start")
+            return make_branch(cs.param, [], [], "the given orbit does not converge at start")
     if cs.method == "natural":
         with progress.task(abs(cs.stop - cs.start), f"branch in {cs.param}", cs.param):
             br = _natural(cont, cs, orbit)
         br.family = "symmetric" if orbit.symmetric else "asymmetric"
         return br
-    return _arclength(cs, orbit, r, d, phi)
+    return _arclength(cs, p0, orbit)
 
 
 def _check_fixed(fixed) -> dict:
@@ -245,10 +258,9 @@ class ContinuationSettings:
         """+1 when the parameter increases from start to stop, else -1."""
         return 1.0 if self.stop >= self.start else -1.0
 
-    def tracer_options(self) -> dict:
-        """The keywords of the arclength tracer (``branches.follow``, ``switch_at``)."""
-        return dict(step=self.step, min_step=self.min_step, max_points=self.max_points,
-                    max_inadmissible=self.max_inadmissible)
+    def tracer(self, system: FamilySystem, z0: np.ndarray, direction: np.ndarray) -> Tracer:
+        """The arclength tracer of ``system`` from z0 with these steps."""
+        return Tracer(system, z0, direction, h=self.step, h_min=self.min_step, h_max=self.step)
 
 
 def _fixed_others(param: str, fixed: dict) -> dict:
@@ -267,30 +279,66 @@ def _fixed_others(param: str, fixed: dict) -> dict:
     return {q: fixed[q] for q in others}
 
 
-def _arclength(cs: ContinuationSettings, orbit: PeriodicOrbit, r: float, d: float,
-               phi: float) -> Branch:
-    from . import branches as bb
-    from . import shooting
-    model = shooting.Model(r, d, phi)
+def _arclength(cs: ContinuationSettings, p0: ModelParams, orbit: PeriodicOrbit) -> Branch:
+    """Pseudo-arclength continuation from orbit (and the switched branches)."""
+    model = sh.Model(p0.r, p0.d, p0.phi)
     kind = "symmetric" if orbit.symmetric else "asymmetric"
-    kw = cs.tracer_options()
-    br = bb.follow(model, kind, cs.param, cs.fixed, bb.start_unknowns(orbit, kind), cs.start,
-                   cs.bounds, cs.sign, **kw)
+    br = follow(model, kind, cs, np.append(start_unknowns(orbit, kind), cs.start), cs.sign)
     if cs.switch and kind == "symmetric":
         for ev in br.events:
             if ev["type"] == "symmetry-breaking":
-                sub = bb.switch_at(model, cs.param, cs.fixed, ev["z"], cs.bounds, **kw)
+                sub = switch_at(model, cs, ev["z"])
                 if sub is not None:
                     sub.born_at = ev
                     br.switched.append(sub)
     return br
 
 
+def follow(model: sh.Model, family: str, cs: ContinuationSettings, z0: np.ndarray,
+           direction: np.ndarray | float) -> Branch:
+    """Continue the branch of ``family`` through z0 = (shooting unknowns, parameter) by
+    pseudo-arclength (``branches.Follower``); returns a ``Branch``.
+
+    direction: the initial tangent's orientation (a vector of len(z0)), or the sign of the
+    parameter's initial change (a number).
+    """
+    system = FamilySystem(model, family, cs.param, cs.fixed)
+    z0 = np.asarray(z0, dtype=float)
+    if np.isscalar(direction):
+        d = np.zeros(len(z0))
+        d[-1] = float(direction)
+        direction = d
+    f = Follower(system, cs.tracer(system, z0, direction), cs.bounds)
+    with progress.task(None, f"{family} branch in {cs.param}", "points"):
+        f.run(cs.max_points, cs.max_inadmissible)
+    for e in f.events:
+        e.pop("t", None)
+    return make_branch(cs.param, f.pts, f.events, f.stopped, family=family, arclength=f.arc)
+
+
+def switch_at(model: sh.Model, cs: ContinuationSettings, z_sym: np.ndarray) -> Branch | None:
+    """The asymmetric branch born at the symmetry-breaking point z_sym of the symmetric
+    branch (a ``Branch`` starting one step away from the branch point), or None."""
+    z, v = switch_direction(model, cs.param, cs.fixed, z_sym)
+    system = FamilySystem(model, "asymmetric", cs.param, cs.fixed)
+    tracer = cs.tracer(system, z, v)
+    h = cs.step
+    while h >= cs.min_step:
+        got = tracer.correct(z + h * v, v, z, h)
+        if got is not None and abs(got[0][4] - z[4]) > 0.1 * h * abs(v[4]):
+            break
+        h *= 0.5
+    else:
+        return None
+    z1 = got[0]
+    return follow(model, "asymmetric", cs, z1, z1 - z)
+
+
 def _natural(cont: _Continuer, cs: ContinuationSettings, orbit: PeriodicOrbit) -> Branch:
     """Natural-parameter continuation (module docstring)."""
     start, stop, step, min_step = cs.start, cs.stop, cs.step, cs.min_step
     sign = cs.sign
-    param = cont.param
+    param = cs.param
     pts = [(start, orbit)]
     events = []
     h = step
@@ -316,7 +364,7 @@ def _natural(cont: _Continuer, cs: ContinuationSettings, orbit: PeriodicOrbit) -
         progress.advance(abs(v - v_prev))
         h = min(step, 1.5 * h)
     events.sort(key=lambda e: sign * e["at"])
-    return _make_branch(param, pts, events, stopped, cont)
+    return make_branch(param, pts, events, stopped)
 
 
 def _signature(cont, o):
@@ -350,7 +398,3 @@ def _locate_events(cont, va, oa, vb, ob, events, tol):
         else:
             typ = kind
         events.append({"type": typ, "at": at})
-
-
-def _make_branch(param, pts, events, stopped, cont=None) -> Branch:
-    return make_branch(param, pts, events, stopped)

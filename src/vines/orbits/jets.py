@@ -15,6 +15,7 @@ of Jacobian-based test functions (determinants of J - I, ...) are obtained.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 
 import numpy as np
 
@@ -25,7 +26,7 @@ class Jet:
     __slots__ = ("v", "g", "H")
     __array_priority__ = 1000           # numpy scalars defer to Jet's operators
 
-    def __init__(self, v, g, H=None):
+    def __init__(self, v: float, g: np.ndarray, H: np.ndarray | None = None) -> None:
         self.v = float(v)
         self.g = g
         self.H = H
@@ -80,28 +81,28 @@ def _unary(x: Jet, f, f1, f2) -> Jet:
     return Jet(f, f1 * x.g, H)
 
 
-def sin(x):
+def sin(x: float | Jet) -> float | Jet:
     if not isinstance(x, Jet):
         return x.unary("sin") if hasattr(x, "unary") else math.sin(x)
     s, c = math.sin(x.v), math.cos(x.v)
     return _unary(x, s, c, -s)
 
 
-def cos(x):
+def cos(x: float | Jet) -> float | Jet:
     if not isinstance(x, Jet):
         return x.unary("cos") if hasattr(x, "unary") else math.cos(x)
     s, c = math.sin(x.v), math.cos(x.v)
     return _unary(x, c, -s, -c)
 
 
-def exp(x):
+def exp(x: float | Jet) -> float | Jet:
     if not isinstance(x, Jet):
         return x.unary("exp") if hasattr(x, "unary") else math.exp(x)
     e = math.exp(x.v)
     return _unary(x, e, e, e)
 
 
-def sqrt(x):
+def sqrt(x: float | Jet) -> float | Jet:
     if not isinstance(x, Jet):
         return x.unary("sqrt") if hasattr(x, "unary") else math.sqrt(x)
     q = math.sqrt(x.v)
@@ -110,7 +111,7 @@ def sqrt(x):
 
 # --------------------------------------------------------------- variables and results
 
-def variables(values, order: int = 1) -> list:
+def variables(values: Sequence[float], order: int = 1) -> list:
     """Independent jets for the given values (unit gradients)."""
     n = len(values)
     eye = np.eye(n)
@@ -119,24 +120,24 @@ def variables(values, order: int = 1) -> list:
             for k, v in enumerate(values)]
 
 
-def value(x) -> float:
+def value(x: float | Jet) -> float:
     return x.v if isinstance(x, Jet) else float(x)
 
 
-def gradient(x, n: int) -> np.ndarray:
+def gradient(x: float | Jet, n: int) -> np.ndarray:
     return x.g if isinstance(x, Jet) else np.zeros(n)
 
 
-def values(fs) -> np.ndarray:
+def values(fs: Sequence) -> np.ndarray:
     return np.array([value(f) for f in fs])
 
 
-def jacobian(fs, n: int) -> np.ndarray:
+def jacobian(fs: Sequence, n: int) -> np.ndarray:
     """Rows = gradients of the jets fs (constants give zero rows)."""
     return np.array([gradient(f, n) for f in fs]).reshape(len(fs), n)
 
 
-def lift(f, n: int) -> list:
+def lift(f: float | Jet, n: int) -> list:
     """Order-1 jets of the n first derivatives of the order-2 jet f (d f / d v_k)."""
     if not isinstance(f, Jet):
         return [0.0] * n
@@ -144,7 +145,7 @@ def lift(f, n: int) -> list:
     return [Jet(f.g[k], H[k].copy()) for k in range(n)]
 
 
-def compose(f, inner_grad: np.ndarray):
+def compose(f: float | Jet, inner_grad: np.ndarray) -> float | Jet:
     """Order-1 jet f over local variables, re-expressed over global ones.
 
     inner_grad[k] is the gradient (over the global variables) of local variable k.
@@ -154,7 +155,7 @@ def compose(f, inner_grad: np.ndarray):
     return Jet(f.v, f.g @ inner_grad)
 
 
-def det(M) -> object:
+def det(M: list) -> float | Jet:
     """Determinant of a square matrix (list of lists) of floats/jets: Gaussian elimination
     with partial pivoting on the values (the last pivot is never divided by, so the
     result and its derivatives stay finite at a singular matrix)."""

@@ -24,9 +24,10 @@ import math
 
 import numpy as np
 from numba import njit
+from numpy.typing import ArrayLike
 
 from ..core.exact import oscillators
-from ..core.flow import I_RATE, flow
+from ..core.flow import I_RATE, I_W, N_OSC, flow
 from ..core.kernel import first_contact
 from ..core.params import ModelParams
 from ..core.walls import WALL_L, WALL_R, impact_velocities
@@ -37,20 +38,43 @@ ADMISSIBLE_TOL = 1e-8       # first contact and map root must agree to this (rel
 # status codes of the kernels
 OK, NO_ROOT = 0, 1
 
+# The model of the compiled kernels: the free oscillator's packed constants (``core.flow``:
+# omega = mdl[I_W], F = mdl[I_F]) followed by eta, r and phi.
+M_ETA, M_R, M_PHI = N_OSC, N_OSC + 1, N_OSC + 2
+N_MODEL = N_OSC + 3
+
 
 @njit(cache=True, nogil=True)
-def _gap(osc, zm0, vp, zb0, vbp, sth, cth, s, to_wall):
-    """(G, G', G'') with G = w(s) - to_wall."""
-    z, v, a, _, _ = flow(osc, zm0, vp, sth, cth, s)
+def pack_model(osc, eta, r, phi):
+    """The kernels' model array: a copy of the free oscillator osc with eta, r, phi after it."""
+    mdl = np.empty(N_MODEL)
+    mdl[:N_OSC] = osc[:N_OSC]
+    mdl[M_ETA], mdl[M_R], mdl[M_PHI] = eta, r, phi
+    return mdl
+
+
+def model_array(params: ModelParams, osc: np.ndarray | None = None) -> np.ndarray:
+    """``pack_model`` of a validated model (osc: its free oscillator, if already built)."""
+    if osc is None:
+        osc = oscillators(params)[0]
+    return pack_model(osc, params.eta, params.r, params.phi)
+
+
+@njit(cache=True, nogil=True)
+def _gap(osc, st0, ph0, s, to_wall):
+    """(G, G', G'') with G = w(s) - to_wall, for the flight from st0 = (z_m, z_m'+, z_b,
+    z_b'+) with forcing phase ph0 = (sin, cos) at s = 0."""
+    zm0, vp, zb0, vbp = st0
+    z, v, a, _, _ = flow(osc, zm0, vp, ph0[0], ph0[1], s)
     return z - zb0 - vbp * s - to_wall, v - vbp, a
 
 
 @njit(cache=True, nogil=True)
-def _newton_s(osc, zm0, vp, zb0, vbp, sth, cth, to_wall, s):
+def _newton_s(osc, st0, ph0, to_wall, s):
     """Safeguarded Newton on G(s) = 0 from s > 0; returns s (nan when it fails)."""
     lim = 0.5 / osc[I_RATE]
     for _ in range(80):
-        G, Gd, Gdd = _gap(osc, zm0, vp, zb0, vbp, sth, cth, s, to_wall)
+        G, Gd, Gdd = _gap(osc, st0, ph0, s, to_wall)
         if Gd == 0.0 or not math.isfinite(G):
             return math.nan
         ds = -G / Gd
@@ -69,7 +93,7 @@ def _newton_s(osc, zm0, vp, zb0, vbp, sth, cth, to_wall, s):
             return s_new
         if abs(ds) <= 1e-12 * (1.0 + abs(s)):
             s = s_new
-            G, Gd, Gdd = _gap(osc, zm0, vp, zb0, vbp, sth, cth, s, to_wall)
+            G, Gd, Gdd = _gap(osc, st0, ph0, s, to_wall)
             if Gd != 0.0:
                 s = s - G / Gd
             return s
@@ -78,28 +102,28 @@ def _newton_s(osc, zm0, vp, zb0, vbp, sth, cth, to_wall, s):
 
 
 @njit(cache=True, nogil=True)
-def _scan_s(osc, zm0, vp, zb0, vbp, sth, cth, to_wall, s_max):
+def _scan_s(osc, st0, ph0, to_wall, s_max):
     """First s in (0, s_max] where w crosses the target wall moving towards it (sampling)."""
     h = 0.05 / osc[I_RATE]
     s_prev = 0.0
     g_prev = 1.0
     s = h
     while s <= s_max:
-        G, Gd, _ = _gap(osc, zm0, vp, zb0, vbp, sth, cth, s, to_wall)
+        G, Gd, _ = _gap(osc, st0, ph0, s, to_wall)
         g = -to_wall * G            # distance to the target wall, > 0 inside
         if g <= 0.0 and g_prev > 0.0 and s_prev > 0.0:
             # bisection to a tight bracket, then Newton
             a, b = s_prev, s
             for _ in range(40):
                 m = 0.5 * (a + b)
-                Gm, _, _ = _gap(osc, zm0, vp, zb0, vbp, sth, cth, m, to_wall)
+                Gm, _, _ = _gap(osc, st0, ph0, m, to_wall)
                 if -to_wall * Gm > 0.0:
                     a = m
                 else:
                     b = m
                 if b - a < 1e-6 * (1.0 + b):
                     break
-            return _newton_s(osc, zm0, vp, zb0, vbp, sth, cth, to_wall, 0.5 * (a + b))
+            return _newton_s(osc, st0, ph0, to_wall, 0.5 * (a + b))
         s_prev = s
         g_prev = g
         s += h
@@ -117,13 +141,17 @@ def _no_map(y, J):
 
 
 @njit(cache=True, nogil=True)
-def map_kernel(osc, eta, r, omega, phi, x, from_wall, to_wall, s_guess, y, J):
-    """Apply one map to x (pre-impact at from_wall); fill y (next pre-impact state) and J.
+def impact_map(mdl, x, walls, s_guess, y, J):
+    """Apply one map to x (pre-impact at walls[0]); fill y (next pre-impact state, at
+    walls[1]) and J. mdl: ``pack_model``.
 
     s_guess > 0 starts Newton there; otherwise the first contact (or, when the flight hits
     the other wall first, the first crossing of the continued flight) seeds it.
     Returns the flight time s (nan when no root was found).
     """
+    osc = mdl
+    eta, r, omega, phi = mdl[M_ETA], mdl[M_R], mdl[I_W], mdl[M_PHI]
+    from_wall, to_wall = walls
     vm, vb, zb, t = x[0], x[1], x[2], x[3]
     zm0 = zb + from_wall
     vp, vbp = impact_velocities(eta, r, vm, vb)
@@ -133,15 +161,17 @@ def map_kernel(osc, eta, r, omega, phi, x, from_wall, to_wall, s_guess, y, J):
     th0 = omega * t + phi
     sth = math.sin(th0)
     cth = math.cos(th0)
+    st0 = (zm0, vp, zb, vbp)
+    ph0 = (sth, cth)
     if s_guess > 0.0:
-        s = _newton_s(osc, zm0, vp, zb, vbp, sth, cth, to_wall, s_guess)
+        s = _newton_s(osc, st0, ph0, to_wall, s_guess)
     else:
         s_max = 4.0 * 2.0 * math.pi / omega + 20.0 / osc[I_RATE]
-        wall, sc, _, _ = first_contact(osc, (zm0, vp, zb, vbp), (sth, cth), s_max, ROOT_TOL)
+        wall, sc, _, _ = first_contact(osc, st0, ph0, s_max, ROOT_TOL)
         if wall == to_wall and sc > 0.0:
-            s = _newton_s(osc, zm0, vp, zb, vbp, sth, cth, to_wall, sc)
+            s = _newton_s(osc, st0, ph0, to_wall, sc)
         else:
-            s = _scan_s(osc, zm0, vp, zb, vbp, sth, cth, to_wall, s_max)
+            s = _scan_s(osc, st0, ph0, to_wall, s_max)
     if not (s > 0.0) or not math.isfinite(s):
         return _no_map(y, J)
     z, v, acc, _, _ = flow(osc, zm0, vp, sth, cth, s)
@@ -185,13 +215,24 @@ def map_kernel(osc, eta, r, omega, phi, x, from_wall, to_wall, s_guess, y, J):
 
 
 @njit(cache=True, nogil=True)
-def admissible_kernel(osc, eta, r, omega, phi, x, from_wall, to_wall, s):
-    """True when the flight of length s from x is a genuine impact-to-impact flight.
+def map_kernel(osc, eta, r, omega, phi, x, from_wall, to_wall, s_guess, y, J):
+    """``impact_map`` with the model as loose scalars (osc[I_W] must be omega): the
+    signature of earlier versions, kept for callers not yet on ``pack_model``."""
+    return impact_map(pack_model(osc, eta, r, phi), x, (from_wall, to_wall), s_guess, y, J)
+
+
+@njit(cache=True, nogil=True)
+def admissible_kernel(mdl, x, walls, s):
+    """True when the flight of length s from x (walls = (from, to)) is a genuine
+    impact-to-impact flight. mdl: ``pack_model``.
 
     The state must approach its starting wall, the exact first-contact search of the
     simulator (``_engine.first_contact``) on the post-impact state must return the target
     wall at the same time, and the arrival must approach the target wall.
     """
+    osc = mdl
+    eta, r, omega, phi = mdl[M_ETA], mdl[M_R], mdl[I_W], mdl[M_PHI]
+    from_wall, to_wall = walls
     vm, vb, zb, t = x[0], x[1], x[2], x[3]
     if not ((vm - vb) * from_wall > 0.0) or not (s > 0.0):
         return False
@@ -201,32 +242,30 @@ def admissible_kernel(osc, eta, r, omega, phi, x, from_wall, to_wall, s):
     sth = math.sin(th0)
     cth = math.cos(th0)
     tol = ADMISSIBLE_TOL * (1.0 + s)
-    wall, sc, _, _ = first_contact(osc, (zm0, vp, zb, vbp), (sth, cth), s + 10.0 * tol,
-                                   ROOT_TOL)
+    st0 = (zm0, vp, zb, vbp)
+    ph0 = (sth, cth)
+    wall, sc, _, _ = first_contact(osc, st0, ph0, s + 10.0 * tol, ROOT_TOL)
     if wall != to_wall or abs(sc - s) > tol:
         return False
-    _, wd, _ = _gap(osc, zm0, vp, zb, vbp, sth, cth, s, to_wall)
+    _, wd, _ = _gap(osc, st0, ph0, s, to_wall)
     return wd * to_wall > 0.0
 
 
 # --------------------------------------------------------------------------- Python API
 
-def _osc(params: ModelParams):
-    return oscillators(params)[0]
-
-
-def _walls(from_wall, to_wall):
+def _walls(from_wall: int, to_wall: int) -> tuple[int, int]:
     for name, w in (("from_wall", from_wall), ("to_wall", to_wall)):
         if w not in (WALL_L, WALL_R):
             raise ValueError(f"{name} must be +1 (L) or -1 (R), got {w!r}")
     return int(from_wall), int(to_wall)
 
 
-def _s_guess(x, t_guess):
+def _s_guess(x: np.ndarray, t_guess: float | None) -> float:
     return -1.0 if t_guess is None else float(t_guess) - float(x[3])
 
 
-def map_with_jacobian(params: ModelParams, x, from_wall: int, to_wall: int, t_guess=None):
+def map_with_jacobian(params: ModelParams, x: ArrayLike, from_wall: int, to_wall: int,
+                      t_guess: float | None = None) -> tuple[np.ndarray, float, np.ndarray]:
     """(y, s, J): next pre-impact state, flight time and the 4x4 Jacobian dy/dx.
 
     y and J are nan (and s nan) when no impact time was found.
@@ -235,12 +274,12 @@ def map_with_jacobian(params: ModelParams, x, from_wall: int, to_wall: int, t_gu
     x = np.ascontiguousarray(x, dtype=float)
     y = np.empty(4)
     J = np.empty((4, 4))
-    s = map_kernel(_osc(params), params.eta, params.r, params.omega, params.phi, x,
-                   from_wall, to_wall, _s_guess(x, t_guess), y, J)
+    s = impact_map(model_array(params), x, (from_wall, to_wall), _s_guess(x, t_guess), y, J)
     return y, float(s), J
 
 
-def apply_map(params: ModelParams, x, from_wall: int, to_wall: int, t_guess=None):
+def apply_map(params: ModelParams, x: ArrayLike, from_wall: int, to_wall: int,
+              t_guess: float | None = None) -> tuple[np.ndarray, float]:
     """Next pre-impact state y = (z_m', z_b', z_b, t) and the flight time s.
 
     ``t_guess``: optional guess of the absolute time of the next impact (Newton starts
@@ -251,13 +290,14 @@ def apply_map(params: ModelParams, x, from_wall: int, to_wall: int, t_guess=None
     return y, s
 
 
-def map_jacobian(params: ModelParams, x, from_wall: int, to_wall: int, t_guess=None):
+def map_jacobian(params: ModelParams, x: ArrayLike, from_wall: int, to_wall: int,
+                 t_guess: float | None = None) -> np.ndarray:
     """4x4 Jacobian of the map at x (columns d/d z_m', d/d z_b', d/d z_b, d/d t)."""
     return map_with_jacobian(params, x, from_wall, to_wall, t_guess)[2]
 
 
-def is_admissible(params: ModelParams, x, from_wall: int, to_wall: int, t_guess=None,
-                  s=None) -> bool:
+def is_admissible(params: ModelParams, x: ArrayLike, from_wall: int, to_wall: int,
+                  t_guess: float | None = None, s: float | None = None) -> bool:
     """True when the map's flight from x has no earlier wall contact and approaches its wall."""
     from_wall, to_wall = _walls(from_wall, to_wall)
     x = np.ascontiguousarray(x, dtype=float)
@@ -265,11 +305,10 @@ def is_admissible(params: ModelParams, x, from_wall: int, to_wall: int, t_guess=
         _, s = apply_map(params, x, from_wall, to_wall, t_guess)
     if not math.isfinite(s):
         return False
-    return bool(admissible_kernel(_osc(params), params.eta, params.r, params.omega,
-                                  params.phi, x, from_wall, to_wall, float(s)))
+    return bool(admissible_kernel(model_array(params), x, (from_wall, to_wall), float(s)))
 
 
-def mirror(x, T: float):
+def mirror(x: ArrayLike, T: float) -> np.ndarray:
     """Symmetry of the model: (z, velocities) -> -(z, velocities), t -> t + T/2."""
     x = np.asarray(x, dtype=float)
     return np.array([-x[0], -x[1], -x[2], x[3] + 0.5 * T])

@@ -5,9 +5,9 @@ bifurcation.md, "Families of periodic orbits"): ``walls`` = "LLRR", ``periods`` 
 orbit with pre-impact states x_0 .. x_{n-1} (x = (z_m', z_b', z_b, t), ``orbits.maps``) at
 walls L, L, R, R, in that order, whose maps P(walls[k] -> walls[k+1]) (cyclically) bring
 x_0 back to x_0 + (0, 0, 0, periods T). Unknown x_0; Newton on the composed map with the
-exact Jacobian J_{n-1} ... J_0 - I (the same damped iteration as ``periodic.newton_1to1``,
-which it reproduces bit for bit on "LR", 1). Admissibility flight by flight
-(``maps.admissible_kernel``), stability from the eigenvalues of J_{n-1} ... J_0.
+exact Jacobian J_{n-1} ... J_0 - I (``newton.newton_sequence``, the iteration of
+``periodic`` as well). Admissibility flight by flight (``maps.admissible_kernel``), stability
+from the eigenvalues of J_{n-1} ... J_0.
 
 Seeds (each polished by that Newton iteration, then deduplicated):
 
@@ -15,7 +15,7 @@ Seeds (each polished by that Newton iteration, then deduplicated):
   so that the 1:1 orbits are those of ``find_1to1``;
 * half-period symmetry (n even, walls[k + n/2] = opposite of walls[k]): with the flight
   times fixed, the conditions for x_{n/2} = mirror(x_0) + (0, 0, 0, periods T / 2) are affine
-  in (z_m', z_b', z_b, sin theta_0, cos theta_0) (as in ``periodic``): closed form for
+  in (z_m', z_b', z_b, sin theta_0, cos theta_0) (``affine``, as in ``periodic``): closed form for
   n = 2 (the symmetric "LR" orbits of any period), a scan of the first flight time for n = 4
   ("LLRR");
 * short simulations (exact kernel) from a few initial states: the last occurrence of the
@@ -30,10 +30,11 @@ orbit of this family and is dropped.
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
-from numba import njit
+from numpy.typing import ArrayLike
 
 from ..core.exact import oscillators
 from ..core.flow import flow
@@ -49,8 +50,17 @@ from ..core.params import (
     check_reals,
 )
 from ..core.walls import WALL_L, WALL_R, impact_velocities
-from .maps import admissible_kernel, map_kernel
-from .periodic import DEDUP_TOL, N_SCAN, SYM_TOL, _solve_into, asymmetric_seeds, symmetric_seeds
+from .affine import closed_form_seeds, scan, scan_seeds  # noqa: F401 (scan_seeds: re-export)
+from .maps import admissible_kernel, model_array
+from .newton import newton_sequence
+from .periodic import (
+    DEDUP_TOL,
+    SYM_TOL,
+    _simulation_seed,
+    asymmetric_seeds,
+    symmetric_seeds,
+    theta_to_t,
+)
 
 WALL_CODES = {"L": WALL_L, "R": WALL_R}
 WALL_NAMES = {WALL_L: "L", WALL_R: "R"}
@@ -64,7 +74,7 @@ SIM_STATES = ((0.0, 0.0, 0.0, 0.0), (0.0, 0.0, 0.9, 0.0), (0.0, 0.5, 0.0, -0.5),
 
 # --------------------------------------------------------------------------- names
 
-def check_walls(walls) -> str:
+def check_walls(walls: object) -> str:
     """The wall sequence as an upper-case string of L and R; ParameterError otherwise."""
     allowed = (f"must be a sequence of 1 to {MAX_IMPACTS_PER_ORBIT} walls, each L or R "
                "(e.g. LR, LLRR, LLR)")
@@ -76,7 +86,8 @@ def check_walls(walls) -> str:
     return s
 
 
-def check_periods(periods) -> int:
+def check_periods(periods: object) -> int:
+    """The number of forcing periods as an int in [1, MAX_PERIODS]; ParameterError otherwise."""
     return check_int("periods", periods, lo=1, hi=MAX_PERIODS)
 
 
@@ -112,204 +123,6 @@ def has_half_symmetry(walls: str) -> bool:
 
 def _codes(walls: str) -> np.ndarray:
     return np.array([WALL_CODES[c] for c in walls], dtype=np.int64)
-
-
-# --------------------------------------------------------------------------- Newton
-
-@njit(cache=True, nogil=True)
-def newton_sequence(osc, eta, r, omega, phi, walls, NT, x0, s, xs, Js, P):
-    """Newton on P_{n-1}(...P_0(x)) - x - (0, 0, 0, NT) from x0.
-
-    walls: n wall codes (flight k from walls[k] to walls[(k+1) % n]); s: flight-time guesses
-    (<= 0: first contact), overwritten with the flight times. Fills xs (n+1 states, xs[0] the
-    fixed point, xs[k+1] = P_k(xs[k])), Js (the n map Jacobians) and P (their product
-    J_{n-1} ... J_0, loop order of ``newton_1to1``). Returns the residual norm (inf on
-    failure). For n = 2 every operation is that of ``periodic.newton_1to1``.
-    """
-    n = walls.size
-    x = xs[0]
-    for i in range(4):
-        x[i] = x0[i]
-    R = np.empty(4)
-    M = np.empty((4, 4))
-    Q = np.empty((4, 4))
-    dx = np.empty(4)
-    res = math.inf
-    for it in range(40):
-        for k in range(n):
-            sk = map_kernel(osc, eta, r, omega, phi, xs[k], walls[k], walls[(k + 1) % n],
-                            s[k], xs[k + 1], Js[k])
-            if not math.isfinite(sk):
-                return math.inf
-            s[k] = sk
-        res = 0.0
-        xsc = 1.0
-        for i in range(4):
-            R[i] = xs[n, i] - x[i]
-            xsc = max(xsc, abs(x[i]))
-        R[3] -= NT
-        for i in range(4):
-            res = max(res, abs(R[i]))
-        _product(Js, P, Q)
-        if res <= 1e-13 * xsc:
-            return res
-        for i in range(4):
-            for k in range(4):
-                M[i, k] = P[i, k] - (1.0 if i == k else 0.0)
-        for i in range(4):
-            R[i] = -R[i]
-        if not _solve_into(M, R, dx):
-            return math.inf
-        fac = 1.0
-        big = max(abs(dx[0]), abs(dx[1]), abs(dx[2]))
-        if big > 1.0:
-            fac = 1.0 / big
-        T = 2.0 * math.pi / omega       # time steps of at most T/8, as newton_1to1
-        if abs(dx[3]) * fac > 0.125 * T:
-            fac = 0.125 * T / abs(dx[3])
-        for i in range(4):
-            x[i] += fac * dx[i]
-        if (it > 6 and res < 1e-9 * xsc and fac == 1.0
-                and max(abs(dx[0]), abs(dx[1]), abs(dx[2]), abs(dx[3])) <= 1e-13 * xsc):
-            return res
-    return res if res <= 1e-10 else math.inf
-
-
-@njit(cache=True, nogil=True)
-def _product(Js, P, Q):
-    """P = J_{n-1} ... J_0 (for n = 2 the sum order of ``newton_1to1``'s J2 J1)."""
-    n = Js.shape[0]
-    for i in range(4):
-        for k in range(4):
-            P[i, k] = Js[0, i, k]
-    for j in range(1, n):
-        for i in range(4):
-            for k in range(4):
-                acc = 0.0
-                for m in range(4):
-                    acc += Js[j, i, m] * P[m, k]
-                Q[i, k] = acc
-        for i in range(4):
-            for k in range(4):
-                P[i, k] = Q[i, k]
-
-
-# --------------------------------------------------------------------------- affine seeds
-
-@njit(cache=True, nogil=True)
-def _chain(osc, eta, r, omega, u, w, s, m, sign, E):
-    """Residuals of m flights with fixed times s from u = (z_m', z_b', z_b, sin, cos) at
-    wall w[0]: arrivals at w[1], ..., w[m-1], then sign * w[0]; closure of (z_m', z_b', z_b)
-    on sign times the start (sign -1: mirror image). Affine in u; m + 3 residuals."""
-    vm, vb, zb, sth, cth = u[0], u[1], u[2], u[3], u[4]
-    for k in range(m):
-        wall = w[k]
-        target = w[k + 1] if k + 1 < m else sign * w[0]
-        vp, vbp = impact_velocities(eta, r, vm, vb)
-        z, v, _, _, _ = flow(osc, zb + wall, vp, sth, cth, s[k])
-        zb = zb + vbp * s[k]
-        E[k] = z - zb - target
-        c = math.cos(omega * s[k])
-        sn = math.sin(omega * s[k])
-        sth, cth = sth * c + cth * sn, cth * c - sth * sn
-        vm, vb = v, vbp
-    E[m] = vm - sign * u[0]
-    E[m + 1] = vb - sign * u[1]
-    E[m + 2] = zb - sign * u[2]
-
-
-@njit(cache=True, nogil=True)
-def _affine_chain(osc, eta, r, omega, w, s, m, sign, A, b):
-    """E(u) = A u + b for ``_chain`` (A: (m+3) x 5)."""
-    u = np.zeros(5)
-    E = np.empty(m + 3)
-    _chain(osc, eta, r, omega, u, w, s, m, sign, E)
-    for i in range(m + 3):
-        b[i] = E[i]
-    for k in range(5):
-        u[:] = 0.0
-        u[k] = 1.0
-        _chain(osc, eta, r, omega, u, w, s, m, sign, E)
-        for i in range(m + 3):
-            A[i, k] = E[i] - b[i]
-
-
-@njit(cache=True, nogil=True)
-def _circle2(osc, eta, r, omega, w, s0, S, sign, u):
-    """sin^2 + cos^2 - 1 of the affine solution of two flights s0, S - s0 (nan if singular)."""
-    s = np.empty(2)
-    s[0], s[1] = s0, S - s0
-    A = np.empty((5, 5))
-    b = np.empty(5)
-    _affine_chain(osc, eta, r, omega, w, s, 2, sign, A, b)
-    for i in range(5):
-        b[i] = -b[i]
-    if not _solve_into(A, b, u):
-        return math.nan
-    return u[3] * u[3] + u[4] * u[4] - 1.0
-
-
-@njit(cache=True, nogil=True)
-def scan_seeds(osc, eta, r, omega, w, S, sign, n_scan, out):
-    """Two-flight seeds (z_m', z_b', z_b, theta_0, s0) from a scan of s0 over (0, S) with
-    sign changes of the circle residual refined by bisection; returns how many."""
-    u = np.empty(5)
-    n = 0
-    h_prev = math.nan
-    s_prev = 0.0
-    for k in range(n_scan):
-        sk = S * (k + 0.5) / n_scan
-        h = _circle2(osc, eta, r, omega, w, sk, S, sign, u)
-        if math.isfinite(h) and math.isfinite(h_prev) and (h > 0.0) != (h_prev > 0.0) \
-                and n < out.shape[0]:
-            a, fa, bb = s_prev, h_prev, sk
-            for _ in range(50):
-                mid = 0.5 * (a + bb)
-                fm = _circle2(osc, eta, r, omega, w, mid, S, sign, u)
-                if not math.isfinite(fm):
-                    break
-                if (fm > 0.0) == (fa > 0.0):
-                    a, fa = mid, fm
-                else:
-                    bb = mid
-                if bb - a < 1e-13 * S:
-                    break
-            mid = 0.5 * (a + bb)
-            fm = _circle2(osc, eta, r, omega, w, mid, S, sign, u)
-            if math.isfinite(fm) and abs(fm) < 1e-3:       # not a pole
-                out[n, 0], out[n, 1], out[n, 2] = u[0], u[1], u[2]
-                out[n, 3] = math.atan2(u[3], u[4])
-                out[n, 4] = mid
-                n += 1
-        h_prev = h
-        s_prev = sk
-    return n
-
-
-def _closed_form_seeds(osc, eta, r, omega, w, S, sign) -> list:
-    """One flight of time S: 4 affine conditions in 5 unknowns, a line meeting the unit
-    circle: 0 or 2 seeds (z_m', z_b', z_b, theta_0)."""
-    A = np.empty((4, 5))
-    b = np.empty(4)
-    _affine_chain(osc, eta, r, omega, w, np.array([S]), 1, sign, A, b)
-    if not (np.all(np.isfinite(A)) and np.all(np.isfinite(b))):
-        return []
-    _, sv, Vt = np.linalg.svd(A)
-    if sv[-1] <= 1e-14 * sv[0]:
-        return []
-    q = Vt[-1]
-    p = np.linalg.lstsq(A, -b, rcond=None)[0]
-    a2 = q[3] * q[3] + q[4] * q[4]
-    a1 = 2.0 * (p[3] * q[3] + p[4] * q[4])
-    a0 = p[3] * p[3] + p[4] * p[4] - 1.0
-    disc = a1 * a1 - 4.0 * a2 * a0
-    if a2 == 0.0 or disc < 0.0:
-        return []
-    out = []
-    for lam in ((-a1 - math.sqrt(disc)) / (2 * a2), (-a1 + math.sqrt(disc)) / (2 * a2)):
-        u = p + lam * q
-        out.append((u[0], u[1], u[2], math.atan2(u[3], u[4])))
-    return out
 
 
 # --------------------------------------------------------------------------- orbits
@@ -373,7 +186,7 @@ class SequenceOrbit:
         }
 
 
-def monodromy(jacobians) -> np.ndarray:
+def monodromy(jacobians: Sequence[np.ndarray]) -> np.ndarray:
     """J_{n-1} ... J_0 by numpy matmul (for n = 2: J2 @ J1 as ``periodic._orbit``)."""
     P = jacobians[0]
     for J in jacobians[1:]:
@@ -381,7 +194,8 @@ def monodromy(jacobians) -> np.ndarray:
     return P
 
 
-def is_symmetric(walls: str, periods: int, flight_times) -> bool:
+def is_symmetric(walls: str, periods: int, flight_times: ArrayLike) -> bool:
+    """The orbit with these flight times has the half-period symmetry (class docstring)."""
     n = len(walls)
     if periods % 2 == 0 or not has_half_symmetry(walls):
         return False
@@ -389,11 +203,12 @@ def is_symmetric(walls: str, periods: int, flight_times) -> bool:
     return bool(np.all(np.abs(np.asarray(flight_times[:h]) - flight_times[h:]) <= SYM_TOL))
 
 
-def _orbit(p: ModelParams, osc, walls: str, periods: int, codes, xs, Js, fl,
-           res) -> SequenceOrbit:
+def _orbit(p: ModelParams, mdl: np.ndarray, walls: str, periods: int, xs: np.ndarray,
+           Js: np.ndarray, fl: np.ndarray, res: float) -> SequenceOrbit:
     n = len(walls)
-    adm = all(admissible_kernel(osc, p.eta, p.r, p.omega, p.phi, xs[k], codes[k],
-                                codes[(k + 1) % n], fl[k]) for k in range(n))
+    codes = _codes(walls)
+    adm = all(admissible_kernel(mdl, xs[k], (codes[k], codes[(k + 1) % n]), fl[k])
+              for k in range(n))
     ev = np.linalg.eigvals(monodromy(list(Js)))
     ev = ev[np.argsort(-np.abs(ev))]
     lam = float(np.hypot(ev.real, ev.imag).max())
@@ -406,16 +221,16 @@ def _orbit(p: ModelParams, osc, walls: str, periods: int, codes, xs, Js, fl,
         jacobians=Js.copy(), params=p)
 
 
-def solve_sequence(p: ModelParams, walls: str, periods: int, x0, flight_times=None,
-                   osc=None) -> SequenceOrbit | None:
+def solve_sequence(p: ModelParams, walls: str, periods: int, x0: ArrayLike,
+                   flight_times: ArrayLike | None = None,
+                   osc: np.ndarray | None = None) -> SequenceOrbit | None:
     """Newton from x0 (pre-impact state at walls[0]) with optional flight-time guesses.
 
     The orbit found (any admissibility), or None when Newton fails, a flight time is not
     positive, the flights do not add up to periods T, or the orbit repeats a shorter
     sequence.
     """
-    if osc is None:
-        osc = oscillators(p)[0]
+    mdl = model_array(p, osc)
     n = len(walls)
     codes = _codes(walls)
     T = p.period
@@ -425,7 +240,7 @@ def solve_sequence(p: ModelParams, walls: str, periods: int, x0, flight_times=No
     Js = np.empty((n, 4, 4))
     P = np.empty((4, 4))
     x0 = np.asarray(x0, dtype=float).copy()
-    res = newton_sequence(osc, p.eta, p.r, p.omega, p.phi, codes, NT, x0, s, xs, Js, P)
+    res = newton_sequence(mdl, codes, NT, x0, s, xs, Js, P)
     if not math.isfinite(res) or not np.all(np.isfinite(xs[0])):
         return None
     if not np.all(s > 0.0) or abs(s.sum() - NT) > 1e-8 * (1.0 + NT):
@@ -435,7 +250,7 @@ def solve_sequence(p: ModelParams, walls: str, periods: int, x0, flight_times=No
         xs[:, 3] -= k * T
     if not _primitive(walls, periods, xs, s, T):
         return None
-    return _orbit(p, osc, walls, periods, codes, xs, Js, s, res)
+    return _orbit(p, mdl, walls, periods, xs, Js, s, res)
 
 
 def _primitive(walls, periods, xs, fl, T) -> bool:
@@ -470,7 +285,8 @@ def same_orbit(a: SequenceOrbit, b: SequenceOrbit, T: float) -> bool:
     return False
 
 
-def dedup(orbits, T) -> list:
+def dedup(orbits: Iterable[SequenceOrbit | None], T: float) -> list[SequenceOrbit]:
+    """The orbits without None and repeats (``same_orbit``), first occurrences kept."""
     out = []
     for o in orbits:
         if o is not None and not any(same_orbit(o, q, T) for q in out):
@@ -480,27 +296,23 @@ def dedup(orbits, T) -> list:
 
 # --------------------------------------------------------------------------- seeds
 
-def _theta_to_t(theta, p: ModelParams) -> float:
-    return float(np.mod((theta - p.phi) / p.omega, p.period))
-
-
-def _seeds_1to1(p: ModelParams, osc) -> list:
+def _seeds_1to1(p: ModelParams, mdl: np.ndarray) -> list:
     """The built-in seeds of ``periodic.seed_orbits`` (same order), as (x_0, flights)."""
     T = p.period
-    out = [([vm, vb, zb, _theta_to_t(th, p)], [0.5 * T, 0.5 * T])
-           for vm, vb, zb, th in symmetric_seeds(osc, p.eta, p.r, p.omega)]
-    buf = np.empty((16, 5))
-    n = asymmetric_seeds(osc, p.eta, p.r, p.omega, N_SCAN, buf)
-    out += [([vm, vb, zb, _theta_to_t(th, p)], [s1, T - s1]) for vm, vb, zb, th, s1 in buf[:n]]
+    out = [([vm, vb, zb, theta_to_t(th, p)], [0.5 * T, 0.5 * T])
+           for vm, vb, zb, th in symmetric_seeds(mdl)]
+    out += [([vm, vb, zb, theta_to_t(th, p)], [s1, T - s1])
+            for vm, vb, zb, th, s1 in asymmetric_seeds(mdl)]
     return out
 
 
-def affine_seeds(p: ModelParams, osc, walls: str, periods: int) -> list:
+def affine_seeds(p: ModelParams, osc: np.ndarray | None, walls: str, periods: int) -> list:
     """Seeds (x_0, flight times) from the affine forms (module docstring): the symmetric
     ansatz when the sequence has the half symmetry and periods is odd (closed form for two
     impacts, a scan for four), the full two-flight scan for two impacts."""
+    mdl = model_array(p, osc)
     if (walls, periods) == ("LR", 1):
-        return _seeds_1to1(p, osc)
+        return _seeds_1to1(p, mdl)
     n = len(walls)
     NT = periods * p.period
     codes = _codes(walls)
@@ -509,22 +321,22 @@ def affine_seeds(p: ModelParams, osc, walls: str, periods: int) -> list:
         h = n // 2
         S = 0.5 * NT
         if h == 1:
-            for vm, vb, zb, th in _closed_form_seeds(osc, p.eta, p.r, p.omega, codes, S, -1):
-                out.append(([vm, vb, zb, _theta_to_t(th, p)], [S, S]))
+            for vm, vb, zb, th in closed_form_seeds(mdl, codes, S, -1):
+                out.append(([vm, vb, zb, theta_to_t(th, p)], [S, S]))
         elif h == 2:
-            out += _scan(p, osc, codes, S, -1, lambda s0: [s0, S - s0, s0, S - s0])
+            out += _scan(p, mdl, (codes, S, -1), lambda s0: [s0, S - s0, s0, S - s0])
     if n == 2:
-        out += _scan(p, osc, codes, NT, 1, lambda s0: [s0, NT - s0])
+        out += _scan(p, mdl, (codes, NT, 1), lambda s0: [s0, NT - s0])
     elif n == 1:
-        for vm, vb, zb, th in _closed_form_seeds(osc, p.eta, p.r, p.omega, codes, NT, 1):
-            out.append(([vm, vb, zb, _theta_to_t(th, p)], [NT]))
+        for vm, vb, zb, th in closed_form_seeds(mdl, codes, NT, 1):
+            out.append(([vm, vb, zb, theta_to_t(th, p)], [NT]))
     return out
 
 
-def _scan(p, osc, codes, S, sign, flights) -> list:
-    buf = np.empty((16, 5))
-    k = scan_seeds(osc, p.eta, p.r, p.omega, codes, S, sign, N_SCAN, buf)
-    return [([vm, vb, zb, _theta_to_t(th, p)], flights(s0)) for vm, vb, zb, th, s0 in buf[:k]]
+def _scan(p: ModelParams, mdl: np.ndarray, chain: tuple, flights) -> list:
+    """Seeds (x_0, flights(s0)) of ``affine.scan`` of chain = (walls codes, S, sign)."""
+    return [([vm, vb, zb, theta_to_t(th, p)], flights(s0))
+            for vm, vb, zb, th, s0 in scan(mdl, *chain)]
 
 
 def _mirror_record(imp, T) -> dict:
@@ -532,7 +344,7 @@ def _mirror_record(imp, T) -> dict:
             "z_b": -imp["z_b"], "t": imp["t"] + 0.5 * T}
 
 
-def record_seed(imp, walls: str):
+def record_seed(imp: Mapping[str, np.ndarray], walls: str) -> tuple[list, list] | None:
     """(x_0, flight times) at the last occurrence of the sequence (and its first wall
     again) in an impact record (fields wall, v_m, v_b, z_b, t), or None."""
     n = len(walls)
@@ -545,8 +357,8 @@ def record_seed(imp, walls: str):
     return x0, list(np.diff(t[k:k + n + 1]))
 
 
-def simulation_seeds(p: ModelParams, walls: str, states=SIM_STATES,
-                     t_end=SIM_T_END) -> list:
+def simulation_seeds(p: ModelParams, walls: str, states: Sequence = SIM_STATES,
+                     t_end: float = SIM_T_END) -> list:
     """Seeds from short exact simulations from ``states`` (and their mirror images)."""
     from ..core.simulation import simulate_exact
     out = []
@@ -568,8 +380,9 @@ def _sort_key(o: SequenceOrbit):
     return (not o.admissible, not o.stable, not o.symmetric, o.lambda_max)
 
 
-def find_sequence(params: ModelParams, walls: str, periods: int = 1, *, seeds=None,
-                  simulation=True, sim_states=SIM_STATES) -> list[SequenceOrbit]:
+def find_sequence(params: ModelParams, walls: str, periods: int = 1, *,
+                  seeds: list | None = None, simulation: bool = True,
+                  sim_states: Sequence = SIM_STATES) -> list[SequenceOrbit]:
     """Every distinct orbit of the sequence found (admissible or not), stable admissible
     ones first (the order of ``find_1to1``).
 
@@ -584,18 +397,17 @@ def find_sequence(params: ModelParams, walls: str, periods: int = 1, *, seeds=No
     seeds = check_sequence_seeds(seeds, walls)
     simulation = check_bool("simulation", simulation)
     sim_states = check_states("sim_states", sim_states)
-    osc = oscillators(p)[0]
+    mdl = model_array(p)
     if p.F == 0.0:
         return []
-    starts = affine_seeds(p, osc, walls, periods)
+    starts = affine_seeds(p, mdl, walls, periods)
     if simulation:
         if (walls, periods) == ("LR", 1):
-            from .periodic import _simulation_seed
-            found_sim = _simulation_seed(p, osc)
+            found_sim = _simulation_seed(p, mdl)
             starts += [(o.x_L, o.flight_times) for o in found_sim if o is not None]
         else:
             starts += simulation_seeds(p, walls, sim_states)
-    return solve_seeds(p, osc, walls, periods, starts, seeds)
+    return solve_seeds(p, mdl, walls, periods, starts, seeds)
 
 
 def _check_list(name, values) -> list:
@@ -607,7 +419,7 @@ def _check_list(name, values) -> list:
     return list(values)
 
 
-def check_sequence_seeds(seeds, walls: str) -> list:
+def check_sequence_seeds(seeds: object, walls: str) -> list:
     """The seeds of ``find_sequence``: SequenceOrbits or pairs (x_0, flight times) with x_0
     4 finite numbers and one flight time per wall of ``walls``; ParameterError otherwise."""
     allowed = ("must be None or a list of seeds, each a SequenceOrbit or a pair (x_0, flight "
@@ -627,7 +439,7 @@ def check_sequence_seeds(seeds, walls: str) -> list:
     return out
 
 
-def check_states(name, states) -> list:
+def check_states(name: str, states: object) -> list:
     """Initial states (z_m, z_m', z_b, z_b') as ``SolverSettings.state0`` accepts them."""
     out = []
     for s0 in _check_list(name, states):
@@ -638,12 +450,13 @@ def check_states(name, states) -> list:
     return out
 
 
-def check_sim_t_end(value) -> float:
+def check_sim_t_end(value: object) -> float:
     """Length of a seeding simulation (0 < sim_t_end <= T_END_MAX)."""
     return check_real("sim_t_end", value, lo=0.0, lo_open=True, hi=T_END_MAX)
 
 
-def solve_seeds(p: ModelParams, osc, walls: str, periods: int, starts, seeds=()) -> list:
+def solve_seeds(p: ModelParams, osc: np.ndarray | None, walls: str, periods: int,
+                starts: Iterable, seeds: Iterable = ()) -> list[SequenceOrbit]:
     """Newton from every (x_0, flights) in ``starts`` and every seed of ``seeds`` (see
     ``find_sequence``); distinct orbits, stable admissible ones first."""
     starts = list(starts)
@@ -688,7 +501,7 @@ def _real_eigenvector(orbit: SequenceOrbit, negative: bool):
     return V[:, k].real / np.linalg.norm(V[:, k].real)
 
 
-def flip_seeds(orbit: SequenceOrbit, eps=(1e-3, 1e-2, 3e-2)) -> list:
+def flip_seeds(orbit: SequenceOrbit, eps: Sequence[float] = (1e-3, 1e-2, 3e-2)) -> list:
     """Seeds of the period-doubled sequence (walls twice, 2 periods) near ``orbit``: its
     start displaced by +- eps along the eigenvector of its most negative real eigenvalue
     (a flip point of the family gives birth to that branch). Empty without such an
@@ -700,7 +513,7 @@ def flip_seeds(orbit: SequenceOrbit, eps=(1e-3, 1e-2, 3e-2)) -> list:
     return [(orbit.states[0] + sg * e * v, fl) for e in eps for sg in (1.0, -1.0)]
 
 
-def pitchfork_seeds(orbit: SequenceOrbit, eps=(1e-2, 5e-2)) -> list:
+def pitchfork_seeds(orbit: SequenceOrbit, eps: Sequence[float] = (1e-2, 5e-2)) -> list:
     """Seeds of asymmetric orbits of the same sequence near a symmetric ``orbit``: its start
     displaced by +- eps along the eigenvector of its largest positive real eigenvalue (a
     symmetry-breaking point gives birth to the asymmetric pair there)."""

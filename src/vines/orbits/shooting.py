@@ -1,6 +1,6 @@
 """1:1 orbits as closed-form shooting systems, with exact derivatives (``jets``).
 
-Unlike ``periodic.newton_1to1`` (the impact time solved inside each map) the flight times
+Unlike ``newton.newton_sequence`` (the impact time solved inside each map) the flight times
 are explicit here, as in multi-segment shooting for hybrid periodic orbits: every
 condition is then a closed-form function of the unknowns and of (eta, omega, F), so the
 derivatives with respect to the parameters, and the second derivatives needed by the
@@ -14,7 +14,7 @@ Families (unknowns u, residual E(u; eta, omega, F) = 0):
 
 * ``symmetric``: u = (z_m', z_b', z_b, t_L); the L->R flight lasts T/2 and ends on the
   mirror image of the start: E = (w(T/2) + 1, z_m'(T/2) + z_m', z_b'+ + z_b',
-  z_b(T/2) + z_b) (the conditions of ``periodic._two_flights(sym=True)``).
+  z_b(T/2) + z_b) (the conditions of ``affine._chain`` with sign -1).
 * ``asymmetric``: u = (z_m', z_b', z_b, t_L, s1); flights s1 (L->R) and s2 = T - s1:
   E = (arrival at R, arrival at L, periodicity of z_m', z_b', z_b).
 
@@ -25,8 +25,10 @@ The flight is the closed-form free flight of ``core.flow`` for the underdamped L
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..core.params import PARAM_NAMES, ParameterError
 from ..core.walls import WALL_L, WALL_R
@@ -38,6 +40,8 @@ from .tape import record
 FAMILIES = ("symmetric", "asymmetric")
 N_UNKNOWNS = {"symmetric": 4, "asymmetric": 5}
 MIRROR = np.diag([-1.0, -1.0, -1.0, 1.0])
+#: a number of the closed forms: a float or a Taylor jet (``jets.Jet``)
+Num = float | jets.Jet
 
 
 class Model:
@@ -54,7 +58,8 @@ class Model:
         self.tape = record(lambda *v: _flight_outputs(self, v), 9)
 
 
-def flight(m: Model, x, s, eta, omega, F, from_wall: int):
+def flight(m: Model, x: Sequence[Num], s: Num, eta: Num, omega: Num, F: Num,
+           from_wall: int) -> tuple[tuple, Num, Num]:
     """Impact at from_wall, then free flight of local duration s from x = (z_m', z_b', z_b,
     t). Returns (y, gap, w_dot): y = (z_m', z_b', z_b, t) at s, gap = w(s) - (-from_wall)
     (zero on arrival at the other wall), w_dot = w'(s). Floats or jets throughout."""
@@ -73,7 +78,8 @@ def _flight_outputs(m: Model, v) -> list:
     return [*y, gap, w_dot]
 
 
-def lo_state(m: Model, z0, v0, th0, s, omega, F):
+def lo_state(m: Model, z0: Num, v0: Num, th0: Num, s: Num, omega: Num,
+             F: Num) -> tuple[Num, Num]:
     """(z_m, z_m') at local time s of the forced damped LO from (z0, v0), forcing phase th0."""
     d = m.d
     det = 1.0 - omega * omega
@@ -94,11 +100,12 @@ def lo_state(m: Model, z0, v0, th0, s, omega, F):
     return zp + xh * C + vh * S, zp1 - xh * S + vh * dS
 
 
-def period(omega):
+def period(omega: Num) -> Num:
+    """Forcing period T = 2 pi / omega."""
     return 2.0 * math.pi / omega
 
 
-def residual(m: Model, family: str, u, eta, omega, F) -> list:
+def residual(m: Model, family: str, u: Sequence[Num], eta: Num, omega: Num, F: Num) -> list:
     """E(u; eta, omega, F) of the family (module docstring); floats or jets."""
     if family == "symmetric":
         y, gap, _ = flight(m, u[:4], math.pi / omega, eta, omega, F, WALL_L)
@@ -108,13 +115,14 @@ def residual(m: Model, family: str, u, eta, omega, F) -> list:
     return [gap1, gap2, y2[0] - u[0], y2[1] - u[1], y2[2] - u[2]]
 
 
-def flight_times(family: str, u, omega) -> tuple:
+def flight_times(family: str, u: Sequence[Num], omega: Num) -> tuple:
     T = period(jets.value(omega))
     s1 = 0.5 * T if family == "symmetric" else jets.value(u[4])
     return s1, T - s1
 
 
-def residual_jacobian(m: Model, family: str, u, par: dict, free: tuple):
+def residual_jacobian(m: Model, family: str, u: ArrayLike, par: dict,
+                      free: tuple) -> tuple[np.ndarray, np.ndarray]:
     """(E, dE/d(u, free params)) at u with par = {eta, omega, F}; ``free`` names the
     parameters differentiated (in that order, after u). Compiled
     (``shooting_kernels.residual_jacobian``); ``residual_jacobian_jets`` is the reference."""
@@ -125,7 +133,8 @@ def residual_jacobian(m: Model, family: str, u, par: dict, free: tuple):
     return E, dE[:, list(range(n)) + [n + PARAM_NAMES.index(q) for q in free]]
 
 
-def residual_jacobian_jets(m: Model, family: str, u, par: dict, free: tuple):
+def residual_jacobian_jets(m: Model, family: str, u: ArrayLike, par: dict,
+                           free: tuple) -> tuple[np.ndarray, np.ndarray]:
     """``residual_jacobian`` from the Python jets (the reference of the compiled one)."""
     n = len(u)
     z = jets.variables(list(u) + [par[q] for q in free])
@@ -138,8 +147,9 @@ def residual_jacobian_jets(m: Model, family: str, u, par: dict, free: tuple):
 
 # --------------------------------------------------------------- map Jacobians as jets
 
-def map_jacobian_jets(m: Model, x, s, eta, omega, F, from_wall: int, inner: np.ndarray):
-    """Jacobian (4x4, as in ``maps.map_kernel``) of the map whose flight from x lasts s,
+def map_jacobian_jets(m: Model, x: Sequence[Num], s: Num, eta: Num, omega: Num, F: Num,
+                      from_wall: int, inner: np.ndarray) -> list:
+    """Jacobian (4x4, as in ``maps.impact_map``) of the map whose flight from x lasts s,
     as order-1 jets over global variables; x, s, eta, omega, F are given as values and
     inner[k] is the global gradient of local variable k of (x0..x3, s, eta, omega, F)."""
     loc = jets.variables([jets.value(q) for q in (*x, s, eta, omega, F)], order=2)
@@ -154,7 +164,8 @@ def map_jacobian_jets(m: Model, x, s, eta, omega, F, from_wall: int, inner: np.n
     return J
 
 
-def monodromy_jets(m: Model, family: str, u, eta, omega, F):
+def monodromy_jets(m: Model, family: str, u: Sequence[Num], eta: Num, omega: Num,
+                   F: Num) -> list:
     """Half-map (symmetric: Mirror J_P1) or full (asymmetric: J_P2 J_P1) monodromy matrix
     as order-1 jets over the global variables (u, eta, omega, F)."""
     nu = len(u)
@@ -178,22 +189,22 @@ def monodromy_jets(m: Model, family: str, u, eta, omega, F):
     return matmul(J2, J1)
 
 
-def matmul(A, B):
+def matmul(A: list, B: list) -> list:
     n = len(A)
     return [[sum((A[i][k] * B[k][j] for k in range(1, n)), A[i][0] * B[0][j])
              for j in range(n)] for i in range(n)]
 
 
-def shifted(A, c):
+def shifted(A: list, c: Num) -> list:
     """A + c I (lists of floats/jets)."""
     return [[A[i][j] + (c if i == j else 0.0) for j in range(len(A))] for i in range(len(A))]
 
 
-def compound2(A):
+def compound2(A: list) -> list:
     """Second compound matrix (eigenvalues lambda_i lambda_j, i < j) of a 4x4 matrix."""
     pairs = [(p, q) for p in range(len(A)) for q in range(p + 1, len(A))]
     return [[A[p][r] * A[q][s] - A[p][s] * A[q][r] for (r, s) in pairs] for (p, q) in pairs]
 
 
-def jacobian_float(J) -> np.ndarray:
+def jacobian_float(J: list) -> np.ndarray:
     return np.array([[jets.value(q) for q in row] for row in J])

@@ -138,7 +138,7 @@ def _global(Y, inner):
 @njit(**INLINE)
 def _map_jac(Y, inner):
     """Jacobian (4x4) of the map whose flight is Y (order 2, the impact time solved from
-    gap = 0 as in ``maps.map_kernel``) and its gradients (4, 4, N) over the globals."""
+    gap = 0 as in ``maps.impact_map``) and its gradients (4, 4, N) over the globals."""
     gap = Y[4]
     gs = gap[1 + 4]
     Hgap = gap[N1:].reshape(NL, NL)

@@ -32,7 +32,7 @@ from numba import njit
 from numpy.typing import ArrayLike
 
 from ..core.exact import oscillators
-from ..core.flow import make_osc
+from ..core.flow import I_W, make_osc
 from ..core.params import (
     D_DEFAULT,
     MAX_GAIN,
@@ -44,6 +44,7 @@ from ..core.params import (
     check_conditioning,
     check_int,
 )
+from .maps import M_ETA, pack_model
 from .periodic import (
     N_ROW,
     N_SEED_MAX,
@@ -72,11 +73,12 @@ N_COL = N_ROW + 8
 # --------------------------------------------------------------------------- compiled driver
 
 @njit(cache=True, nogil=True)
-def _continue(osc, eta, r, omega, e_prev, prv, row, ws):
+def _continue(mdl, e_prev, prv, row, ws):
     """Newton from the orbit prv of the previous eta (secant predictor when prv was itself
     continued, unless t_L wrapped); fills row's x_L, flight times and source (not yet
-    classified). False when Newton fails."""
-    T = 2.0 * math.pi / omega
+    classified). False when Newton fails. mdl: ``maps.pack_model`` at this eta."""
+    eta = mdl[M_ETA]
+    T = 2.0 * math.pi / mdl[I_W]
     x0 = ws[0]
     for k in range(4):
         x0[k] = prv[ROW_X + k]
@@ -88,7 +90,7 @@ def _continue(osc, eta, r, omega, e_prev, prv, row, ws):
                 x0[k] = prv[ROW_X + k] + f * (prv[ROW_X + k] - prv[ROW_SRC_X + k])
             f0 = prv[ROW_FL] + f * (prv[ROW_FL] - prv[ROW_SRC_FL])
             f1 = prv[ROW_FL + 1] + f * (prv[ROW_FL + 1] - prv[ROW_SRC_FL + 1])
-    if not orbit_solve(osc, eta, r, omega, 0.0, f0, f1, row, ws):
+    if not math.isfinite(orbit_solve(mdl, (f0, f1), row, ws)):
         return False
     row[ROW_SRC] = 1.0
     row[ROW_SRC_ETA] = e_prev
@@ -133,22 +135,24 @@ def _pick(rows, n):
 
 
 @njit(cache=True, nogil=True)
-def _point(osc, eta, r, omega, F, e_prev, prev, rows, ws):
-    """Candidates of one grid point into rows[:n]: seeds, then the continued orbits of
+def _point(mdl, e_prev, prev, rows, ws):
+    """Candidates of one grid point (mdl) into rows[:n]: seeds, then the continued orbits of
     prev that are new (``_is_new``, seeds first: the old list order); returns n."""
-    T = 2.0 * math.pi / omega
-    n = seed_kernel(osc, eta, r, omega, 0.0, F, rows, ws)
+    T = 2.0 * math.pi / mdl[I_W]
+    n = seed_kernel(mdl, rows, ws)
     for k in range(prev.shape[0]):
-        if _continue(osc, eta, r, omega, e_prev, prev[k], rows[n], ws) and _is_new(rows, n, T):
-            orbit_classify(osc, eta, r, omega, 0.0, rows[n], ws)
+        if _continue(mdl, e_prev, prev[k], rows[n], ws) and _is_new(rows, n, T):
+            orbit_classify(mdl, rows[n], ws)
             n += 1
     return n
 
 
 @njit(cache=True, nogil=True)
-def _column_kernel(etas, omega, F, r, osc, lam_out, cls_out, dw_out, sym_out, j):
-    """Column j (one omega) of the map, eta in the given order (module docstring); writes
-    lam_out[:, j], cls_out[:, j], dw_out[:, j], sym_out[:, j]. Runs without the GIL."""
+def _column_kernel(etas, mdl, out, j):
+    """Column j (one omega: mdl, ``maps.pack_model`` of phi = 0, its eta overwritten) of the
+    map, eta in the given order (module docstring); writes [:, j] of the arrays out =
+    (lambda_max, cls, dw_L, symmetric). Runs without the GIL."""
+    lam_out, cls_out, dw_out, sym_out = out
     ws = orbit_workspace()
     prev = np.empty((0, N_COL))
     rows = np.zeros((N_SEED_MAX + 8, N_COL))
@@ -156,8 +160,8 @@ def _column_kernel(etas, omega, F, r, osc, lam_out, cls_out, dw_out, sym_out, j)
         if rows.shape[0] < N_SEED_MAX + prev.shape[0]:
             rows = np.zeros((N_SEED_MAX + 2 * prev.shape[0], N_COL))
         rows[:, ROW_SRC] = 0.0
-        n = _point(osc, etas[i], r, omega, F, etas[i - 1] if i > 0 else math.nan, prev,
-                   rows, ws)
+        mdl[M_ETA] = etas[i]
+        n = _point(mdl, etas[i - 1] if i > 0 else math.nan, prev, rows, ws)
         b = _pick(rows, n)
         if b < 0:
             lam_out[i, j] = math.nan
@@ -305,7 +309,7 @@ def stability_map(eta: ArrayLike, omega: ArrayLike, F: float, r: float = R_DEFAU
 
     def work(j):
         w = float(omegas[j])
-        _column_kernel(etas, w, F, r, make_osc(1.0, d, w, F), *arrays, j)
+        _column_kernel(etas, pack_model(make_osc(1.0, d, w, F), math.nan, r, 0.0), arrays, j)
         return j
 
     if n_threads == 1 or omegas.size <= 1:

@@ -9,6 +9,8 @@ whatever the formula.
 """
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 
 OPS = ("add", "sub", "mul", "div", "neg", "sin", "cos", "exp", "sqrt", "const")
@@ -79,7 +81,7 @@ class Node:
         return self._op(name, self.reg)
 
 
-def record(fn, n_in: int) -> tuple:
+def record(fn: Callable[..., list], n_in: int) -> tuple:
     """Tape of outputs = fn(*inputs) as arrays: (ops (n, 3) int64, consts, output registers
     int64); fn returns a sequence of recorded numbers."""
     tape = Tape(n_in)
