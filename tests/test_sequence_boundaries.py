@@ -161,3 +161,45 @@ def test_default_family_is_1to1_and_bad_families_are_refused():
     with pytest.raises(ParameterError, match="class_map"):
         boundaries(0.2, (0.1, 0.2), (0.8, 0.9), walls="LLRR",
                    class_map=([0.1, 0.2], [0.8, 0.9], np.zeros((2, 2))))
+
+
+def test_continuation_switches_onto_the_asymmetric_pair_at_symmetry_breaking(llrr):
+    """LLRR/1-sym at eta 0.2, F 0.4: the symmetry-breaking point the continuation locates
+    (det(B - I) along the branch) is where the symmetry-breaking curve (det(H + I) with
+    eta and omega free) crosses eta = 0.2; the branch switched onto there is asymmetric,
+    comes with its mirror image, and leaves the symmetric orbit like a square root."""
+    from vines.orbits.sequence import find_sequence
+    from vines.orbits.sequence_branches import ContinueSettings, continue_sequence
+    (curve,) = [c for c in llrr if c.type == "symmetry-breaking"]
+    p = ModelParams(eta=0.2, omega=0.8, F=0.4)
+    (pt,) = crossings(curve, "LLRR", p, ("eta", 0.2))
+    # start 0.01 above the point, on the symmetric orbit through it
+    z = curve.z[np.argmin(np.hypot(*(curve.points - pt).T))]
+    p = ModelParams(eta=0.2, omega=pt[1] + 0.01, F=0.4)
+    sym = solve_sequence(p, "LLRR", 1, z[:4], _system(curve, LLRR).flights(z))
+    assert sym is not None and sym.symmetric and sym.admissible
+    br = continue_sequence(p, "LLRR", 1, "omega", pt[1] - 0.02, orbit=sym,
+                           settings=ContinueSettings(step=0.002, switch=True))
+    (sb,) = [e for e in br.events if e["type"] == "symmetry-breaking"]
+    assert abs(sb["at"] - pt[1]) < 1e-8
+    mu = np.linalg.eigvals(_half_map(sb["_orbit"], True))
+    assert np.min(np.abs(mu + 1.0)) < 1e-6
+    (sub,) = br.switched
+    assert sub.born_at["type"] == "symmetry-breaking" and sub.walls == "LLRR"
+    assert len(sub.points) > 5 and not any(o.symmetric for o in sub.points)
+    pair = find_sequence(sub.points[3].params, "LLRR", 1, simulation=False,
+                         seeds=[sub.points[3]])
+    twins = [o for o in pair if not o.symmetric
+             and abs(o.lambda_max - sub.points[3].lambda_max) < 1e-9]
+    assert len(twins) == 2
+    # distance to the symmetric orbit ~ sqrt(|omega - omega_sb|)
+    dist = []
+    for o in sub.points[1:40]:
+        s = solve_sequence(o.params, "LLRR", 1, sb["_orbit"].states[0],
+                           sb["_orbit"].flight_times)
+        assert s is not None and s.symmetric
+        dist.append((abs(o.params.omega - sb["at"]),
+                     np.linalg.norm(o.states[0, :3] - s.states[0, :3])))
+    (d1, a1), (d2, a2) = dist[0], dist[-1]
+    assert d2 > 4.0 * d1
+    assert 0.6 < (a2 / a1) / np.sqrt(d2 / d1) < 1.4

@@ -7,8 +7,8 @@
    one) is continued (``sequence_branches.continue_sequence``) both ways along both lines
    through it; every event of those continuations becomes a seed, solved as a square
    system with the line's parameter free (``sequence_curves``): fold -> fold,
-   flip -> flip (asymmetric orbits), branch-point on a symmetric orbit ->
-   symmetry-breaking, neimark-sacker -> neimark-sacker, admissibility-loss -> the grazing
+   flip -> flip (asymmetric orbits), symmetry-breaking -> symmetry-breaking,
+   neimark-sacker -> neimark-sacker, admissibility-loss -> the grazing
    of the flight closest to a wall contact (``sequence_curves.grazing_guess``);
 2. each seed not on a traced curve of its kind is continued both ways in (eta, omega)
    (``boundaries.trace``: the same tracer and box handling as the 1:1 curves);
@@ -39,7 +39,7 @@ from .sequence_curves import (
 
 NS_TOL = 1e-6           # a kept neimark-sacker point has a complex pair this close to |mu| = 1
 GRAZE_MARGIN = 1e-3     # an admissibility loss seeds a grazing curve this close to contact
-EVENT_KINDS = {"fold": "fold", "flip": "flip", "branch-point": "symmetry-breaking",
+EVENT_KINDS = {"fold": "fold", "flip": "flip", "symmetry-breaking": "symmetry-breaking",
                "neimark-sacker": "neimark-sacker", "admissibility-loss": "grazing"}
 
 

@@ -48,6 +48,7 @@ from ..core.params import (
     check_params_arg,
     check_real,
 )
+from . import augmented as ag
 from .arclength import Tracer
 from .sequence import (
     SequenceOrbit,
@@ -58,7 +59,7 @@ from .sequence import (
     pitchfork_seeds,
     solve_sequence,
 )
-from .sequence_curves import SequenceFamily, orbit_residual, with_values
+from .sequence_curves import MapSystem, SequenceFamily, orbit_residual, with_values
 
 FLIP_NEAR = 1e-3        # a located flip needs an eigenvalue this close to -1 (not a pole)
 MAX_POINTS_DEFAULT = 2000
@@ -318,19 +319,37 @@ def _events(tr, st, sys_, tests, events, index):
         if key == "branch" and fold:
             continue
         if (prev[key] > 0) != (cur[key] > 0):
-            got = tr.locate(st, lambda z, t, k=key: _tests(sys_.orbit(z), t)[k]
-                            if sys_.orbit(z) is not None else math.nan, prev[key], cur[key])
-            o = orbit_at(got[1] if got else None)
+            o = _symmetry_breaking(sys_, st) if key == "branch" else None
+            if o is None:
+                got = tr.locate(st, lambda z, t, k=key: _tests(sys_.orbit(z), t)[k]
+                                if sys_.orbit(z) is not None else math.nan, prev[key],
+                                cur[key])
+                o = orbit_at(got[1] if got else None)
             target = -1.0 if key == "flip" else 1.0
             if o is not None and np.min(np.abs(o.eigenvalues - target)) <= FLIP_NEAR:
-                if typ == "branch-point" and o.symmetric:
-                    typ = "symmetry-breaking"
-                _add(events, typ, o, index, st)
+                _add(events, "symmetry-breaking" if o.symmetric and key == "branch" else typ,
+                     o, index, st)
     for key, typ in (("ns", "neimark-sacker"), ("adm", "admissibility-loss")):
         if prev[key] != cur[key]:
             after, _ = tr.bisect(st, lambda z, t, k=key: _flag(sys_, z, t, k), prev[key])
             _add(events, typ, orbit_at(after[1]), index, st)
     sys_.orbit(st.z1)                   # flight guesses back at the accepted point
+
+
+def _symmetry_breaking(sys_, st) -> SequenceOrbit | None:
+    """The symmetry-breaking point within a step between symmetric orbits, solved as the
+    square system of ``sequence_curves.MapSystem`` (half-map eigenvalue -1, regular there,
+    where the bordered system of the full residual is singular), or None."""
+    o1 = sys_.orbit(st.z1)
+    if o1 is None or not o1.symmetric:
+        return None
+    fam = SequenceFamily(sys_.walls, sys_.periods, True)
+    system = MapSystem(sys_.params(st.z1[4]), fam, "symmetry-breaking", (sys_.param,))
+    z = ag.solve(system, st.z1)
+    if z is None or not min(st.z0[4], st.z1[4]) <= z[4] <= max(st.z0[4], st.z1[4]):
+        return None
+    return solve_sequence(sys_.params(z[4]), sys_.walls, sys_.periods, z[:4],
+                          system.flights(z))
 
 
 def _flag(sys_, z, t, key):

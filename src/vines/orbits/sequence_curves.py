@@ -32,6 +32,7 @@ symmetric families) and sum s_k = N T (or N T / 2), plus the grazing of flight k
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -95,9 +96,8 @@ def family_of(orbit: SequenceOrbit) -> SequenceFamily:
 
 
 def with_values(base: ModelParams, values: dict) -> ModelParams:
-    kw = base.as_dict()
-    kw.update({k: float(v) for k, v in values.items()})
-    return ModelParams(**kw)
+    """``base`` with some parameters replaced (validated)."""
+    return dataclasses.replace(base, **{k: float(v) for k, v in values.items()})
 
 
 # --------------------------------------------------------------------------- maps
