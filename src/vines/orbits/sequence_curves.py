@@ -28,7 +28,9 @@ unknowns (shooting): z = (x_0, s_0 .. s_{m-1}, [s_g], parameters), equations w_k
 target wall (each flight, closed-form flow), the closure of (z_m', z_b', z_b) (mirrored for
 symmetric families) and sum s_k = N T (or N T / 2), plus the grazing of flight k at wall
 "L" or "R" (w_k(s_g) = wall, w_k'(s_g) = 0, 0 < s_g < s_k) or at its "arrival"
-(w_k'(s_k) = 0). All its derivatives are central differences.
+(w_k'(s_k) = 0); flights are numbered from 1 (flight k from impact k to impact k + 1, so
+that for "LR" flight 1 is L->R and 2 is R->L, as for the 1:1 curves). All its derivatives
+are central differences.
 """
 from __future__ import annotations
 
@@ -232,7 +234,8 @@ def flight(osc, p: ModelParams, x, s, wall):
 
 class GrazingSystem:
     """G(z) of a grazing point: z = (x_0, flights, [s_g], free parameters), graze =
-    (k, wall) with wall "L", "R" (interior contact) or "arrival" (module docstring)."""
+    (k, wall): flight k (from 1) and wall "L", "R" (interior contact) or "arrival" (module
+    docstring)."""
 
     kind = "grazing"
 
@@ -256,7 +259,7 @@ class GrazingSystem:
         for k in range(m):
             w, wd, y = flight(osc, p, x, s[k], codes[k])
             E.append(w - codes[(k + 1) % n])
-            if k == self.graze[0]:
+            if k + 1 == self.graze[0]:
                 E += self._graze(osc, p, x, codes[k], (wd, z))
             x = y
         end = MIRROR * x if self.fam.symmetric else x
@@ -301,14 +304,14 @@ def grazing_guess(orbit: SequenceOrbit, fam: SequenceFamily, n_sample=400):
     best = None
     for k in range(fam.flights):
         x, s_k, w0 = orbit.states[k], orbit.flight_times[k], codes[k]
-        cands = [((k, "arrival"), s_k, abs(flight(osc, p, x, s_k, w0)[1]))]
+        cands = [((k + 1, "arrival"), s_k, abs(flight(osc, p, x, s_k, w0)[1]))]
         ss = np.linspace(0.0, s_k, n_sample + 1)[1:-1]
         w = np.array([flight(osc, p, x, s, w0)[0] for s in ss])
         for wall in ("L", "R"):
             dist = 1.0 - WALL_CODES[wall] * w       # > 0 inside the cavity
             i = int(np.argmin(dist[1:-1])) + 1
             if dist[i] <= dist[i - 1] and dist[i] <= dist[i + 1]:
-                cands.append(((k, wall), ss[i], abs(dist[i])))
+                cands.append(((k + 1, wall), ss[i], abs(dist[i])))
         for c in cands:
             if best is None or c[2] < best[2]:
                 best = c
