@@ -15,11 +15,12 @@ def add_parser(subparsers) -> VinesArgumentParser:
     p = subparsers.add_parser(
         NAME,
         help="curves of fold, flip, neimark-sacker, symmetry-breaking and grazing points of "
-             "1:1 orbits in the (eta, omega) plane at fixed F",
+             "1:1 orbits (or of any wall sequence) in the (eta, omega) plane at fixed F",
         description="Seed from one-parameter continuations along lines of the box, then "
                     "continue every codimension-one point of the 1:1 orbits (augmented "
                     "systems, exact Jacobians) in (eta, omega) at fixed F: the edges of the "
-                    "classes of the stability map (Fig 16).",
+                    "classes of the stability map (Fig 16). With --walls SEQ --periods N the "
+                    "same curves of that family (docs/bifurcation.md).",
     )
     p.allowed_values["--F"] = param_allowed("F")
     p.add_argument("--F", metavar="F", required=True,
