@@ -14,7 +14,8 @@
    (``boundaries.trace``: the same tracer and box handling as the 1:1 curves);
 3. fold, flip, symmetry-breaking and neimark-sacker curves keep their stretches on
    admissible orbits of the family's kind (neimark-sacker: where the pair on the unit
-   circle is complex); grazing curves are kept whole.
+   circle is complex); grazing curves are kept whole, except one lying on a grazing curve
+   kept before (another flight grazing at the same parameters).
 
 Families that no crossing of the scan lines meets are not found: n_scan sets how closely
 the box is searched.
@@ -46,9 +47,10 @@ EVENT_KINDS = {"fold": "fold", "flip": "flip", "symmetry-breaking": "symmetry-br
 class _SequenceKit:
     """Augmented systems and kept stretches of one sequence's curves (``boundaries``)."""
 
-    def __init__(self, base: ModelParams):
-        self.base = base
+    def __init__(self, base: ModelParams, step: float):
+        self.base, self.step = base, step
         self.families = {}
+        self.grazing = []
 
     def system(self, seed):
         name, kind, graze, _ = seed
@@ -57,10 +59,23 @@ class _SequenceKit:
     def keep(self, curve) -> list:
         from .boundaries import pieces_of
         if curve.type == "grazing":
+            if any(_same_points(curve, c, self.step) for c in self.grazing):
+                return []
+            self.grazing.append(curve)
             return [curve]
         fam = self.families[curve.family]
         system = make_system(self.base, fam, curve.type, None, ("eta", "omega"))
         return pieces_of(curve, [_on_family(system, z, fam) for z in curve.z])
+
+
+def _same_points(a, b, step: float) -> bool:
+    """Curve a lies on curve b (of the same family): every point of a within half a step
+    of a point of b (e.g. the grazing of two flights that a symmetry of the orbit maps onto
+    each other, met at the same parameters)."""
+    if a.family != b.family:
+        return False
+    d = np.hypot(*(a.points[:, None, :] - b.points[None, :, :]).transpose(2, 0, 1))
+    return bool(np.all(d.min(axis=1) <= 0.5 * step))
 
 
 def _on_family(system, z, fam: SequenceFamily) -> bool:
@@ -77,7 +92,7 @@ def sequence_boundaries(p: ModelParams, family: tuple, box, scan: tuple) -> list
     scan = (n_scan, ``boundaries.CurveSettings``)."""
     from .boundaries import _Traced
     n_scan, settings = scan
-    kit = _SequenceKit(p)
+    kit = _SequenceKit(p, settings.step)
     traced = _Traced(kit, box, settings)
     for seed in _seeds(kit, family, box, n_scan):
         traced.add(seed)
