@@ -220,11 +220,12 @@ def test_names_and_bad_input():
 
 def test_continuation_locates_the_1to1_flip_and_switches_to_period2():
     from vines.orbits.continuation import continue_branch
-    from vines.orbits.sequence_branches import continue_sequence
+    from vines.orbits.sequence_branches import ContinueSettings, continue_sequence
     p = ModelParams(eta=0.142, omega=0.74, F=0.2)
     one = next(o for o in find_sequence(p, "LR", 1, simulation=False)
            if o.admissible and not o.symmetric)
-    br = continue_sequence(p, "LR", 1, "omega", 0.78, orbit=one, switch=True, step=0.002)
+    br = continue_sequence(p, "LR", 1, "omega", 0.78, orbit=one,
+                           settings=ContinueSettings(step=0.002, switch=True))
     flips = [e for e in br.events if e["type"] == "flip"]
     # the 1:1 shooting continuation (independent derivatives: Taylor jets) finds the same flip
     ref = continue_branch("omega", 0.74, 0.78, fixed={"eta": 0.142, "F": 0.2},

@@ -1,10 +1,12 @@
-"""``vines boundaries``: curves of codimension-one points of 1:1 orbits in (eta, omega)."""
+"""``vines boundaries``: curves of codimension-one points of 1:1 orbits (or of the orbits of
+any wall sequence, ``--walls``/``--periods``) in (eta, omega)."""
 from __future__ import annotations
 
 import argparse
 
 from ..core.params import D_DEFAULT, R_DEFAULT, ModelParams
 from .common import VinesArgumentParser, emit, param_allowed, quiet_stdout
+from .periodic import add_walls_args
 
 NAME = "boundaries"
 
@@ -13,11 +15,12 @@ def add_parser(subparsers) -> VinesArgumentParser:
     p = subparsers.add_parser(
         NAME,
         help="curves of fold, flip, neimark-sacker, symmetry-breaking and grazing points of "
-             "1:1 orbits in the (eta, omega) plane at fixed F",
+             "1:1 orbits (or of any wall sequence) in the (eta, omega) plane at fixed F",
         description="Seed from one-parameter continuations along lines of the box, then "
                     "continue every codimension-one point of the 1:1 orbits (augmented "
                     "systems, exact Jacobians) in (eta, omega) at fixed F: the edges of the "
-                    "classes of the stability map (Fig 16).",
+                    "classes of the stability map (Fig 16). With --walls SEQ --periods N the "
+                    "same curves of that family (docs/bifurcation.md).",
     )
     p.allowed_values["--F"] = param_allowed("F")
     p.add_argument("--F", metavar="F", required=True,
@@ -34,8 +37,12 @@ def add_parser(subparsers) -> VinesArgumentParser:
         p.allowed_values[flag] = param_allowed(flag[2:])
         opt.add_argument(flag, metavar=flag[2:].upper(), default=default,
                          help=f"{help} [{param_allowed(flag[2:])}; default {default:g}]")
+    add_walls_args(p, "wall sequence of the family whose curves are traced (default LR: the "
+                      "1:1 orbits; other families are seeded on the n_scan x n_scan crossings "
+                      "of the scan lines)")
     p.add_argument("--json", action="store_true",
-                   help="print one JSON object on stdout (key: curves)")
+                   help="print one JSON object on stdout (key: curves; with --walls other "
+                        "than LR/1 also walls, periods)")
     return p
 
 
@@ -44,7 +51,8 @@ def run(args: argparse.Namespace) -> int:
     from ..orbits.boundaries import boundaries
 
     with quiet_stdout():
-        res = boundaries(params.F, args.eta_range, args.omega_range, r=params.r, d=params.d)
+        res = boundaries(params.F, args.eta_range, args.omega_range, r=params.r, d=params.d,
+                         walls=args.walls or "LR", periods=args.periods)
     return emit(args.json, res.to_dict(), lambda d: _text(d, params.F))
 
 
@@ -57,4 +65,6 @@ def _text(d: dict, F: float) -> str:
         lines.append(f"  {c['type']}{where} of {c['family']} orbits: {len(c['points'])} "
                      f"points from (eta, omega) = ({e0:.4g}, {w0:.4g}) to ({e1:.4g}, "
                      f"{w1:.4g})")
+    if "walls" in d:
+        lines[0] += f" (family {d['walls']}/{d['periods']})"
     return "\n".join(lines)

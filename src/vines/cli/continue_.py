@@ -59,8 +59,9 @@ def add_parser(subparsers) -> VinesArgumentParser:
     p.allowed_values["--branch"] = "one of " + ", ".join(BRANCH_KINDS)
     p.add_argument("--switch", action="store_true",
                    help="also continue the asymmetric branch born at every symmetry-breaking "
-                        "point of the symmetric branch (with --walls: the period-doubled "
-                        "branch born at every flip point) (JSON key switched; arclength only)")
+                        "point of the symmetric branch (with --walls: also the "
+                        "period-doubled branch born at every flip point) (JSON key switched; "
+                        "arclength only)")
     p.allowed_values["--max-inadmissible"] = f"an integer >= 1 and <= {MAX_POINTS_MAX}"
     p.add_argument("--max-inadmissible", metavar="N", default=MAX_INADMISSIBLE_DEFAULT,
                    help="end the branch after N consecutive non-admissible points "
@@ -155,7 +156,7 @@ def _run_walls(args: argparse.Namespace, values: dict, stop: ModelParams) -> dic
     """The continued branch of a wall sequence (keys of ``SequenceBranch.to_dict``: walls,
     periods, family, param, branch, events, stopped, switched)."""
     from ..orbits.sequence import check_periods, check_walls, find_sequence
-    from ..orbits.sequence_branches import continue_sequence
+    from ..orbits.sequence_branches import ContinueSettings, continue_sequence
 
     walls = check_walls(args.walls)
     periods = check_periods(args.periods)
@@ -172,9 +173,10 @@ def _run_walls(args: argparse.Namespace, values: dict, stop: ModelParams) -> dic
             return {"walls": walls, "periods": periods, "param": args.param, "branch": [],
                     "events": [], "stopped": f"no {walls}/{periods} orbit at start",
                     "switched": []}
-        br = continue_sequence(start, walls, periods, args.param, values["stop"], step=step,
-                               orbit=cands[0], switch=bool(args.switch),
-                               max_points=max_points, max_inadmissible=max_inadmissible)
+        settings = ContinueSettings(step=step, switch=bool(args.switch),
+                                    max_points=max_points, max_inadmissible=max_inadmissible)
+        br = continue_sequence(start, walls, periods, args.param, values["stop"],
+                               orbit=cands[0], settings=settings)
     return br.to_dict()
 
 

@@ -301,7 +301,8 @@ def boundaries_dataset(curves: list, F: float, attrs: dict) -> xr.Dataset:
     inst = {
         "curve_type": (np.asarray([c.type for c in curves], dtype="U32"),
                        *BOUNDARY_CURVE_ATTRS["curve_type"]),
-        "family": (np.asarray([c.family for c in curves], dtype="U16"),
+        "family": (np.asarray([c.family for c in curves],
+                              dtype=f"U{max([16] + [len(c.family) for c in curves])}"),
                    *BOUNDARY_CURVE_ATTRS["family"]),
         "flight": (np.asarray([c.graze[0] if c.graze else 0 for c in curves], "i4"),
                    *BOUNDARY_CURVE_ATTRS["flight"]),

@@ -47,6 +47,7 @@ from . import augmented as ag
 from . import shooting as sh
 from .arclength import Tracer
 from .branches import is_ns, orbit_at
+from .sequence import check_periods, check_walls
 
 CURVE_TYPES = ("fold", "flip", "neimark-sacker", "symmetry-breaking", "grazing")
 U_WEIGHT = 0.2          # weight of the orbit unknowns in the arclength (eta, omega: 1)
@@ -74,17 +75,22 @@ class Curve:
 
 @dataclass
 class Boundaries:
-    """The curves of one F (``boundaries``)."""
+    """The curves of one F and family (``boundaries``)."""
 
     F: float
     eta_range: tuple
     omega_range: tuple
     curves: list
+    walls: str = "LR"
+    periods: int = 1
 
     def to_dict(self) -> dict:
-        return {"F": self.F, "eta_range": list(self.eta_range),
-                "omega_range": list(self.omega_range),
-                "curves": [c.to_dict() for c in self.curves]}
+        out = {"F": self.F, "eta_range": list(self.eta_range),
+               "omega_range": list(self.omega_range),
+               "curves": [c.to_dict() for c in self.curves]}
+        if (self.walls, self.periods) != ("LR", 1):     # the 1:1 output as it always was
+            out.update(walls=self.walls, periods=self.periods)
+        return out
 
 
 def _system(model, family, kind, graze, F):
@@ -143,15 +149,23 @@ class _CurveTracer:
         return None if best is None else best[1]
 
 
-def trace(model: ModelParams, family: str, kind: str, graze, z0, F: float, box,
-          step: float = 0.01, max_points: int = 400) -> Curve:
-    """The curve through z0 = (u, [s_g], eta, omega) of the augmented system, both ways."""
-    system = _system(model, family, kind, graze, F)
-    ct = _CurveTracer(system, box, step, max_points)
+@dataclass(frozen=True)
+class CurveSettings:
+    """How curves are traced: largest arclength step, most points per direction."""
+
+    step: float = 0.01
+    max_points: int = 400
+
+
+def trace(system, z0, box, settings: CurveSettings = CurveSettings()) -> Curve:
+    """The curve through z0 of an augmented system (``augmented.Codim1System`` or
+    ``sequence_curves``; free parameters eta, omega last), both ways inside the box."""
+    ct = _CurveTracer(system, box, settings.step, settings.max_points)
     fwd, why_f = ct.half(np.asarray(z0, float), 1.0)
     bwd, why_b = ct.half(np.asarray(z0, float), -1.0)
     zs = np.array(bwd[::-1] + [np.asarray(z0, float)] + fwd)
-    return Curve(kind, family, graze, zs[:, -2:].copy(), zs, [why_b, why_f])
+    return Curve(system.kind, system.family, system.graze, zs[:, -2:].copy(), zs,
+                 [why_b, why_f])
 
 
 def _keep(curve: Curve, model, F) -> list:
@@ -166,6 +180,11 @@ def _keep(curve: Curve, model, F) -> list:
         if good and curve.type == "neimark-sacker":
             good = is_ns(curve.family, o, tol=1e-6)
         ok.append(good)
+    return pieces_of(curve, ok)
+
+
+def pieces_of(curve: Curve, ok) -> list:
+    """The stretches of at least two consecutive points of ``curve`` where ``ok``."""
     ok = np.array(ok, bool)
     pieces = []
     start = None
@@ -199,24 +218,36 @@ def crossings(curve: Curve, model, F, omega: float) -> list:
 def boundaries(F: float, eta_range: Sequence[float], omega_range: Sequence[float],
                r: float = R_DEFAULT, d: float = D_DEFAULT, n_scan: int = 5,
                step: float = 0.01, max_points: int = 400, n_map: int = 25,
-               class_map: tuple | None = None) -> Boundaries:
-    """Codimension-one curves of 1:1 orbits in the box eta_range x omega_range at F.
+               class_map: tuple | None = None, walls: str = "LR",
+               periods: int = 1) -> Boundaries:
+    """Codimension-one curves of the orbits of ``walls``/``periods`` (default the 1:1
+    family) in the box eta_range x omega_range at F.
 
-    ``n_scan`` scan lines per parameter seed the curves; then class changes of an
-    ``n_map`` x ``n_map`` stability map farther than 1.5 cells from every kept curve seed
-    more (module docstring, step 4; ``n_map = 0`` skips it). ``class_map`` = (eta, omega,
-    cls): a stability map already computed at this F (``stability_map``), whose class
-    changes are used instead of the n_map x n_map one."""
+    ``n_scan`` scan lines per parameter seed the curves. For the 1:1 family, class changes
+    of an ``n_map`` x ``n_map`` stability map farther than 1.5 cells from every kept curve
+    then seed more (module docstring, step 4; ``n_map = 0`` skips it); ``class_map`` =
+    (eta, omega, cls): a stability map already computed at this F (``stability_map``),
+    whose class changes are used instead of the n_map x n_map one. Other families
+    (``sequence_boundaries``) are seeded by continuations through the n_scan x n_scan
+    crossings of the scan lines and ignore n_map; ``class_map`` is for 1:1 only."""
     F = check_param("F", F)
     box = (_range("eta_range", eta_range), _range("omega_range", omega_range))
     n_scan = check_int("n_scan", n_scan, lo=1, hi=100)
-    step = check_real("step", step, lo=1e-5, hi=1.0)
-    max_points = check_int("max_points", max_points, lo=1, hi=100_000)
+    settings = CurveSettings(check_real("step", step, lo=1e-5, hi=1.0),
+                             check_int("max_points", max_points, lo=1, hi=100_000))
     n_map = check_int("n_map", n_map, lo=0, hi=1000)
     class_map = _check_class_map(class_map)
+    walls, periods = check_walls(walls), check_periods(periods)
     p = ModelParams(eta=1.0, omega=1.0, F=F, r=r, d=d)     # validates r and d
+    if (walls, periods) != ("LR", 1):
+        if class_map is not None:
+            raise ParameterError("class_map", "(eta, omega, cls)", "must be None for a "
+                                 "family other than 1:1 (walls LR, periods 1)")
+        from .sequence_boundaries import sequence_boundaries
+        curves = sequence_boundaries(p, (walls, periods), box, (n_scan, settings))
+        return Boundaries(F, box[0], box[1], curves, walls, periods)
     model = sh.Model(p.r, p.d)
-    traced = _Traced(model, F, box, step, max_points)
+    traced = _Traced(_OneToOne(model, F), box, settings)
     for seed in _seeds(model, F, box, n_scan):
         traced.add(seed)
     if class_map is not None:
@@ -231,24 +262,38 @@ def boundaries(F: float, eta_range: Sequence[float], omega_range: Sequence[float
     return Boundaries(F, box[0], box[1], traced.kept)
 
 
-class _Traced:
-    """The curves traced so far and their kept stretches (module docstring, step 3)."""
+class _OneToOne:
+    """Augmented systems and kept stretches of the 1:1 curves (``augmented``)."""
 
-    def __init__(self, model, F, box, step, max_points):
-        self.model, self.F, self.box = model, F, box
-        self.step, self.max_points = step, max_points
+    def __init__(self, model, F):
+        self.model, self.F = model, F
+
+    def system(self, seed):
+        family, kind, graze, _ = seed
+        return _system(self.model, family, kind, graze, self.F)
+
+    def keep(self, curve) -> list:
+        return _keep(curve, self.model, self.F)
+
+
+class _Traced:
+    """The curves traced so far and their kept stretches (module docstring, step 3);
+    ``kit`` makes a seed's augmented system and keeps a curve's class edges."""
+
+    def __init__(self, kit, box, settings: CurveSettings):
+        self.kit, self.box, self.settings = kit, box, settings
         self.curves, self.kept = [], []
 
     def add(self, seed):
         """Trace the curve through a seed unless a curve of its kind passes there."""
-        family, kind, graze, z0 = seed
-        if not _in_box(z0[-2:], self.box) or _on_curve(self.curves, seed, self.step):
+        z0 = seed[3]
+        if not _in_box(z0[-2:], self.box) or _on_curve(self.curves, seed,
+                                                          self.settings.step):
             return
-        c = trace(self.model, family, kind, graze, z0, self.F, self.box, self.step,
-                  self.max_points)
+        c = trace(self.kit.system(seed), z0, self.box, self.settings)
         c.all_points = c.points
         self.curves.append(c)
-        self.kept.extend(_keep(c, self.model, self.F))
+        self.kept.extend(self.kit.keep(c))
 
     def explains(self, edge) -> bool:
         """A kept curve passes within 1.5 cells of the middle of a class-changing edge."""

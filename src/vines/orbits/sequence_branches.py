@@ -14,25 +14,28 @@ test function, or ``Tracer.bisect`` on a flag):
 |---|---|
 | fold | the tangent's parameter component |
 | flip | det(B + I), B = J_{n-1} ... J_0 (kept where an eigenvalue lies within 1e-3 of -1) |
-| branch-point | det(B - I) without a fold (on a symmetric family: symmetry-breaking) |
+| symmetry-breaking | det(B - I) without a fold, on a symmetric orbit |
+| branch-point | det(B - I) without a fold, on an asymmetric orbit |
 | neimark-sacker | the number of complex eigenvalues outside the unit circle (flag) |
 | admissibility-loss | the admissibility flag |
 
-With ``switch``, at every flip point the period-doubled family (the sequence twice over,
-twice the periods) is solved just past the flip from ``sequence.flip_seeds`` and continued
-(``SequenceBranch.switched``). The 1:1 continuation of ``continuation``/``branches`` is
-unchanged; this module does not touch it.
+With ``switch`` (``ContinueSettings``), at every flip point the period-doubled family (the
+sequence twice over, twice the periods) is solved just past the flip from
+``sequence.flip_seeds`` and continued; at every symmetry-breaking point the asymmetric
+orbit born there (one of the mirror pair; the other is its mirror image) is solved just
+past the point, on the side where it exists, from ``sequence.pitchfork_seeds`` and
+continued, with switching at its own flips (``SequenceBranch.switched``). The 1:1
+continuation of ``continuation``/``branches`` is unchanged; this module does not touch it.
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from numba import njit
 
 from .. import progress
-from ..core.exact import oscillators
 from ..core.params import (
     MAX_INADMISSIBLE_DEFAULT,
     MAX_POINTS_MAX,
@@ -46,35 +49,64 @@ from ..core.params import (
     check_params_arg,
     check_real,
 )
+from . import augmented as ag
 from .arclength import Tracer
-from .maps import map_kernel
 from .sequence import (
     SequenceOrbit,
-    _codes,
     check_periods,
     check_walls,
     find_sequence,
     flip_seeds,
+    pitchfork_seeds,
     solve_sequence,
 )
+from .sequence_curves import MapSystem, SequenceFamily, orbit_residual, with_values
 
 FLIP_NEAR = 1e-3        # a located flip needs an eigenvalue this close to -1 (not a pole)
 MAX_POINTS_DEFAULT = 2000
 
 
-@njit(cache=True, nogil=True)
-def _chain(osc, eta, r, omega, phi, codes, x0, s_guess, xs, Js, fl):
-    """xs[k+1] = P_k(xs[k]) from xs[0] = x0 with flight guesses; False when a map fails."""
-    n = codes.size
-    for i in range(4):
-        xs[0, i] = x0[i]
-    for k in range(n):
-        s = map_kernel(osc, eta, r, omega, phi, xs[k], codes[k], codes[(k + 1) % n],
-                       s_guess[k], xs[k + 1], Js[k])
-        if not math.isfinite(s):
-            return False
-        fl[k] = s
-    return True
+@dataclass(frozen=True)
+class ContinueSettings:
+    """How ``continue_sequence`` follows a family.
+
+    step              largest arclength step (None: |stop - start| / 100)
+    switch            switch onto the period-doubled branch at flips and onto the
+                      asymmetric orbit at symmetry-breaking points
+    max_points        most points of a branch
+    max_inadmissible  stop after this many consecutive non-admissible points
+    """
+
+    step: float | None = None
+    switch: bool = False
+    max_points: int = MAX_POINTS_DEFAULT
+    max_inadmissible: int = MAX_INADMISSIBLE_DEFAULT
+
+
+@dataclass(frozen=True)
+class _Run:
+    """One branch to follow: the family, the parameter interval and the settings."""
+
+    params: ModelParams         # the starting point
+    walls: str
+    periods: int
+    param: str
+    start: float
+    stop: float
+    settings: ContinueSettings
+    born_at: dict | None = None
+
+    @property
+    def lo(self) -> float:
+        return min(self.start, self.stop)
+
+    @property
+    def hi(self) -> float:
+        return max(self.start, self.stop)
+
+    @property
+    def step(self) -> float:
+        return self.settings.step
 
 
 @dataclass
@@ -116,31 +148,17 @@ class _System:
     def __init__(self, base: ModelParams, param: str, walls: str, periods: int):
         self.base, self.param = base, param
         self.walls, self.periods = walls, periods
-        self.codes = _codes(walls)
-        n = len(walls)
-        self.s = np.full(n, -1.0)
-        self.xs = np.empty((n + 1, 4))
-        self.Js = np.empty((n, 4, 4))
-        self.fl = np.empty(n)
+        self.fam = SequenceFamily(walls, periods, False)
+        self.s = np.full(len(walls), -1.0)
 
     def params(self, v) -> ModelParams:
-        kw = self.base.as_dict()
-        kw[self.param] = float(v)
-        return ModelParams(**kw)
+        return with_values(self.base, {self.param: v})
 
     def residual(self, x0, v):
-        p = self.params(v)
-        osc = oscillators(p)[0]
-        ok = _chain(osc, p.eta, p.r, p.omega, p.phi, self.codes, np.asarray(x0, float),
-                    self.s, self.xs, self.Js, self.fl)
-        if not ok:
+        got = orbit_residual(self.params(v), self.fam, np.asarray(x0, float), self.s)
+        if got is None:
             return None, None
-        R = self.xs[-1] - self.xs[0]
-        R[3] -= self.periods * p.period
-        P = self.Js[0]
-        for J in self.Js[1:]:
-            P = J @ P
-        return R, P
+        return got[0], got[1]
 
     def __call__(self, z):
         nan = (np.full(4, np.nan), np.full((4, 5), np.nan))
@@ -184,15 +202,14 @@ def _monodromy(o):
 
 
 def continue_sequence(params: ModelParams, walls: str, periods: int, param: str, stop, *,
-                      step=None, orbit: SequenceOrbit | None = None, switch: bool = False,
-                      max_points=MAX_POINTS_DEFAULT,
-                      max_inadmissible=MAX_INADMISSIBLE_DEFAULT) -> SequenceBranch:
+                      orbit: SequenceOrbit | None = None,
+                      settings: ContinueSettings | None = None) -> SequenceBranch:
     """Follow an orbit of ``walls``/``periods`` from ``params`` along ``param`` (eta, omega
     or F) towards ``stop``. ``orbit``: the starting orbit (default: the first of
-    ``find_sequence`` at ``params``: stable admissible first). ``step``: largest arclength
-    step (default |stop - start|/100). Ends when the parameter leaves [start, stop], after
-    ``max_points`` points, ``max_inadmissible`` consecutive non-admissible points, or when
-    the step cannot be corrected."""
+    ``find_sequence`` at ``params``: stable admissible first). ``settings``
+    (``ContinueSettings``): step, switching and limits. Ends when the parameter leaves
+    [start, stop], after ``max_points`` points, ``max_inadmissible`` consecutive
+    non-admissible points, or when the step cannot be corrected."""
     params = check_params_arg("params", params)
     walls, periods = check_walls(walls), check_periods(periods)
     param = check_choice("param", param, PARAM_NAMES)
@@ -203,11 +220,7 @@ def continue_sequence(params: ModelParams, walls: str, periods: int, param: str,
         raise ParameterError("stop", stop, f"{err.allowed} ({param})") from None
     if stop == start:
         raise ParameterError("stop", stop, f"must differ from the start {param} = {start:g}")
-    step = abs(check_real("step", step, lo=0.0, lo_open=True)) if step is not None \
-        else abs(stop - start) / 100.0
-    max_points = check_int("max_points", max_points, lo=2, hi=MAX_POINTS_MAX)
-    max_inadmissible = check_int("max_inadmissible", max_inadmissible, lo=1, hi=MAX_POINTS_MAX)
-    switch = check_bool("switch", switch)
+    settings = _check_settings(settings, abs(stop - start))
     if orbit is not None and not (isinstance(orbit, SequenceOrbit)
                                   and len(orbit.flight_times) == len(walls)):
         raise ParameterError("orbit", orbit, f"must be None or a SequenceOrbit of {walls}/"
@@ -219,58 +232,74 @@ def continue_sequence(params: ModelParams, walls: str, periods: int, param: str,
                                   f"no {walls}/{periods} orbit at start")
         orbit = found[0]
     with progress.task(None, f"{walls}/{periods} branch in {param}", "points"):
-        return _trace(params, walls, periods, param, start, stop, step, orbit, switch,
-                      max_points, max_inadmissible)
+        return _trace(_Run(params, walls, periods, param, start, stop, settings), orbit)
 
 
-def _trace(params, walls, periods, param, start, stop, step, orbit, switch, max_points,
-           max_inadmissible, born_at=None) -> SequenceBranch:
-    sys_ = _System(params, param, walls, periods)
+def _check_settings(settings, span: float) -> ContinueSettings:
+    """Validated settings, the default step |stop - start| / 100 filled in."""
+    if settings is None:
+        settings = ContinueSettings()
+    if not isinstance(settings, ContinueSettings):
+        raise ParameterError("settings", settings, "must be None or a ContinueSettings")
+    step = settings.step
+    step = abs(check_real("step", step, lo=0.0, lo_open=True)) if step is not None \
+        else span / 100.0
+    return ContinueSettings(
+        step=step, switch=check_bool("switch", settings.switch),
+        max_points=check_int("max_points", settings.max_points, lo=2, hi=MAX_POINTS_MAX),
+        max_inadmissible=check_int("max_inadmissible", settings.max_inadmissible, lo=1,
+                                   hi=MAX_POINTS_MAX))
+
+
+def _trace(run: _Run, orbit: SequenceOrbit) -> SequenceBranch:
+    sys_ = _System(run.params, run.param, run.walls, run.periods)
     sys_.s = orbit.flight_times.copy()
-    lo, hi = min(start, stop), max(start, stop)
-    sign = 1.0 if stop > start else -1.0
-    z0 = np.concatenate([orbit.states[0], [start]])
-    scale = np.ones(5)
-    tr = Tracer(sys_, z0, np.array([0, 0, 0, 0, sign]), step, step * 1e-6, step, scale)
+    sign = 1.0 if run.stop > run.start else -1.0
+    z0 = np.concatenate([orbit.states[0], [run.start]])
+    step = run.step
+    tr = Tracer(sys_, z0, np.array([0, 0, 0, 0, sign]), step, step * 1e-6, step, np.ones(5))
     o = sys_.orbit(z0)
     if o is None:
-        return SequenceBranch(walls, periods, param, [], [], "the orbit does not converge")
+        return SequenceBranch(run.walls, run.periods, run.param, [], [],
+                              "the orbit does not converge")
     points, events = [o], []
-    prev = _tests(o, tr.t)
-    stopped, n_bad = "max_points", 0
-    while len(points) < max_points:
+    stopped = _follow(run, (tr, sys_), points, events)
+    for ev in events:
+        ev["at"] = float(getattr(ev["_orbit"].params, run.param))
+    br = SequenceBranch(run.walls, run.periods, run.param, points, events, stopped,
+                        born_at=run.born_at)
+    if run.settings.switch:
+        for ev in events:
+            sub = _switch(run, ev)
+            if sub is not None:
+                br.switched.append(sub)
+    return br
+
+
+def _follow(run: _Run, tracing, points: list, events: list) -> str:
+    """Step along the branch from points[0], appending points and events; why it
+    stopped."""
+    tr, sys_ = tracing
+    prev = _tests(points[0], tr.t)
+    n_bad = 0
+    while len(points) < run.settings.max_points:
         st = tr.step()
         if st is None:
-            stopped = "step too small (no correction)"
-            break
+            return "step too small (no correction)"
         o = sys_.orbit(st.z1)
         if o is None:
-            stopped = "the maps failed at a corrected point"
-            break
+            return "the maps failed at a corrected point"
         cur = _tests(o, st.t1)
-        _events(tr, st, sys_, prev, cur, events, len(points))
+        _events(tr, st, sys_, (prev, cur), events, len(points))
         points.append(o)
         progress.advance()
         prev = cur
         n_bad = 0 if o.admissible else n_bad + 1
-        if n_bad >= max_inadmissible:
-            stopped = "admissibility lost for good"
-            break
-        v = st.z1[4]
-        if not lo - 1e-12 <= v <= hi + 1e-12:
-            stopped = "left the interval"
-            break
-    for ev in events:
-        ev["at"] = float(getattr(ev["_orbit"].params, param))
-    br = SequenceBranch(walls, periods, param, points, events, stopped, born_at=born_at)
-    if switch:
-        for ev in events:
-            if ev["type"] == "flip":
-                sub = _switch_flip(params, walls, periods, param, ev, lo, hi, step,
-                                   max_points, max_inadmissible)
-                if sub is not None:
-                    br.switched.append(sub)
-    return br
+        if n_bad >= run.settings.max_inadmissible:
+            return "admissibility lost for good"
+        if not run.lo - 1e-12 <= st.z1[4] <= run.hi + 1e-12:
+            return "left the interval"
+    return "max_points"
 
 
 def _event(typ, o: SequenceOrbit, index: int) -> dict:
@@ -279,7 +308,9 @@ def _event(typ, o: SequenceOrbit, index: int) -> dict:
             "index": index, "_orbit": o}
 
 
-def _events(tr, st, sys_, prev, cur, events, index):
+def _events(tr, st, sys_, tests, events, index):
+    prev, cur = tests
+
     def orbit_at(z):
         return sys_.orbit(z) if z is not None else None
 
@@ -291,17 +322,37 @@ def _events(tr, st, sys_, prev, cur, events, index):
         if key == "branch" and fold:
             continue
         if (prev[key] > 0) != (cur[key] > 0):
-            got = tr.locate(st, lambda z, t, k=key: _tests(sys_.orbit(z), t)[k]
-                            if sys_.orbit(z) is not None else math.nan, prev[key], cur[key])
-            o = orbit_at(got[1] if got else None)
+            o = _symmetry_breaking(sys_, st) if key == "branch" else None
+            if o is None:
+                got = tr.locate(st, lambda z, t, k=key: _tests(sys_.orbit(z), t)[k]
+                                if sys_.orbit(z) is not None else math.nan, prev[key],
+                                cur[key])
+                o = orbit_at(got[1] if got else None)
             target = -1.0 if key == "flip" else 1.0
             if o is not None and np.min(np.abs(o.eigenvalues - target)) <= FLIP_NEAR:
-                _add(events, typ, o, index, st)
+                _add(events, "symmetry-breaking" if o.symmetric and key == "branch" else typ,
+                     o, index, st)
     for key, typ in (("ns", "neimark-sacker"), ("adm", "admissibility-loss")):
         if prev[key] != cur[key]:
             after, _ = tr.bisect(st, lambda z, t, k=key: _flag(sys_, z, t, k), prev[key])
             _add(events, typ, orbit_at(after[1]), index, st)
     sys_.orbit(st.z1)                   # flight guesses back at the accepted point
+
+
+def _symmetry_breaking(sys_, st) -> SequenceOrbit | None:
+    """The symmetry-breaking point within a step between symmetric orbits, solved as the
+    square system of ``sequence_curves.MapSystem`` (half-map eigenvalue -1, regular there,
+    where the bordered system of the full residual is singular), or None."""
+    o1 = sys_.orbit(st.z1)
+    if o1 is None or not o1.symmetric:
+        return None
+    fam = SequenceFamily(sys_.walls, sys_.periods, True)
+    system = MapSystem(sys_.params(st.z1[4]), fam, "symmetry-breaking", (sys_.param,))
+    z = ag.solve(system, st.z1)
+    if z is None or not min(st.z0[4], st.z1[4]) <= z[4] <= max(st.z0[4], st.z1[4]):
+        return None
+    return solve_sequence(sys_.params(z[4]), sys_.walls, sys_.periods, z[:4],
+                          system.flights(z))
 
 
 def _flag(sys_, z, t, key):
@@ -315,27 +366,51 @@ def _add(events, typ, o, index, st):
     events.append(_event(typ, o, index))
 
 
-def _switch_flip(params, walls, periods, param, ev, lo, hi, step, max_points,
-                 max_inadmissible) -> SequenceBranch | None:
-    """The period-doubled branch just past a flip point, continued to the interval's end
-    on that side."""
+def _switch(run: _Run, ev: dict) -> SequenceBranch | None:
+    """The branch born at a flip (period-doubled) or symmetry-breaking point (asymmetric),
+    or None (another event, or nothing found on either side)."""
+    if ev["type"] == "flip":
+        return _switch_onto(run, ev, _doubled)
+    if ev["type"] == "symmetry-breaking":
+        return _switch_onto(run, ev, _asymmetric)
+    return None
+
+
+def _doubled(p: ModelParams, base: SequenceOrbit):
+    """The period-doubled orbit near ``base`` just past a flip, or None."""
+    found = find_sequence(p, base.walls * 2, base.periods * 2, simulation=False,
+                          seeds=flip_seeds(base, eps=(1e-4, 1e-3, 1e-2)))
+    return found[0] if found else None
+
+
+def _asymmetric(p: ModelParams, base: SequenceOrbit):
+    """The asymmetric orbit nearest the symmetric ``base`` just past a symmetry-breaking
+    point, from ``pitchfork_seeds``, or None."""
+    found = [solve_sequence(p, base.walls, base.periods, x0, fl)
+             for x0, fl in pitchfork_seeds(base, eps=(1e-3, 1e-2, 5e-2))]
+    asym = [o for o in found if o is not None and not o.symmetric]
+    if not asym:
+        return None
+    return min(asym, key=lambda o: float(np.linalg.norm(o.states[0] - base.states[0])))
+
+
+def _switch_onto(run: _Run, ev: dict, born) -> SequenceBranch | None:
+    """The branch ``born(p, base)`` just past the event (first side where it exists),
+    continued to the interval's end on that side."""
     o = ev["_orbit"]
     at = ev["at"]
     for d in (1.0, -1.0):
-        v = at + d * 0.05 * step
-        if not lo <= v <= hi:
+        v = at + d * 0.05 * run.step
+        if not run.lo <= v <= run.hi:
             continue
-        kw = o.params.as_dict()
-        kw[param] = v
-        p = ModelParams(**kw)
-        base = solve_sequence(p, walls, periods, o.states[0], o.flight_times)
+        p = with_values(o.params, {run.param: v})
+        base = solve_sequence(p, run.walls, run.periods, o.states[0], o.flight_times)
         if base is None:
             continue
-        doubled = find_sequence(p, walls * 2, periods * 2, simulation=False,
-                                seeds=flip_seeds(base, eps=(1e-4, 1e-3, 1e-2)))
-        if doubled:
-            stop = hi if d > 0 else lo
-            return _trace(p, walls * 2, periods * 2, param, v, stop, step, doubled[0], False,
-                          max_points, max_inadmissible,
-                          born_at={k: ev[k] for k in ("type", "at", "eta", "omega", "F")})
+        new = born(p, base)
+        if new is not None:
+            child = _Run(p, new.walls, new.periods, run.param, v, run.hi if d > 0 else run.lo,
+                         dataclasses.replace(run.settings, switch=born is _asymmetric),
+                         born_at={k: ev[k] for k in ("type", "at", "eta", "omega", "F")})
+            return _trace(child, new)
     return None

@@ -242,6 +242,11 @@ def check_boundaries(config: dict, model: dict, limits: dict) -> None:
                 raise ConfigError(f"{key}.{dim}_range", f"{[lo, hi]} must be [lo, hi], lo < hi")
         _check_param(f"{key}.F", "F", bd["F"], model)
         name_map = bd.get("stability_map")
+        family = (str(bd.get("walls", "LR")).upper(), int(bd.get("periods", 1)))
+        if name_map is not None and family != ("LR", 1):
+            raise ConfigError(f"{key}.stability_map", f"{name_map!r} seeds 1:1 curves only, "
+                              f"not those of walls {family[0]}, periods {family[1]} (drop "
+                              "the key)")
         if name_map is not None:
             if name_map not in config["stability_maps"]:
                 raise ConfigError(f"{key}.stability_map", f"{name_map!r} is not a "

@@ -259,11 +259,12 @@ def map_solve(spec: dict, *, model: dict, code: str, title: str):
 
 def boundaries(spec: dict, *, model: dict, code: str, title: str, stability_path=None):
     """Dataset of the boundary curves (fold, flip, Neimark-Sacker, symmetry-breaking,
-    grazing) of 1:1 orbits in the box ``spec['eta_range']`` x ``spec['omega_range']`` at
+    grazing) of 1:1 orbits (or of ``spec['walls']``/``spec['periods']``) in the box ``spec['eta_range']`` x ``spec['omega_range']`` at
     ``spec['F']``; the class changes of the stability map at ``stability_path`` (a
     ``stability_map`` dataset at this F), if given, seed the curves no scan line meets."""
     from ..orbits.boundaries import boundaries as curves_at
-    kw = {k: spec[k] for k in ("n_scan", "step", "max_points", "n_map") if k in spec}
+    kw = {k: spec[k] for k in ("n_scan", "step", "max_points", "n_map", "walls", "periods")
+          if k in spec}
     if stability_path is not None:
         smap = read_dataset(stability_path)
         if float(smap.attrs["F"]) != float(spec["F"]):
@@ -275,7 +276,17 @@ def boundaries(spec: dict, *, model: dict, code: str, title: str, stability_path
     attrs = provenance_attrs(title=title, config_subset={"spec": spec, "model": model},
                              settings=model, code_version=code)
     attrs.update(eta_range=list(res.eta_range), omega_range=list(res.omega_range))
-    return builders.boundaries_dataset(res.curves, res.F, attrs)
+    if (res.walls, res.periods) == ("LR", 1):       # 1:1 datasets as they always were
+        return builders.boundaries_dataset(res.curves, res.F, attrs)
+    attrs.update(walls=res.walls, periods=res.periods)
+    ds = builders.boundaries_dataset(res.curves, res.F, attrs)
+    ds["family"].attrs["long_name"] = "orbit family of the curve (WALLS/N[-sym|-asym])"
+    ds["flight"].attrs["long_name"] = ("grazing flight k (from impact k to impact k + 1 of "
+                                       "the sequence; 0: not a grazing curve)")
+    ds["wall"].attrs["long_name"] = ("grazing wall (L or R: touched inside the flight; "
+                                     "arrival: zero relative velocity at the impact; empty: "
+                                     "not a grazing curve)")
+    return ds
 
 
 def stability_map(spec: dict, *, model: dict, code: str, title: str, n_workers: int = 1):
