@@ -3,14 +3,16 @@
 Selected by the workflow's default profile (profiles/default/config.yaml, ``logger:
 [vines]``), so ``snakemake -c2`` prints, instead of every job's input and output lists::
 
-    [ 12/83] simulate_grid grid=fig7_W1 key=ab06fb9422d530fa (2.1 s)
+    [12/83] simulate_grid grid=fig7_W1 key=ab06fb9422d530fa (2.1 s)
 
 and for a failed job the rule, its wildcards, its log file and the last lines of that log.
 Snakemake's other messages (the plan, warnings, errors, "Nothing to be done") pass
 unchanged; its scheduling chatter ("Select jobs to execute...", "Execute 2 jobs...") is
-left out. ``--quiet all`` keeps errors only. Snakemake finds the plugin by its module
-name (``snakemake_logger_plugin_<name>``) on ``sys.path``: it is installed with vines
-(``pip install -e .``) and found in ``src/`` when that is on ``PYTHONPATH``.
+left out. ``--quiet progress`` drops the job lines, ``--quiet all`` keeps errors only.
+Snakemake finds the plugin by its module name (``snakemake_logger_plugin_<name>``) on
+``sys.path`` when it parses the command line: it is installed with vines (``pip install
+-e .``; ``src/`` on ``PYTHONPATH`` works too). Without it, ``--logger vines`` is refused:
+``--workflow-profile none`` then runs with Snakemake's own output.
 """
 from __future__ import annotations
 
@@ -57,7 +59,8 @@ class LogHandler(LogHandlerBase):
         self.jobs: dict[int, tuple[str, dict, float]] = {}   # jobid -> rule, wildcards, start
         self.finished: list[int] = []                          # finished, not yet counted
         quiet = {str(q).lower() for q in (self.common_settings.quiet or ())}
-        self.errors_only = any(q.endswith("all") for q in quiet)
+        self.errors_only = "all" in quiet                       # --quiet all
+        self.no_progress = self.errors_only or "progress" in quiet
         self.stream = sys.stdout if self.common_settings.stdout else sys.stderr
 
     # the plugin interface's properties
@@ -108,7 +111,7 @@ class LogHandler(LogHandlerBase):
             self._message(record)
 
     def _progress(self, done: int, total: int) -> None:
-        if self.errors_only:
+        if self.no_progress:
             self.finished.clear()
             return
         first = done - len(self.finished) + 1
@@ -136,8 +139,7 @@ class LogHandler(LogHandlerBase):
         text = record.getMessage() if record.msg is not None else ""
         if not text:
             return
-        if record.levelno >= logging.WARNING:
-            self._print(text)
-        elif (record.levelno >= logging.INFO and not self.errors_only
-              and not text.startswith(CHATTER)):
+        chatter = self.errors_only or text.startswith(CHATTER)
+        if record.levelno >= logging.WARNING or (record.levelno >= logging.INFO
+                                                 and not chatter):
             self._print(text)

@@ -71,7 +71,7 @@ def time_histories(points: list[dict], *, model: dict, simulation: dict,
     (concatenated, ``row_size`` per point) and the scalar measures of each run
     (``shortcut_time``: after it, samples and impacts repeat one period of the settled
     orbit, see ``simulate``)."""
-    from .simulation import simulate_exact     # numba: not for the derived measures above
+    from .simulation import simulate_exact  # numba: not needed by the derived measures
     n_s = int(n_periods) * int(samples_per_period) + 1
     n_w = _window_samples(points, simulation, int(window_samples_per_period))
     P = len(points)
