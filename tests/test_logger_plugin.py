@@ -75,9 +75,12 @@ def test_messages_and_errors_pass_and_quiet_all_keeps_errors_only():
     h = _handler()
     h.handle(_record("Nothing to be done (all requested files are present and up to date)."))
     h.handle(_record("MissingInputException in rule x", level=logging.ERROR))
+    h.handle(_record("WorkflowError: bad input", level=logging.ERROR, event=LogEvent.ERROR,
+                     exception="WorkflowError"))
+    h.handle(_record("Provided cores: 2", event=LogEvent.RESOURCES_INFO))
     assert h.stream.getvalue().splitlines() == [
         "Nothing to be done (all requested files are present and up to date).",
-        "MissingInputException in rule x"]
+        "MissingInputException in rule x", "WorkflowError: bad input"]
     h = _handler(quiet={"all"})
     h.handle(_record("Building DAG of jobs..."))
     h.handle(_record("Nothing to be done."))

@@ -109,6 +109,8 @@ class LogHandler(LogHandlerBase):
                 self._print(record.getMessage())
         elif event is None:
             self._message(record)
+        elif record.levelno >= logging.WARNING:     # e.g. an exception (event ERROR)
+            self._print(record.getMessage())
 
     def _progress(self, done: int, total: int) -> None:
         if self.no_progress:
