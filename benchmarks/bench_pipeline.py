@@ -19,6 +19,7 @@ from __future__ import annotations
 import argparse
 import csv
 import os
+import re
 import resource
 import shutil
 import subprocess
@@ -63,7 +64,9 @@ def run_once(work: Path, args, label: str) -> None:
     cmd = ["snakemake", "-c", str(args.cores)]
     if args.configfile:
         cmd += ["--configfile", args.configfile]
-    env = {k: v for k, v in os.environ.items() if k != "PYTHONPATH"}
+    # the copy's own sources: the Snakefile puts them first on the jobs' path, and the
+    # logger plugin of the default profile (src/snakemake_logger_plugin_vines) is found there
+    env = {**os.environ, "PYTHONPATH": str(work / "src")}
     load0 = os.getloadavg()[0]
     cpu0, t0 = children_cpu(), time.perf_counter()
     proc = subprocess.run(cmd, cwd=work, env=env, capture_output=True, text=True)
@@ -71,7 +74,8 @@ def run_once(work: Path, args, label: str) -> None:
     log = proc.stdout + proc.stderr
     if proc.returncode != 0:
         sys.exit(f"{label} run failed (exit {proc.returncode}):\n{log[-3000:]}")
-    jobs = log.count("Finished job")
+    # one line per finished job: "[12/83] rule ..." (logger plugin vines), or Snakemake's own
+    jobs = len(re.findall(r"^\[\s*\d+/\d+\] |^Finished job", log, flags=re.M))
     print(f"{label:5s}: wall {wall:7.1f} s, CPU {cpu:7.1f} s (all processes), {jobs} jobs, "
           f"load {load0:.1f} -> {os.getloadavg()[0]:.1f}")
     for rule, (n, sec) in rule_cpu(work / "results").items():

@@ -1,6 +1,10 @@
 """The numba warm-up before a run's first job (vines.pipeline.warmup): its stamp says warm
 only for the sources, numba and CPU it was compiled for. (What the warm-up saves is a time,
 measured by benchmarks/bench_pipeline.py on a fresh clone, cold and warm; not a test.)"""
+import inspect
+import time
+from functools import partial
+
 import pytest
 
 import vines._numba_cache as numba_cache
@@ -30,3 +34,30 @@ def test_warm_run_is_a_no_op(stamp, monkeypatch):
     stamp.write_text(warmup.warm_stamp())
     monkeypatch.setattr(warmup, "warm", lambda *a, **k: pytest.fail("compiled again"))
     assert warmup.main(["--model", "{}", "--simulation", "{}"]) == 0
+
+
+def _record(path, model, simulation):
+    """A warm-up task that records when it started and ended (in ``path``)."""
+    start = time.monotonic()
+    time.sleep(0.2)
+    path.write_text(f"{start} {time.monotonic()}")
+
+
+def test_tasks_start_after_the_tasks_whose_kernels_they_reuse(tmp_path, monkeypatch):
+    """Every stage's kernels have a task, and a task that reuses another's kernels starts
+    only once that one has finished (its kernels are then in the cache, not compiled twice),
+    on one process and on several."""
+    stages_called = " ".join(inspect.getsource(fn) for fn, _ in warmup.TASKS.values())
+    for stage in ("compute_chunk", "compute_sweep", "timehistory", "basin_slice",
+                  "simulate_exact", "robust_map", "lyapunov", "map_solve", "boundaries",
+                  "stability_map", "orbit_atlas"):
+        assert stage in stages_called, stage
+    assert all(set(after) <= set(warmup.TASKS) for _, after in warmup.TASKS.values())
+    for workers in (1, 2):
+        files = {k: tmp_path / f"{k}-{workers}" for k in ("a", "b", "c")}
+        monkeypatch.setattr(warmup, "TASKS", {"a": (partial(_record, files["a"]), ()),
+                                              "b": (partial(_record, files["b"]), ("a",)),
+                                              "c": (partial(_record, files["c"]), ())})
+        warmup._run_tasks({}, {}, workers)
+        times = {k: [float(x) for x in f.read_text().split()] for k, f in files.items()}
+        assert times["b"][0] >= times["a"][1]

@@ -10,7 +10,6 @@ import numpy as np
 
 from .linear import stuck_amplitude
 from .params import L_HALF_M, T_END_DEFAULT, T_TRANSIENT_DEFAULT, ModelParams, SolverSettings
-from .simulation import simulate_exact
 
 
 def derived_measures(fields: dict, eta, omega, F, d: float) -> dict:
@@ -72,6 +71,7 @@ def time_histories(points: list[dict], *, model: dict, simulation: dict,
     (concatenated, ``row_size`` per point) and the scalar measures of each run
     (``shortcut_time``: after it, samples and impacts repeat one period of the settled
     orbit, see ``simulate``)."""
+    from .simulation import simulate_exact  # numba: not needed by the derived measures
     n_s = int(n_periods) * int(samples_per_period) + 1
     n_w = _window_samples(points, simulation, int(window_samples_per_period))
     P = len(points)

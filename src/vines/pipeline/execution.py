@@ -11,6 +11,7 @@ import threading
 import time
 
 import dask
+import dask.threaded
 from dask.callbacks import Callback
 
 
@@ -24,10 +25,13 @@ def compute(tasks: list, n_workers: int, scheduler: str | None, progress: bool):
             if progress:
                 dprogress(futs)
             return client.gather(futs)
+    # the threaded scheduler passed as a function: by name ("threads"), dask first imports
+    # dask.distributed to look for a client (~0.5 s in every job)
     if progress:
         with LineProgress(tasks):
-            return list(dask.compute(*tasks, scheduler="threads", num_workers=n_workers))
-    return list(dask.compute(*tasks, scheduler="threads", num_workers=n_workers))
+            return list(dask.compute(*tasks, scheduler=dask.threaded.get,
+                                     num_workers=n_workers))
+    return list(dask.compute(*tasks, scheduler=dask.threaded.get, num_workers=n_workers))
 
 
 class LineProgress(Callback):

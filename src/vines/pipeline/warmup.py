@@ -5,8 +5,10 @@ numba compiles a kernel on its first call and keeps the machine code in the pack
 exists compiles the kernels it calls (15-30 s a job, the same kernels in parallel jobs).
 The workflow's ``onstart`` hook (workflow/rules/warmup.smk) runs ``python -m
 vines.pipeline.warmup`` once before the first job: it calls every stage's numerics on one
-tiny case, in two processes (core and attractor kernels; orbit kernels), with the run's
-model and simulation settings (the same argument types as the jobs), and writes a stamp.
+tiny case (``TASKS``: core kernel and shortcut, attractor census, Lyapunov tangents, 1:1
+branches, stability map columns, period-n atlas), spread over the run's cores (a task that
+reuses another's kernels starts once those are cached), with the run's model and
+simulation settings (the same argument types as the jobs), and writes a stamp.
 The stamp holds the hash of the compiled subpackages' sources (``vines._numba_cache``) and
 the numba version and CPU: while they match, the warm-up costs one file read; an edit of
 core/ or orbits/ deletes the cache (``_numba_cache.refresh``) and the next run compiles again.
@@ -20,7 +22,7 @@ import os
 import sys
 import tempfile
 import time
-from concurrent.futures import ProcessPoolExecutor
+from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from pathlib import Path
 
 PKG_DIR = Path(__file__).resolve().parents[1]
@@ -42,6 +44,8 @@ TINY = {
     "robust_map": {"eta": [0.1], "omega": [0.8], "F": 0.2, "n": 2, "seed": 0,
                    "threshold": 0.7},
     "basin_slice": {"eta": 0.1, "omega": 0.8, "F": 0.2, "z_m0": [0.0, 0.5], "v_m0": [0.0]},
+    "lyapunov": {"sweep": "warm-up", "t_window": 100.0, "n_batches": 8},
+    "orbit_atlas": {"eta": [0.3077], "omega": [0.9, 1.1], "F": 0.3077, "sim_t_end": 600.0},
 }
 _LABEL = {"code": "warm-up", "title": "warm-up"}
 
@@ -66,37 +70,98 @@ def is_warm() -> bool:
         return False
 
 
-def _core_and_attractors(model: dict, simulation: dict) -> None:
+def _core(model: dict, simulation: dict) -> None:
+    """The event-driven kernel and the periodic shortcut (simulate_grid, sweeps, time
+    histories, basin slices; the single runs of convergence and work_precision)."""
+    from ..core.params import ModelParams, SolverSettings
+    from ..core.simulation import simulate_exact
     from . import stages
     stages.compute_chunk({"eta": [POINT["eta"]], "omega": [POINT["omega"]], "F": [POINT["F"]]},
                          model=model, simulation=simulation)
     stages.compute_sweep({**TINY["sweep"], "v_stick": simulation["v_stick"]}, model=model,
                          periodic_shortcut=simulation["periodic_shortcut"])
     stages.timehistory(TINY["timehistory"], model=model, simulation=simulation, **_LABEL)
-    stages.robust_map(TINY["robust_map"], model=model, simulation=simulation, **_LABEL)
     stages.basin_slice(TINY["basin_slice"], model=model, simulation=simulation, **_LABEL)
+    # a single run that takes the periodic shortcut (Fig 4a settles at t = 1663): the
+    # kernels the shortcut calls from Python (convergence, work_precision, design)
+    st = SolverSettings(t_end=7000.0, t_transient=4000.0,
+                        **{k: simulation[k] for k in ("v_stick", "max_impacts", "root_tol")})
+    simulate_exact(ModelParams(eta=0.05, omega=1.0, F=0.05, **model), st)
 
 
-def _orbits(model: dict, simulation: dict) -> None:
+def _robust(model: dict, simulation: dict) -> None:
+    """The attractor census (robust_map, design)."""
+    from . import stages
+    stages.robust_map(TINY["robust_map"], model=model, simulation=simulation, **_LABEL)
+
+
+def _lyapunov(model: dict, simulation: dict) -> None:
+    """The variational (tangent) kernels (lyapunov)."""
+    from . import stages
+    sweep = {**TINY["sweep"], "v_stick": simulation["v_stick"]}
+    stages.lyapunov(TINY["lyapunov"], sweep, model=model,
+                    periodic_shortcut=simulation["periodic_shortcut"], **_LABEL)
+
+
+def _branches(model: dict, simulation: dict) -> None:
+    """The 1:1 maps, seeds and the shooting kernels of continuation (map_solve,
+    boundaries): the orbit kernels the other orbit tasks reuse."""
     from . import stages
     stages.map_solve(TINY["branch"], model=model, **_LABEL)
-    stages.stability_map(TINY["stability_map"], model=model, **_LABEL)
     stages.boundaries(TINY["boundaries"], model=model, **_LABEL)
 
 
-GROUPS = (_core_and_attractors, _orbits)
+def _stability_map(model: dict, simulation: dict) -> None:
+    """The column kernel of the stability maps."""
+    from . import stages
+    stages.stability_map(TINY["stability_map"], model=model, **_LABEL)
+
+
+def _atlas(model: dict, simulation: dict) -> None:
+    """The period-n sequence kernels (orbit_atlas)."""
+    from . import stages
+    stages.orbit_atlas(TINY["orbit_atlas"], sim_t_end=TINY["orbit_atlas"]["sim_t_end"],
+                       model=model, **_LABEL)
+
+
+#: warm-up tasks, longest first: name -> (function, tasks whose compiled kernels it reuses:
+#: it starts once they are in the cache, so no kernel is compiled twice)
+TASKS = {
+    "branches": (_branches, ()),
+    "core": (_core, ()),
+    "stability_map": (_stability_map, ("branches",)),
+    "robust": (_robust, ("core",)),
+    "lyapunov": (_lyapunov, ("core",)),
+    "atlas": (_atlas, ("branches",)),
+}
+
+
+def _run_tasks(model: dict, simulation: dict, n_workers: int) -> None:
+    """Run ``TASKS`` on ``n_workers`` processes, each as soon as the tasks it reuses are done
+    (ready tasks in ``TASKS`` order)."""
+    if n_workers <= 1:
+        for fn, _ in TASKS.values():
+            fn(model, simulation)
+        return
+    done: set[str] = set()
+    todo = dict(TASKS)
+    running = {}
+    with ProcessPoolExecutor(n_workers) as pool:
+        while todo or running:
+            for name in [n for n, (_, after) in todo.items() if done.issuperset(after)]:
+                if len(running) >= n_workers:
+                    break
+                running[pool.submit(todo.pop(name)[0], model, simulation)] = name
+            finished, _ = wait(running, return_when=FIRST_COMPLETED)
+            for fut in finished:
+                fut.result()
+                done.add(running.pop(fut))
 
 
 def warm(model: dict, simulation: dict, n_workers: int = 2) -> float:
-    """Compile the kernels (``GROUPS`` in ``n_workers`` processes), write the stamp; seconds."""
+    """Compile the kernels (``TASKS`` on ``n_workers`` processes), write the stamp; seconds."""
     t0 = time.perf_counter()
-    if n_workers > 1:
-        with ProcessPoolExecutor(min(n_workers, len(GROUPS))) as pool:
-            for f in [pool.submit(g, model, simulation) for g in GROUPS]:
-                f.result()
-    else:
-        for g in GROUPS:
-            g(model, simulation)
+    _run_tasks(model, simulation, max(1, n_workers))
     STAMP.parent.mkdir(exist_ok=True)
     fd, tmp = tempfile.mkstemp(dir=STAMP.parent, prefix=f".{STAMP.name}.")
     with os.fdopen(fd, "w") as fh:

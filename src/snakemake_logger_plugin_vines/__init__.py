@@ -1,0 +1,147 @@
+"""Snakemake logger plugin ``vines``: one line per finished job, failures with their log.
+
+Selected by the workflow's default profile (profiles/default/config.yaml, ``logger:
+[vines]``), so ``snakemake -c2`` prints, instead of every job's input and output lists::
+
+    [12/83] simulate_grid grid=fig7_W1 key=ab06fb9422d530fa (2.1 s)
+
+and for a failed job the rule, its wildcards, its log file and the last lines of that log.
+Snakemake's other messages (the plan, warnings, errors, "Nothing to be done") pass
+unchanged; its scheduling chatter ("Select jobs to execute...", "Execute 2 jobs...") is
+left out. ``--quiet progress`` drops the job lines, ``--quiet all`` keeps errors only.
+Snakemake finds the plugin by its module name (``snakemake_logger_plugin_<name>``) on
+``sys.path`` when it parses the command line: it is installed with vines (``pip install
+-e .``; ``src/`` on ``PYTHONPATH`` works too). Without it, ``--logger vines`` is refused:
+``--workflow-profile none`` then runs with Snakemake's own output.
+"""
+from __future__ import annotations
+
+import logging
+import sys
+import time
+from pathlib import Path
+
+from snakemake_interface_logger_plugins.base import LogHandlerBase
+from snakemake_interface_logger_plugins.common import LogEvent
+
+#: messages without an event that say nothing to a user (prefixes)
+CHATTER = ("Select jobs to execute", "Execute ", "Assuming unrestricted shared filesystem",
+           "Using shell:", "Provided cores:", "Rules claiming more threads",
+           "Building DAG of jobs", "host:")
+#: lines of a failed job's log shown on the console
+LOG_TAIL = 15
+
+
+def job_line(done: int, total: int, rule: str, wildcards: dict, seconds: float | None) -> str:
+    """``[ done/total] rule key=value ... (seconds)``."""
+    wc = " ".join(f"{k}={v}" for k, v in wildcards.items())
+    took = f" ({seconds:.1f} s)" if seconds is not None else ""
+    width = len(str(total))
+    return f"[{done:>{width}}/{total}] {rule}{' ' + wc if wc else ''}{took}"
+
+
+def log_tail(paths, n: int = LOG_TAIL) -> list[str]:
+    """The last ``n`` lines of each existing log in ``paths``, indented."""
+    out = []
+    for path in paths:
+        try:
+            lines = Path(path).read_text(errors="replace").splitlines()[-n:]
+        except OSError:
+            continue
+        out += [f"    | {line}" for line in lines]
+    return out
+
+
+class LogHandler(LogHandlerBase):
+    """Console handler: one line per finished job, failures with their log."""
+
+    def __post_init__(self) -> None:
+        self.jobs: dict[int, tuple[str, dict, float]] = {}   # jobid -> rule, wildcards, start
+        self.finished: list[int] = []                          # finished, not yet counted
+        quiet = {str(q).lower() for q in (self.common_settings.quiet or ())}
+        self.errors_only = "all" in quiet                       # --quiet all
+        self.no_progress = self.errors_only or "progress" in quiet
+        self.stream = sys.stdout if self.common_settings.stdout else sys.stderr
+
+    # the plugin interface's properties
+    @property
+    def writes_to_stream(self) -> bool:
+        return True
+
+    @property
+    def writes_to_file(self) -> bool:
+        return False
+
+    @property
+    def has_filter(self) -> bool:
+        return True
+
+    @property
+    def has_formatter(self) -> bool:
+        return True
+
+    @property
+    def needs_rulegraph(self) -> bool:
+        return False
+
+    def _print(self, text: str) -> None:
+        print(text, file=self.stream, flush=True)
+
+    def emit(self, record: logging.LogRecord) -> None:
+        try:
+            self._emit(record)
+        except Exception:          # a logging failure must not stop the workflow
+            self.handleError(record)
+
+    def _emit(self, record: logging.LogRecord) -> None:
+        event = getattr(record, "event", None)
+        if event == LogEvent.JOB_INFO:
+            self.jobs[record.jobid] = (record.rule_name, dict(record.wildcards or {}),
+                                       time.monotonic())
+        elif event == LogEvent.JOB_FINISHED:
+            self.finished.append(record.job_id)
+        elif event == LogEvent.PROGRESS:
+            self._progress(record.done, record.total)
+        elif event in (LogEvent.JOB_ERROR, LogEvent.GROUP_ERROR):
+            self._error(record)
+        elif event == LogEvent.RUN_INFO:
+            if not self.errors_only and record.levelno >= logging.INFO:
+                self._print(record.getMessage())
+        elif event is None:
+            self._message(record)
+        elif record.levelno >= logging.WARNING:     # e.g. an exception (event ERROR)
+            self._print(record.getMessage())
+
+    def _progress(self, done: int, total: int) -> None:
+        if self.no_progress:
+            self.finished.clear()
+            return
+        first = done - len(self.finished) + 1
+        for k, jobid in enumerate(self.finished):
+            rule, wildcards, start = self.jobs.pop(jobid, (f"job {jobid}", {}, None))
+            seconds = time.monotonic() - start if start is not None else None
+            self._print(job_line(first + k, total, rule, wildcards, seconds))
+        self.finished.clear()
+
+    def _error(self, record: logging.LogRecord) -> None:
+        infos = getattr(record, "job_error_info", None) or [record.__dict__]
+        for info in infos:
+            rule = info.get("rule_name", "?")
+            _, wildcards, _ = self.jobs.get(info.get("jobid"), (rule, {}, None))
+            wc = " ".join(f"{k}={v}" for k, v in wildcards.items())
+            logs = list(info.get("log") or [])
+            self._print(f"FAILED {rule}{' ' + wc if wc else ''}"
+                        + (f": log {', '.join(logs)}" if logs else ""))
+            if info.get("rule_msg"):
+                self._print(f"    {info['rule_msg']}")
+            for line in log_tail(logs):
+                self._print(line)
+
+    def _message(self, record: logging.LogRecord) -> None:
+        text = record.getMessage() if record.msg is not None else ""
+        if not text:
+            return
+        chatter = self.errors_only or text.startswith(CHATTER)
+        if record.levelno >= logging.WARNING or (record.levelno >= logging.INFO
+                                                 and not chatter):
+            self._print(text)
