@@ -215,13 +215,6 @@ def impact_map(mdl, x, walls, s_guess, y, J):
 
 
 @njit(cache=True, nogil=True)
-def map_kernel(osc, eta, r, omega, phi, x, from_wall, to_wall, s_guess, y, J):
-    """``impact_map`` with the model as loose scalars (osc[I_W] must be omega): the
-    signature of earlier versions, kept for callers not yet on ``pack_model``."""
-    return impact_map(pack_model(osc, eta, r, phi), x, (from_wall, to_wall), s_guess, y, J)
-
-
-@njit(cache=True, nogil=True)
 def admissible_kernel(mdl, x, walls, s):
     """True when the flight of length s from x (walls = (from, to)) is a genuine
     impact-to-impact flight. mdl: ``pack_model``.

@@ -44,7 +44,7 @@ from ..core.exact import oscillators
 from ..core.flow import flow
 from ..core.params import ModelParams, ParameterError
 from ..core.walls import impact_velocities
-from .maps import map_kernel
+from .maps import impact_map, model_array
 from .sequence import (
     WALL_CODES,
     SequenceOrbit,
@@ -107,7 +107,7 @@ def with_values(base: ModelParams, values: dict) -> ModelParams:
 def chain(p: ModelParams, fam: SequenceFamily, x0, s_guess):
     """(xs, Js, flights) of the family's flights from x0 (maps with Jacobians; flight
     guesses s_guess, <= 0: first contact), or None when a map fails."""
-    osc = oscillators(p)[0]
+    mdl = model_array(p)
     codes = fam.codes()
     n, m = codes.size, fam.flights
     xs = np.empty((m + 1, 4))
@@ -115,8 +115,8 @@ def chain(p: ModelParams, fam: SequenceFamily, x0, s_guess):
     fl = np.empty(m)
     xs[0] = x0
     for k in range(m):
-        s = map_kernel(osc, p.eta, p.r, p.omega, p.phi, xs[k], codes[k], codes[(k + 1) % n],
-                       s_guess[k], xs[k + 1], Js[k])
+        s = impact_map(mdl, xs[k], (codes[k], codes[(k + 1) % n]), s_guess[k], xs[k + 1],
+                       Js[k])
         if not math.isfinite(s):
             return None
         fl[k] = s
