@@ -12,8 +12,6 @@ one after another, with ``row_size`` impacts per parameter value.
 from __future__ import annotations
 
 import math
-import os
-from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 import numpy as np
@@ -230,26 +228,3 @@ def _check_run_lengths(line: SweepLine) -> None:
     if not np.all(impacts <= MAX_IMPACTS_MAX):
         raise ParameterError("max_impacts_per_period", max_impacts_per_period,
                              f"allows {np.max(impacts):.3g} impacts per run > {MAX_IMPACTS_MAX}")
-
-
-def bifurcation_sweeps(param, values, outer, outer_values, *, n_threads=None, progress=None,
-                       **kw) -> list[dict]:
-    """Independent sweeps in ``param`` for each value of ``outer`` (threads over lines).
-
-    Each line is computed the same way whatever the thread count.
-    """
-    outer_values = np.asarray(outer_values, dtype=float).ravel()
-    if outer not in PARAM_NAMES or outer == param:
-        raise ParameterError("outer", outer, f"must be one of {PARAM_NAMES} other than {param}")
-    n_threads = check_int("n_threads", n_threads or os.cpu_count() or 1, lo=1)
-
-    def one(v):
-        return bifurcation_sweep(param, values, **{**kw, outer: v})
-
-    out = []
-    with ThreadPoolExecutor(max_workers=n_threads) as ex:
-        for i, res in enumerate(ex.map(one, outer_values), 1):
-            out.append(res)
-            if progress:
-                progress(i, outer_values.size)
-    return out
