@@ -63,11 +63,14 @@ def test_continue_walls():
     ("periodic", ["--walls", "LR", "--periods", "2.5"], "argument --periods: invalid periods"),
     ("continue", ["--walls", "LR", "--method", "natural"], "argument --method: "),
     ("continue", ["--walls", "X"], "argument --walls: "),
+    ("periodic", ["--walls", ""], "argument --walls: invalid walls = ''"),
+    ("boundaries", ["--walls", ""], "argument --walls: invalid walls = ''"),
 ])
 def test_bad_walls_exit_2_with_one_line(cmd_, extra, fragment):
-    point = (["--eta", "0.2", "--omega", "0.8", "--F", "0.4"] if cmd_ == "periodic" else
-             ["--param", "omega", "--start", "0.8", "--stop", "0.9", "--eta", "0.2",
-              "--F", "0.4"])
+    point = {"periodic": ["--eta", "0.2", "--omega", "0.8", "--F", "0.4"],
+             "boundaries": ["--F", "0.4"],
+             "continue": ["--param", "omega", "--start", "0.8", "--stop", "0.9", "--eta", "0.2",
+                          "--F", "0.4"]}[cmd_]
     proc = run_vines(cmd_, *point, *extra, "--json")
     assert proc.returncode == 2 and proc.stdout == "" and "Traceback" not in proc.stderr
     assert len(proc.stderr.splitlines()) == 1 and fragment in proc.stderr, proc.stderr

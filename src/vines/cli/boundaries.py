@@ -52,7 +52,7 @@ def run(args: argparse.Namespace) -> int:
 
     with quiet_stdout():
         res = boundaries(params.F, args.eta_range, args.omega_range, r=params.r, d=params.d,
-                         walls=args.walls or "LR", periods=args.periods)
+                         walls="LR" if args.walls is None else args.walls, periods=args.periods)
     return emit(args.json, res.to_dict(), lambda d: _text(d, params.F))
 
 
