@@ -16,7 +16,7 @@ PATH_LINE = re.compile(r"^\s+(output|log|benchmark): (.*)$", re.M)
 
 
 def _planned_paths(configfile: Path, workdir: Path) -> list[str]:
-    r = subprocess.run([SNAKEMAKE, "-n", "-c2", "--workflow-profile", "none",
+    r = subprocess.run([SNAKEMAKE, "-n", "-c2", "all", "--workflow-profile", "none",
                         "--snakefile", str(ROOT / "Snakefile"), "--directory", str(workdir),
                         "--configfile", str(configfile)],
                        capture_output=True, text=True, timeout=600)

@@ -253,11 +253,12 @@ def _copy_workflow(dst: Path, with_src_copy=False):
 
 
 def _smk(cwd, *args, cfg=None, check=True):
-    cmd = [SNAKEMAKE, "-c2", "--directory", str(cwd), "--snakefile", str(cwd / "Snakefile")]
-    if cfg is not None:
+    cmd = [SNAKEMAKE, "-c2", "--directory", str(cwd), "--snakefile", str(cwd / "Snakefile"),
+           *args]
+    if cfg is not None:     # last: --configfile takes every file name that follows it
         (cwd / "cfg.yaml").write_text(yaml.safe_dump(cfg))
         cmd += ["--configfile", str(cwd / "cfg.yaml")]
-    r = subprocess.run(cmd + list(args), capture_output=True, text=True, cwd=cwd, timeout=600)
+    r = subprocess.run(cmd, capture_output=True, text=True, cwd=cwd, timeout=600)
     if check and r.returncode != 0:
         raise AssertionError(f"snakemake failed ({r.returncode}):\n{r.stdout}\n{r.stderr}")
     return r
@@ -324,17 +325,17 @@ def test_reruns_only_what_changed(tmp_path):
     cfg = yaml.safe_load(yaml.safe_dump(TINY))
     cfg["grids"]["gA"]["axes"]["eta"] = [0.05, 0.1, 0.2, 0.3]
     assert _planned(_smk(tmp_path, "-n", cfg=cfg)) == {
-        "simulate_grid": 1, "extract_measures": 1, "all": 1}
+        "simulate_grid": 1, "extract_measures": 1, "paper": 1}
 
     # one config section: the simulation settings -> grid chunks, measures, time histories
     cfg = yaml.safe_load(yaml.safe_dump(TINY))
     cfg["simulation"]["v_stick"] = 2e-6
     plan = _planned(_smk(tmp_path, "-n", cfg=cfg))
-    assert plan == {"simulate_grid": 3, "extract_measures": 2, "timehistory": 1, "all": 1}
+    assert plan == {"simulate_grid": 3, "extract_measures": 2, "timehistory": 1, "paper": 1}
     # ...the sweep section -> only the sweep
     cfg = yaml.safe_load(yaml.safe_dump(TINY))
     cfg["sweeps"]["sw"]["n_record"] = 3
-    assert _planned(_smk(tmp_path, "-n", cfg=cfg)) == {"bifurcation_sweep": 1, "all": 1}
+    assert _planned(_smk(tmp_path, "-n", cfg=cfg)) == {"bifurcation_sweep": 1, "paper": 1}
     # settings that do not change any number do not rerun anything
     cfg = yaml.safe_load(yaml.safe_dump(TINY))
     cfg.update(block_size=7, threads=2)
@@ -350,7 +351,7 @@ def test_reruns_only_what_changed(tmp_path):
     # editing one script reruns only its rule
     script = tmp_path / "workflow" / "scripts" / "timehistory.py"
     script.write_text(script.read_text() + "\n# edited\n")
-    assert _planned(_smk(tmp_path, "-n", cfg=TINY)) == {"timehistory": 1, "all": 1}
+    assert _planned(_smk(tmp_path, "-n", cfg=TINY)) == {"timehistory": 1, "paper": 1}
     _smk(tmp_path, cfg=TINY)
 
     # a change of the numerics (a vines.core source) reruns every computation
@@ -359,7 +360,7 @@ def test_reruns_only_what_changed(tmp_path):
     flow.write_text(original + "\n# edited\n")
     plan = _planned(_smk(tmp_path, "-n", cfg=TINY))
     assert plan == {"simulate_grid": 3, "extract_measures": 2, "bifurcation_sweep": 1,
-                    "timehistory": 1, "all": 1}
+                    "timehistory": 1, "paper": 1}
     flow.write_text(original)
     # ...a change of a non-computing source (CLI) does not
 
@@ -377,7 +378,7 @@ def test_killed_run_keeps_finished_chunks(tmp_path):
     done = sorted((tmp_path / "results" / "tiny" / "simulate_grid" / "gA").glob("chunk_*.nc"))
     done[0].unlink()          # as if that job had been killed (atomic writes: no partial file)
     assert _planned(_smk(tmp_path, "-n", cfg=cfg)) == {
-        "simulate_grid": 1, "extract_measures": 1, "all": 1}
+        "simulate_grid": 1, "extract_measures": 1, "paper": 1}
 
 
 def test_distributed_scheduler_gives_identical_numbers():

@@ -84,9 +84,9 @@ def test_work_precision_takes_the_cores_of_a_local_run(tmp_path):
     smoke = str(tmp_path / "config" / "smoke.yaml")
     # the default profile hides the job blocks that list the threads: plain output here
     plain = ("--workflow-profile", "none")
-    r = _smk(tmp_path, "-n", *plain, "--configfile", smoke)       # _smk runs with -c2
+    r = _smk(tmp_path, "-n", "all", *plain, "--configfile", smoke)   # _smk runs with -c2
     assert _threads(r.stdout, "work_precision") == {2}
-    r = _run(tmp_path, "-n", "-c1", *plain, "--configfile", smoke)
+    r = _run(tmp_path, "-n", "-c1", "all", *plain, "--configfile", smoke)
     assert r.returncode == 0, r.stderr
     assert _threads(r.stdout, "work_precision") == {1}
 
@@ -96,7 +96,7 @@ def test_profile_dry_run_without_cores(tmp_path):
     """`--profile profiles/slurm` needs no -c; here with the local executor (no plugin)."""
     _copy_with_profiles(tmp_path)
     smoke = str(tmp_path / "config" / "smoke.yaml")
-    r = _run(tmp_path, "-n", "--profile", str(tmp_path / "profiles" / "slurm"),
+    r = _run(tmp_path, "-n", "all", "--profile", str(tmp_path / "profiles" / "slurm"),
              "--executor", "local", "--configfile", smoke, *JOB_BLOCKS)
     assert r.returncode == 0, r.stdout + r.stderr
     assert _threads(r.stdout, "work_precision") == {8}            # profile set-threads
@@ -110,11 +110,11 @@ def test_slurm_profile_dry_run(tmp_path):
     _copy_with_profiles(tmp_path)
     smoke = str(tmp_path / "config" / "smoke.yaml")
     profile = str(tmp_path / "profiles" / "slurm")
-    r = _run(tmp_path, "-n", "--profile", profile, "--configfile", smoke, *JOB_BLOCKS)
+    r = _run(tmp_path, "-n", "all", "--profile", profile, "--configfile", smoke, *JOB_BLOCKS)
     assert r.returncode == 0, r.stdout + r.stderr
     assert _threads(r.stdout, "work_precision") == {8}
     # --cores caps every job (a small node), as in tests/slurm/run_single_node.sh
-    r = _run(tmp_path, "-n", "--profile", profile, "--cores", "2",
+    r = _run(tmp_path, "-n", "all", "--profile", profile, "--cores", "2",
              "--slurm-status-command", "squeue", "--configfile", smoke, *JOB_BLOCKS)
     assert r.returncode == 0, r.stdout + r.stderr
     assert _threads(r.stdout, "work_precision") == {2}
@@ -124,11 +124,11 @@ def test_slurm_profile_dry_run(tmp_path):
 @needs_snakemake
 def test_report_of_a_finished_run(tmp_path):
     _copy_workflow(tmp_path)
-    _smk(tmp_path, cfg=REPORT_CFG)
+    _smk(tmp_path, "all", cfg=REPORT_CFG)
     assert (tmp_path / "results" / "report" / "figures" / "workprecision.png").exists()
     report = tmp_path / "report.html"
-    # exactly the README's command: no -c
-    r = _run(tmp_path, "--report", str(report), "--configfile", str(tmp_path / "cfg.yaml"))
+    # the README's command (no -c) with the target `all` (the figures beyond the paper too)
+    r = _run(tmp_path, "all", "--report", str(report), "--configfile", str(tmp_path / "cfg.yaml"))
     assert r.returncode == 0, r.stdout + r.stderr
     html = report.read_text()
     # the captions state the run's initial condition and window from its config

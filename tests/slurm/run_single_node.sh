@@ -14,9 +14,9 @@
 #      nested `srun`, which then only finds the default path;
 #   3. starts munged (unless one runs), slurmctld and slurmd, waits until the node is idle;
 #   4. pip install snakemake-executor-plugin-slurm (if missing);
-#   5. snakemake --profile profiles/slurm --configfile config/smoke.yaml --config run=smoke_slurm
+#   5. snakemake all --profile profiles/slurm --configfile config/smoke.yaml --config run=smoke_slurm
 #      (plus --cores <the node's CPUs> and --slurm-status-command squeue: no accounting here),
-#      then snakemake -c2 --configfile config/smoke.yaml --config run=smoke_local;
+#      then snakemake -c2 all --configfile config/smoke.yaml --config run=smoke_local;
 #   6. compares every dataset (*.nc) of results/smoke_slurm and results/smoke_local: the same
 #      files, variables, dimensions and values (NaN == NaN), except the wall-clock timings
 #      `seconds`, `run_time`, `impacts_per_second`, `calls` of the workprecision and
@@ -214,7 +214,7 @@ rm -rf "results/$RUN_SLURM" "results/$RUN_LOCAL"
 log "SLURM run: results/$RUN_SLURM (log: $STATE/log/snakemake_slurm.log)"
 t0=$(date +%s)
 run_logged "$STATE/log/snakemake_slurm.log" \
-    snakemake --profile profiles/slurm --cores "$CPUS" --slurm-status-command squeue \
+    snakemake all --profile profiles/slurm --cores "$CPUS" --slurm-status-command squeue \
     --slurm-init-seconds-before-status-checks 5 \
     --configfile config/smoke.yaml --config run=$RUN_SLURM \
     || die "SLURM run failed (log: $STATE/log/snakemake_slurm.log)"
@@ -225,7 +225,7 @@ log "SLURM run: $N_JOBS SLURM jobs, ${T_SLURM} s"
 log "local run: results/$RUN_LOCAL (log: $STATE/log/snakemake_local.log)"
 t0=$(date +%s)
 QUIET=1 run_logged "$STATE/log/snakemake_local.log" \
-    snakemake -c"$LOCAL_CORES" --configfile config/smoke.yaml --config run=$RUN_LOCAL \
+    snakemake -c"$LOCAL_CORES" all --configfile config/smoke.yaml --config run=$RUN_LOCAL \
     || die "local run failed (log: $STATE/log/snakemake_local.log)"
 T_LOCAL=$(( $(date +%s) - t0 ))
 N_LOCAL=$(grep -oE "[0-9]+ of [0-9]+ steps \(100%\) done" "$STATE/log/snakemake_local.log" | cut -d' ' -f1 || true)

@@ -2,6 +2,7 @@
 # the DAG is static. Helpers live in vines.pipeline (tested without snakemake).
 import glob
 import os
+import re
 import sys
 
 # The vines of this checkout (src layout) runs, whatever copy is installed: first on
@@ -149,12 +150,27 @@ STAGE_ENTRIES = {
 }
 
 
-def all_datasets():
+#: the stages behind the paper's figures (rule `paper`, the default target); the others
+#: (Lyapunov exponents, attractor censuses, solver studies, design, orbit atlas) go beyond
+#: the paper and run with rule `all`
+PAPER_STAGES = (
+    "extract_measures",
+    "bifurcation_sweep",
+    "map_solve",
+    "stability_map",
+    "boundaries",
+    "timehistory",
+)
+
+
+def all_datasets(stages=tuple(STAGE_ENTRIES)):
+    """Every configured dataset of ``stages`` (grid chunks with extract_measures)."""
     # the chunks too: a chunk removed (the remedy for a damaged one) is then recomputed
     # by the same command, and the measures after it
     chunks = [
-        dataset("simulate_grid", f"{g}/chunk_{k}") for g in GRIDS for k in CHUNKS[g]
+        dataset("simulate_grid", f"{g}/chunk_{k}")
+        for g in GRIDS
+        for k in CHUNKS[g]
+        if "extract_measures" in stages
     ]
-    return chunks + [
-        dataset(stage, n) for stage, entries in STAGE_ENTRIES.items() for n in entries
-    ]
+    return chunks + [dataset(stage, n) for stage in stages for n in STAGE_ENTRIES[stage]]

@@ -1,6 +1,6 @@
 # Figure inputs and targets: FIG_INPUTS, REQUESTED_FIGURES, figure_rule, figure_script,
-# fig_out, all_figures, all_targets. A figure takes its datasets by name from the config
-# sections: grids, sweeps, branches, stability maps, boundaries and time histories named
+# fig_out, all_figures, paper_targets, all_targets. A figure takes its datasets by name
+# from the config sections: grids, sweeps, branches, stability maps, boundaries and time histories named
 # `figN` or `figN_<anything>` (see docs/figures.md). A figure whose datasets are not all configured
 # (e.g. a test config) is not requested. Included by workflow/rules/figures.smk.
 
@@ -143,7 +143,21 @@ def all_figures():
     ]
 
 
+def is_paper_figure(fig):
+    """Figures 2-16 of the paper (figN); the others are companions beyond the paper."""
+    return re.fullmatch(r"fig[0-9]+", fig) is not None
+
+
+def paper_targets():
+    """Rule `paper`: the paper's figures and every dataset of the stages behind them."""
+    figs = [f for f in REQUESTED_FIGURES if is_paper_figure(f)]
+    return all_datasets(PAPER_STAGES) + [
+        f"{RES}/figures/{f}.{ext}" for f in figs for ext in ("pdf", "png")
+    ]
+
+
 def all_targets():
+    """Rule `all`: every configured dataset and figure."""
     return all_datasets() + all_figures()
 
 

@@ -5,8 +5,8 @@
 # script (timehistory.py, the figure given by its input and output); every other figure has
 # its own (workflow/scripts/figures/<fig>.py). Captions for `snakemake --report` are in
 # workflow/report/<fig>.rst. Inputs per figure and all_targets(): figure_targets.smk.
-# `rule all` (in the top-level Snakefile: Snakemake ignores `default_target` set in an
-# included file) requests all_targets(): every dataset and every figure.
+# `rule paper` (the default target) and `rule all` are in the top-level Snakefile (Snakemake
+# ignores `default_target` set in an included file): paper_targets(), all_targets().
 
 
 include: "figure_targets.smk"
