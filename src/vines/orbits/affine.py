@@ -217,7 +217,8 @@ def closed_form_kernel(mdl, w, S, sign, out):
     b = np.empty(4)
     s = np.empty(1)
     s[0] = S
-    affine_chain(mdl, (w, s, (sign, False)), A, b, chain_workspace(1))
+    # np.bool_: typed as in _circle2's chains (a literal compiles a second specialization)
+    affine_chain(mdl, (w, s, (sign, np.bool_(False))), A, b, chain_workspace(1))
     for i in range(4):
         if not math.isfinite(b[i]):
             return 0

@@ -56,6 +56,10 @@ SYM_TOL = 1e-6          # flight times equal to this: symmetric
 DEDUP_TOL = 1e-8
 #: the wall codes of a 1:1 orbit: flight L -> R, then R -> L
 LR = np.array([WALL_L, WALL_R], dtype=np.int64)
+# read-only like every wall-code array passed to the kernels (``sequence._codes``): inside a
+# compiled function a global array is a read-only constant, so Python calls then use the
+# same compiled specialization instead of compiling a second one
+LR.setflags(write=False)
 
 
 # --------------------------------------------------------------------------- seeds
@@ -364,8 +368,10 @@ def seed_kernel(mdl, rows, ws):
     x0 = ws[0]
     buf = np.empty((2 + N_SEEDS_MAX, 5))
     n = 0
-    ns = closed_form_kernel(mdl, LR, 0.5 * T, -1, buf)
-    na = scan_seeds(mdl, LR, T, 1, True, buf[ns:ns + N_SEEDS_MAX])
+    # np.int64 / np.bool_: typed like the Python callers' arguments (a literal constant would
+    # compile a second specialization of each kernel)
+    ns = closed_form_kernel(mdl, LR, 0.5 * T, np.int64(-1), buf)
+    na = scan_seeds(mdl, LR, T, np.int64(1), np.bool_(True), buf[ns:ns + N_SEEDS_MAX])
     for k in range(ns + na):
         x0[0], x0[1], x0[2] = buf[k, 0], buf[k, 1], buf[k, 2]
         x0[3] = np.mod((buf[k, 3] - phi) / omega, T)

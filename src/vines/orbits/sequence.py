@@ -122,7 +122,10 @@ def has_half_symmetry(walls: str) -> bool:
 
 
 def _codes(walls: str) -> np.ndarray:
-    return np.array([WALL_CODES[c] for c in walls], dtype=np.int64)
+    """Wall codes of ``walls``, read-only (the kernels' one specialization, as ``periodic.LR``)."""
+    codes = np.array([WALL_CODES[c] for c in walls], dtype=np.int64)
+    codes.setflags(write=False)
+    return codes
 
 
 # --------------------------------------------------------------------------- orbits

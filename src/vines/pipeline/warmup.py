@@ -5,9 +5,10 @@ numba compiles a kernel on its first call and keeps the machine code in the pack
 exists compiles the kernels it calls (15-30 s a job, the same kernels in parallel jobs).
 The workflow's ``onstart`` hook (workflow/rules/warmup.smk) runs ``python -m
 vines.pipeline.warmup`` once before the first job: it calls every stage's numerics on one
-tiny case (``TASKS``: core kernel and shortcut, attractor census, Lyapunov tangents, 1:1
-branches, stability map columns, period-n atlas), spread over the run's cores (a task that
-reuses another's kernels starts once those are cached), with the run's model and
+tiny case (``TASKS``: core kernel and shortcut, 1:1 seeds, branches, stability map columns
+and boundaries, attractor census, Lyapunov tangents, period-n atlas), spread over the
+run's cores (a task that reuses another's kernels starts once those are cached), with the
+run's model and
 simulation settings (the same argument types as the jobs), and writes a stamp.
 The stamp holds the hash of the compiled subpackages' sources (``vines._numba_cache``) and
 the numba version and CPU: while they match, the warm-up costs one file read; an edit of
@@ -17,6 +18,7 @@ A kernel a tiny case does not reach is compiled by the first job that calls it, 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import os
 import sys
@@ -103,11 +105,21 @@ def _lyapunov(model: dict, simulation: dict) -> None:
                     periodic_shortcut=simulation["periodic_shortcut"], **_LABEL)
 
 
+def _seeds(model: dict, simulation: dict) -> None:
+    """The 1:1 maps, seeds and orbit solver that branches and boundaries share."""
+    from ..orbits.periodic import find_1to1
+    find_1to1(**POINT, **model, simulation=False)
+
+
 def _branches(model: dict, simulation: dict) -> None:
-    """The 1:1 maps, seeds and the shooting kernels of continuation (map_solve,
-    boundaries): the orbit kernels the other orbit tasks reuse."""
+    """The 1:1 seeds and the shooting kernels of continuation (map_solve)."""
     from . import stages
     stages.map_solve(TINY["branch"], model=model, **_LABEL)
+
+
+def _boundaries(model: dict, simulation: dict) -> None:
+    """The stability-map column kernel and the curve tracing (boundaries)."""
+    from . import stages
     stages.boundaries(TINY["boundaries"], model=model, **_LABEL)
 
 
@@ -124,29 +136,42 @@ def _atlas(model: dict, simulation: dict) -> None:
                        model=model, **_LABEL)
 
 
-#: warm-up tasks, longest first: name -> (function, tasks whose compiled kernels it reuses:
-#: it starts once they are in the cache, so no kernel is compiled twice)
+#: warm-up tasks: name -> (function, tasks whose compiled kernels it reuses: it starts once
+#: they are in the cache); ready tasks start in this order. Compile CPU measured cold, one
+#: process: core ~21 s (event kernel, then the 1:1 orbit solver of the periodic shortcut),
+#: seeds ~14 s, branches ~18 s more (the continuation kernel), stability_map ~8 s more (its
+#: column kernel), lyapunov ~4 s; boundaries and the rest reuse these. On 2 workers: seeds
+#: then branches on one, core, lyapunov and stability_map on the other (~35 s).
 TASKS = {
-    "branches": (_branches, ()),
+    "seeds": (_seeds, ()),
     "core": (_core, ()),
-    "stability_map": (_stability_map, ("branches",)),
-    "robust": (_robust, ("core",)),
+    "branches": (_branches, ("seeds",)),
     "lyapunov": (_lyapunov, ("core",)),
+    "stability_map": (_stability_map, ("seeds",)),
+    "robust": (_robust, ("core",)),
+    "boundaries": (_boundaries, ("branches", "stability_map")),
     "atlas": (_atlas, ("branches",)),
 }
+
+
+def _quiet() -> None:
+    """Worker start: the stages' progress lines (meant for job logs) are not shown."""
+    sys.stdout = sys.stderr = open(os.devnull, "w")  # noqa: SIM115 (the worker's life)
 
 
 def _run_tasks(model: dict, simulation: dict, n_workers: int) -> None:
     """Run ``TASKS`` on ``n_workers`` processes, each as soon as the tasks it reuses are done
     (ready tasks in ``TASKS`` order)."""
     if n_workers <= 1:
-        for fn, _ in TASKS.values():
-            fn(model, simulation)
+        with (open(os.devnull, "w") as devnull, contextlib.redirect_stderr(devnull),
+              contextlib.redirect_stdout(devnull)):
+            for fn, _ in TASKS.values():
+                fn(model, simulation)
         return
     done: set[str] = set()
     todo = dict(TASKS)
     running = {}
-    with ProcessPoolExecutor(n_workers) as pool:
+    with ProcessPoolExecutor(n_workers, initializer=_quiet) as pool:
         while todo or running:
             for name in [n for n, (_, after) in todo.items() if done.issuperset(after)]:
                 if len(running) >= n_workers:
@@ -179,7 +204,7 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
     if is_warm():
         return 0
-    print("vines: compiling the numba kernels once for this install (about a minute on "
+    print("vines: compiling the numba kernels once for this install (about 40 s on "
           "2 cores; later runs reuse them)...", file=sys.stderr, flush=True)
     seconds = warm(json.loads(args.model), json.loads(args.simulation), max(1, args.jobs))
     print(f"vines: kernels compiled in {seconds:.0f} s", file=sys.stderr, flush=True)
