@@ -1,10 +1,11 @@
 """Wall and CPU time of the whole pipeline from scratch, in a fresh copy of the checkout.
 
-    python benchmarks/bench_pipeline.py [--configfile config/smoke.yaml] [--cores 2]
-                                        [--runs cold warm]
+    python benchmarks/bench_pipeline.py [--target all] [--configfile config/smoke.yaml]
+                                        [--cores 2] [--runs cold warm]
 
 The tracked files of this checkout (with their uncommitted edits) are copied to a temporary
-directory, and ``snakemake -c CORES`` runs there once per entry of ``--runs``:
+directory, and ``snakemake -c CORES [TARGET]`` runs there once per entry of ``--runs``
+(TARGET: the Snakefile's default ``paper`` unless given):
 
 * ``cold``: the first run of a fresh clone, numba compiling every kernel it calls;
 * ``warm``: the results deleted, the numba cache of the run before kept (what a second
@@ -61,8 +62,8 @@ def rule_cpu(results: Path) -> dict[str, tuple[int, float]]:
 
 
 def run_once(work: Path, args, label: str) -> None:
-    cmd = ["snakemake", "-c", str(args.cores)]
-    if args.configfile:
+    cmd = ["snakemake", "-c", str(args.cores), *([args.target] if args.target else [])]
+    if args.configfile:     # after the target: --configfile takes every name that follows
         cmd += ["--configfile", args.configfile]
     # the copy's own sources: the Snakefile puts them first on the jobs' path, and the
     # logger plugin of the default profile (src/snakemake_logger_plugin_vines) is found there
@@ -86,14 +87,18 @@ def main(argv=None) -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--configfile", default=None,
                     help="config for the run (default: the Snakefile's config/config.yaml)")
+    ap.add_argument("--target", default=None,
+                    help="target rule, e.g. all (default: the Snakefile's default, paper)")
     ap.add_argument("--cores", type=int, default=2)
     ap.add_argument("--runs", nargs="+", choices=("cold", "warm"), default=["cold", "warm"])
     args = ap.parse_args(argv)
     with tempfile.TemporaryDirectory(prefix="vines-bench-") as tmp:
         work = Path(tmp)
         copy_checkout(work)
-        print(f"snakemake -c {args.cores} {'--configfile ' + args.configfile if args.configfile else ''}"
-              f" in a fresh copy; {os.cpu_count()} CPUs on this machine")
+        target = f" {args.target}" if args.target else ""
+        config = f" --configfile {args.configfile}" if args.configfile else ""
+        print(f"snakemake -c {args.cores}{target}{config} in a fresh copy; "
+              f"{os.cpu_count()} CPUs on this machine")
         if args.runs[0] == "warm":
             run_once(work, args, "setup")        # fills the numba cache; not a measurement
         for label in args.runs:
