@@ -302,6 +302,17 @@ def test_dry_run_plans_the_full_study_and_the_smoke_run(tmp_path):
                for g in cfg["grids"].values() for c in grid_chunks(grid_axes(g), cfg["chunk_size"]))
     smoke = _planned(_smk(tmp_path, "-n", "--configfile", str(tmp_path / "config" / "smoke.yaml")))
     assert set(smoke) == set(full)          # same DAG, tiny grids
+    # the default target `paper`: Figs 2-16 and the stages behind them, nothing beyond
+    assert {f"fig{n}" for n in range(2, 17)} <= set(full)
+    beyond = {"lyapunov", "robust_map", "basin_slice", "orbit_atlas", "design",
+              "work_precision", "convergence"}
+    assert not beyond & set(full) and "all" not in full
+    # `all`: every stage and figure besides
+    everything = _planned(_smk(tmp_path, "-n", "all"))
+    assert beyond <= set(everything)
+    assert {"fig3_lyapunov", "fig14_regimes", "fig_robust_tet", "fig_atlas", "fig_design",
+            "fig_workprecision", "fig_convergence", "fig_basin_slices"} <= set(everything)
+    assert all(everything[rule] == n for rule, n in full.items() if rule != "paper")
 
 
 @needs_snakemake

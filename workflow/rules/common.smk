@@ -173,4 +173,6 @@ def all_datasets(stages=tuple(STAGE_ENTRIES)):
         for k in CHUNKS[g]
         if "extract_measures" in stages
     ]
-    return chunks + [dataset(stage, n) for stage in stages for n in STAGE_ENTRIES[stage]]
+    return chunks + [
+        dataset(stage, n) for stage in stages for n in STAGE_ENTRIES[stage]
+    ]
