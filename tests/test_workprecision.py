@@ -123,6 +123,29 @@ def test_timed_repeats_fast_calls():
     assert sec > 0 and out == len(calls) and len(calls) > 3
 
 
+def test_every_timed_solver_runs_once_untimed_first(monkeypatch):
+    """Kernel loading and imports happen before the timings: the first timed call of each
+    solver (exact without the shortcut, every RK method) repeats a call already made."""
+    import vines.studies.workprecision as wp
+    calls, timed_calls = [], []
+    real_run, real_timed = wp._run, wp.timed
+
+    def run(p, st, **kw):
+        calls.append((kw.get("solver", "exact"), kw.get("method")))
+        return real_run(p, st, **kw)
+
+    def timed_(fn, **kw):
+        timed_calls.append(len(calls))
+        return real_timed(fn, **kw)
+
+    monkeypatch.setattr(wp, "_run", run)
+    monkeypatch.setattr(wp, "timed", timed_)
+    work_precision(*PERIODIC, t_end=20.0, t_transient=10.0, root_tols=(1e-9,),
+                   rk_methods=("RK45", "LSODA"), rtols=(1e-4,), min_time=0.001, dps=20)
+    before = set(calls[:timed_calls[0]])
+    assert before == {("exact", None), ("rk", "RK45"), ("rk", "LSODA")}
+
+
 def test_work_precision_dataset():
     res = work_precision(*PERIODIC, t_end=100.0, t_transient=40.0, root_tols=(1e-13,),
                          v_sticks=(1e-4,), rk_methods=("DOP853",), rtols=(1e-5, 1e-10),
