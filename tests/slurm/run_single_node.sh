@@ -228,7 +228,10 @@ QUIET=1 run_logged "$STATE/log/snakemake_local.log" \
     snakemake -c"$LOCAL_CORES" all --configfile config/smoke.yaml --config run=$RUN_LOCAL \
     || die "local run failed (log: $STATE/log/snakemake_local.log)"
 T_LOCAL=$(( $(date +%s) - t0 ))
-N_LOCAL=$(grep -oE "[0-9]+ of [0-9]+ steps \(100%\) done" "$STATE/log/snakemake_local.log" | cut -d' ' -f1 || true)
+# the last progress line: "[84/84] all (0.0 s)" of the logger plugin vines (the default
+# profile), or Snakemake's own "84 of 84 steps (100%) done" (--workflow-profile none)
+N_LOCAL=$(grep -oE '^\[ *[0-9]+/[0-9]+\]|[0-9]+ of [0-9]+ steps \(100%\) done' \
+    "$STATE/log/snakemake_local.log" | tail -1 | grep -oE '[0-9]+' | head -1 || true)
 log "local run: ${N_LOCAL:-?} steps, ${T_LOCAL} s"
 
 # ------------------------------------------------------------------ 6. compare
