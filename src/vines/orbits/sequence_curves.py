@@ -169,6 +169,14 @@ class _Layout:
         scale = FD_PARAM if i >= self.n_front else FD_STATE
         return scale * (1.0 + abs(z[i]))
 
+    def pair(self, z, i) -> tuple[np.ndarray, np.ndarray, float]:
+        """(z + h e_i, z - h e_i, h): the central-difference pair of unknown i."""
+        h = self.step(z, i)
+        zp, zm = z.copy(), z.copy()
+        zp[i] += h
+        zm[i] -= h
+        return zp, zm, h
+
 
 class MapSystem:
     """G(z) = (R, condition) of a fold, flip, symmetry-breaking or Neimark-Sacker point:
@@ -205,10 +213,7 @@ class MapSystem:
         Gz = np.empty((5, nz))
         Gz[:4, :4] = A - np.eye(4)
         for i in range(nz):
-            h = self.lay.step(z, i)
-            zp, zm = z.copy(), z.copy()
-            zp[i] += h
-            zm[i] -= h
+            zp, zm, h = self.lay.pair(z, i)
             vp, vm = self._value(zp), self._value(zm)
             if vp is None or vm is None:
                 return bad
@@ -281,10 +286,7 @@ class GrazingSystem:
             return np.full(ne, np.nan), np.full((ne, z.size), np.nan)
         Gz = np.empty((ne, z.size))
         for i in range(z.size):
-            h = self.lay.step(z, i)
-            zp, zm = z.copy(), z.copy()
-            zp[i] += h
-            zm[i] -= h
+            zp, zm, h = self.lay.pair(z, i)
             Gp, Gm = self.residual(zp), self.residual(zm)
             if Gp is None or Gm is None:
                 return np.full(ne, np.nan), np.full((ne, z.size), np.nan)
