@@ -17,7 +17,7 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 import xarray as xr
-from test_pipeline import ROOT, _copy_workflow, _planned, _smk, needs_snakemake
+from test_pipeline import BEYOND_PAPER, ROOT, _copy_workflow, _planned, _smk, needs_snakemake
 
 import vines.plotting as P
 from vines.data.schema import COORD_ATTRS, STABILITY_CLASS_FLAGS
@@ -281,11 +281,6 @@ def test_every_figure_has_a_caption_stating_start_and_window():
         text = (report / f"{name}.rst").read_text()
         assert "from rest" in text or "no initial condition" in text, name
         assert any(w in text for w in ("window", "periods recorded", "forcing periods")), name
-
-
-#: the stages of `snakemake -c2 all` beyond the default target `paper`
-BEYOND_PAPER = ("lyapunov", "robust_map", "basin_slice", "orbit_atlas", "design",
-                "work_precision", "convergence")
 
 
 @pytest.mark.skipif(not all((SMOKE / s).is_dir() for s in ("extract_measures", *BEYOND_PAPER)),

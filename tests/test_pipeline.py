@@ -39,6 +39,9 @@ from vines.pipeline.config import load_schema, validate_config
 from vines.pipeline.stages import compute_chunk, compute_sweep
 
 ROOT = Path(__file__).resolve().parents[1]
+#: the stages of `snakemake -c2 all` beyond the default target `paper`
+BEYOND_PAPER = ("lyapunov", "robust_map", "basin_slice", "orbit_atlas", "design",
+                "work_precision", "convergence")
 SCHEMA = ROOT / "src" / "vines" / "pipeline" / "config.schema.yaml"
 SNAKEMAKE = shutil.which("snakemake")
 needs_snakemake = pytest.mark.skipif(SNAKEMAKE is None, reason="snakemake not installed")
@@ -304,8 +307,7 @@ def test_dry_run_plans_the_full_study_and_the_smoke_run(tmp_path):
     assert set(smoke) == set(full)          # same DAG, tiny grids
     # the default target `paper`: Figs 2-16 and the stages behind them, nothing beyond
     assert {f"fig{n}" for n in range(2, 17)} <= set(full)
-    beyond = {"lyapunov", "robust_map", "basin_slice", "orbit_atlas", "design",
-              "work_precision", "convergence"}
+    beyond = set(BEYOND_PAPER)
     assert not beyond & set(full) and "all" not in full
     # `all`: every stage and figure besides
     everything = _planned(_smk(tmp_path, "-n", "all"))

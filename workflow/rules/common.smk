@@ -167,12 +167,11 @@ def all_datasets(stages=tuple(STAGE_ENTRIES)):
     """Every configured dataset of ``stages`` (grid chunks with extract_measures)."""
     # the chunks too: a chunk removed (the remedy for a damaged one) is then recomputed
     # by the same command, and the measures after it
-    chunks = [
-        dataset("simulate_grid", f"{g}/chunk_{k}")
-        for g in GRIDS
-        for k in CHUNKS[g]
-        if "extract_measures" in stages
-    ]
+    chunks = []
+    if "extract_measures" in stages:
+        chunks = [
+            dataset("simulate_grid", f"{g}/chunk_{k}") for g in GRIDS for k in CHUNKS[g]
+        ]
     return chunks + [
         dataset(stage, n) for stage in stages for n in STAGE_ENTRIES[stage]
     ]

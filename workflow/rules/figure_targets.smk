@@ -137,10 +137,10 @@ def fig_out(name):
     }
 
 
-def all_figures():
-    return [
-        f"{RES}/figures/{f}.{ext}" for f in REQUESTED_FIGURES for ext in ("pdf", "png")
-    ]
+def all_figures(figs=None):
+    """PDF and PNG of ``figs`` (default: every requested figure)."""
+    figs = REQUESTED_FIGURES if figs is None else figs
+    return [f"{RES}/figures/{f}.{ext}" for f in figs for ext in ("pdf", "png")]
 
 
 def is_paper_figure(fig):
@@ -150,10 +150,9 @@ def is_paper_figure(fig):
 
 def paper_targets():
     """Rule `paper`: the paper's figures and every dataset of the stages behind them."""
-    figs = [f for f in REQUESTED_FIGURES if is_paper_figure(f)]
-    return all_datasets(PAPER_STAGES) + [
-        f"{RES}/figures/{f}.{ext}" for f in figs for ext in ("pdf", "png")
-    ]
+    return all_datasets(PAPER_STAGES) + all_figures(
+        [f for f in REQUESTED_FIGURES if is_paper_figure(f)]
+    )
 
 
 def all_targets():
