@@ -61,3 +61,18 @@ def test_tasks_start_after_the_tasks_whose_kernels_they_reuse(tmp_path, monkeypa
         warmup._run_tasks({}, {}, workers)
         times = {k: [float(x) for x in f.read_text().split()] for k, f in files.items()}
         assert times["b"][0] >= times["a"][1]
+
+
+def test_shooting_task_compiles_what_continuation_calls():
+    """The shooting task compiles ``codim1`` for the argument types continuation passes, so
+    map_solve and boundaries after it compile no other specialization of it."""
+    from vines.core.params import D_DEFAULT
+    from vines.orbits import shooting_kernels
+    model = {"r": 0.65, "d": D_DEFAULT}
+    simulation = {"t_end": 1000.0, "t_transient": 600.0, "v_stick": 1e-6,
+                  "max_impacts": 2_000_000, "root_tol": 1e-13, "periodic_shortcut": True}
+    warmup._shooting(model, simulation)
+    compiled = list(shooting_kernels.codim1.signatures)
+    assert len(compiled) == 1
+    warmup._branches(model, simulation)
+    assert list(shooting_kernels.codim1.signatures) == compiled

@@ -5,9 +5,9 @@ numba compiles a kernel on its first call and keeps the machine code in the pack
 exists compiles the kernels it calls (15-30 s a job, the same kernels in parallel jobs).
 The workflow's ``onstart`` hook (workflow/rules/warmup.smk) runs ``python -m
 vines.pipeline.warmup`` once before the first job: it calls every stage's numerics on one
-tiny case (``TASKS``: core kernel and shortcut, 1:1 seeds, branches, stability map columns
-and boundaries, attractor census, Lyapunov tangents, period-n atlas), spread over the
-run's cores (a task that reuses another's kernels starts once those are cached), with the
+tiny case (``TASKS``: core kernel and shortcut, 1:1 seeds, the shooting systems' jets,
+branches, stability map columns and boundaries, attractor census, Lyapunov tangents,
+period-n atlas), spread over the run's cores (a task that reuses another's kernels starts once those are cached), with the
 run's model and simulation settings (the same argument types as the jobs), and writes a
 stamp.
 The stamp holds the hash of the compiled subpackages' sources (``vines._numba_cache``) and
@@ -111,8 +111,16 @@ def _seeds(model: dict, simulation: dict) -> None:
     find_1to1(**POINT, **model, simulation=False)
 
 
+def _shooting(model: dict, simulation: dict) -> None:
+    """The jet kernel of the 1:1 shooting systems (``shooting_kernels.codim1``: continuation
+    and boundaries), on its own: it shares no kernel with the others."""
+    from ..orbits import shooting
+    shooting.residual_jacobian(shooting.Model(model["r"], model["d"]), "symmetric",
+                               [0.5, 0.1, 0.0, 0.0], POINT, free=("eta",))
+
+
 def _branches(model: dict, simulation: dict) -> None:
-    """The 1:1 seeds and the shooting kernels of continuation (map_solve)."""
+    """The 1:1 continuation (map_solve) from its seeds."""
     from . import stages
     stages.map_solve(TINY["branch"], model=model, **_LABEL)
 
@@ -138,16 +146,17 @@ def _atlas(model: dict, simulation: dict) -> None:
 
 #: warm-up tasks: name -> (function, tasks whose compiled kernels it reuses: it starts once
 #: they are in the cache); ready tasks start in this order. Compile CPU measured cold, one
-#: process: core ~21 s (event kernel, then the 1:1 orbit solver of the periodic shortcut),
-#: seeds ~14 s, branches ~18 s more (the continuation kernel), stability_map ~8 s more (its
-#: column kernel), lyapunov ~4 s; boundaries and the rest reuse these. On 2 workers: seeds
-#: then branches on one, core, lyapunov and stability_map on the other (~35 s).
+#: process, in this order: seeds ~16 s (1:1 maps, seeds, orbit solver), shooting ~18 s,
+#: core ~12 s more (event kernel; the periodic shortcut reuses the orbit solver), stability
+#: map ~7 s more (its column kernel), lyapunov ~4 s; the rest reuse these. On 2 workers:
+#: seeds then core on one, shooting then the stability map on the other (~33 s).
 TASKS = {
     "seeds": (_seeds, ()),
-    "core": (_core, ()),
-    "branches": (_branches, ("seeds",)),
-    "lyapunov": (_lyapunov, ("core",)),
+    "shooting": (_shooting, ()),
+    "core": (_core, ("seeds",)),
     "stability_map": (_stability_map, ("seeds",)),
+    "lyapunov": (_lyapunov, ("core",)),
+    "branches": (_branches, ("seeds", "shooting", "core")),
     "robust": (_robust, ("core",)),
     "boundaries": (_boundaries, ("branches", "stability_map")),
     "atlas": (_atlas, ("branches",)),
