@@ -107,6 +107,10 @@ def test_axis_values():
     assert axis_values({"start": 0.0, "stop": 1.0, "num": 3, "include": [0.5]}).size == 3
     a = axis_values({"start": 0.0, "stop": 1.0, "num": 5, "include": [0.3077]})
     assert a.tolist() == [0.0, 0.25, 0.3077, 0.5, 0.75, 1.0]
+    # linspace(0.01, 1, 100)[9] is 0.09999999999999999: the included 0.1 replaces it (one
+    # row at eta = 0.1, not two rows 1.4e-17 apart)
+    a = axis_values({"start": 0.01, "stop": 1.0, "num": 100, "include": [0.1, 0.3077, 0.5]})
+    assert a.size == 101 and a[9] == 0.1 and np.all(np.diff(a) > 1e-3)
 
 
 def test_chunks_cover_the_grid_and_are_keyed_by_values():

@@ -32,14 +32,22 @@ def axis_values(spec, key: str = "axis") -> np.ndarray:
         else:
             vals = np.linspace(float(spec["start"]), float(spec["stop"]), int(spec["num"]))
         if spec.get("include"):
-            # an included value already on a linspace is harmless (it is kept once)
-            vals = np.concatenate([vals, _distinct(spec["include"], f"{key}.include")])
+            vals = _include(vals, _distinct(spec["include"], f"{key}.include"))
     else:
         raise ConfigError(key, f"cannot read an axis from {spec!r}")
     vals = np.unique(vals)
     if vals.size == 0 or not np.all(np.isfinite(vals)):
         raise ConfigError(key, "axis must hold at least one finite value")
     return vals
+
+
+def _include(vals: np.ndarray, extra: np.ndarray) -> np.ndarray:
+    """``vals`` with the exact values ``extra`` added; a value of ``vals`` that an extra one
+    equals to round-off (linspace(0.01, 1, 100) holds 0.09999999999999999, not 0.1) is
+    replaced by it, not kept beside it as a second, near-duplicate grid row."""
+    scale = float(np.max(np.abs(np.concatenate([vals, extra])), initial=1.0))
+    near = np.abs(vals[:, None] - extra[None, :]) <= 1e-12 * scale
+    return np.concatenate([vals[~near.any(axis=1)], extra])
 
 
 def _distinct(values, key: str) -> np.ndarray:
