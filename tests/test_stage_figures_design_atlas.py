@@ -89,6 +89,35 @@ def test_atlas_figure_draws_atlas_beside_the_simulation(tmp_path):
     assert "stable and admissible in the atlas at 1;" in log
 
 
+def _curves(path, F, family, types):
+    """A boundaries dataset at F: one straight curve of each type in ``types``."""
+    n = len(types)
+    eta = np.concatenate([np.linspace(0.1, 0.2, 3)] * n)
+    omega = np.concatenate([np.linspace(0.8, 0.8 + 0.05 * k, 3) for k in range(n)])
+    xr.Dataset({"curve_type": ("curve", list(types)), "family": ("curve", [family] * n),
+                "row_size": ("curve", np.full(n, 3, np.int32))},
+               coords={"eta": ("point", eta), "omega": ("point", omega)},
+               attrs={"F": F}).to_netcdf(path)
+    return str(path)
+
+
+def test_atlas_figure_draws_family_boundaries_at_their_F(tmp_path):
+    """Boundary curves of a family beyond 1:1 go on the atlas panel of their F only."""
+    st = np.zeros((4, 2, 3), int)
+    st[2] = 1
+    path = tmp_path / "atlas_F0.2.nc"
+    _atlas(st).to_netcdf(path)
+    curves = [_curves(tmp_path / "llrr_F0.2.nc", 0.2, "LLRR/1-sym", ("fold", "grazing")),
+              _curves(tmp_path / "lrlr_F0.4.nc", 0.4, "LRLR/2", ("flip",))]
+    png = _run("atlas", tmp_path, "atlas", atlases=[str(path)], measures=[],
+               boundaries=curves)
+    assert png.read_bytes()[:4] == b"\x89PNG"
+    log = (tmp_path / "logs" / "atlas.log").read_text()
+    assert "F = 0.2: boundary curves drawn on the atlas (type, family): fold LLRR/1-sym, " \
+           "grazing LLRR/1-sym" in log
+    assert "LRLR/2" not in log
+
+
 def test_design_figure_from_a_tiny_design(tmp_path):
     from vines.data.netcdf import write_dataset
     spec = {"omega_band": [0.9, 1.1], "n_omega": 3, "amplitudes_m": [0.003, 0.006],

@@ -53,6 +53,16 @@ def _atlases(p):
     return _named("orbit_atlas", p)
 
 
+def _family_boundaries():
+    """Boundary curves of the families beyond 1:1 (boundaries entries with other walls or
+    periods than LR/1), drawn on the atlas."""
+    return [
+        dataset("boundaries", n)
+        for n, b in sorted(BOUNDARIES.items())
+        if (str(b.get("walls", "LR")).upper(), int(b.get("periods", 1))) != ("LR", 1)
+    ]
+
+
 # figure -> named inputs (lists of dataset files); every list must be non-empty
 FIG_INPUTS = {
     "fig2": {"measures": _measures("fig2")},
@@ -101,6 +111,8 @@ FIG_INPUTS = {
         for s in ("window", "vstick", "grid")
     },
 }
+# figure -> inputs drawn when configured (may be empty; the figure is requested without them)
+FIG_OPTIONAL_INPUTS = {"atlas": {"boundaries": _family_boundaries()}}
 REQUESTED_FIGURES = [f for f, ins in FIG_INPUTS.items() if all(ins.values())]
 _missing = [f for f in FIG_INPUTS if f not in REQUESTED_FIGURES]
 if _missing and REQUESTED_FIGURES:
@@ -170,6 +182,7 @@ def figure_rule_for(fig):
             figure_rule(fig)
         input:
             **FIG_INPUTS[fig],
+            **FIG_OPTIONAL_INPUTS.get(fig, {}),
         output:
             **fig_out(fig),
         log:

@@ -26,6 +26,9 @@ CURVE_COLOURS = {"fold": palette.OKABE_ITO["blue"], "flip": palette.OKABE_ITO["r
                  "symmetry-breaking": palette.OKABE_ITO["vermillion"],
                  "grazing": "#A6761D"}
 FAMILY_STYLES = {"symmetric": "-", "asymmetric": (0, (4, 1.6))}
+#: line style of the families beyond 1:1 (``LLRR/1-sym``...; on the orbit atlas, no 1:1
+#: curves beside them): solid, the panel names the family
+OTHER_FAMILY_STYLE = "-"
 #: what a grazing curve is, for captions and legends
 GRAZING_NOTE = ("the orbit touches a wall with zero relative velocity;\nbeyond it the ball "
                 "would cross the wall:\nno admissible 1:1 orbit there")
@@ -202,23 +205,24 @@ def draw_curves(ax, ds: xr.Dataset) -> set:
     kinds = list(zip(ds["curve_type"].values.tolist(), ds["family"].values.tolist(),
                      strict=True))
     for (typ, fam), e, w in zip(kinds, etas, omegas, strict=False):
-        ax.plot(e, w, color=CURVE_COLOURS[typ], ls=FAMILY_STYLES.get(fam, ":"), lw=1.2,
-                path_effects=HALO)
+        ax.plot(e, w, color=CURVE_COLOURS[typ], ls=FAMILY_STYLES.get(fam, OTHER_FAMILY_STYLE),
+                lw=1.2, path_effects=HALO)
     ax.set_xlim(xlim)
     ax.set_ylim(ylim)
     return set(kinds)
 
 
 def curve_handles(drawn, note=True) -> list:
-    """Legend entries of the curve types drawn (colours) and of the families (line styles);
-    ``note``: the grazing entry says what grazing is."""
+    """Legend entries of the curve types drawn (colours) and of the 1:1 families (line
+    styles; a panel with other families' curves names them itself); ``note``: the grazing
+    entry says what grazing is (for the 1:1 family)."""
     types = {t for t, _ in drawn}
     fams = {f for _, f in drawn}
     out = [Line2D([], [], color=CURVE_COLOURS[t], lw=1.6, label=t.replace("-", " ") + " curve"
                   + (f" ({GRAZING_NOTE})" if t == "grazing" and note else ""))
            for t in CURVE_COLOURS if t in types]
-    out += [Line2D([], [], color="0.2", ls=FAMILY_STYLES.get(f, ":"), lw=1.2,
-                   label=f"{f} 1:1 family") for f in FAMILY_STYLES if f in fams]
+    out += [Line2D([], [], color="0.2", ls=FAMILY_STYLES[f], lw=1.2, label=f"{f} 1:1 family")
+            for f in FAMILY_STYLES if f in fams]
     return out
 
 
