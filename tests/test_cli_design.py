@@ -2,6 +2,8 @@
 ``vines.design`` and bad values exit 2 with one line naming the flag."""
 import argparse
 import json
+import subprocess
+import sys
 
 import pytest
 from conftest import run_vines
@@ -10,6 +12,7 @@ from vines import ParameterError
 from vines.cli import design as cmd
 from vines.cli.common import VinesArgumentParser
 from vines.studies import design as api
+from vines.studies.design_checks import VIEW_NAMES
 
 
 def _parse(argv):
@@ -19,11 +22,20 @@ def _parse(argv):
 
 
 def test_defaults_are_the_apis():
-    assert cmd.BAND == api.DEFAULT_BAND and cmd.N_OMEGA == api.DEFAULT_N_OMEGA
-    assert cmd.AMPLITUDES_M == api.DEFAULT_AMPLITUDES_M
-    assert (cmd.N_ETA, cmd.N_CLEARANCE, cmd.CENSUS_N) == (
-        api.N_ETA_DEFAULT, api.N_CLEARANCE_DEFAULT, api.CENSUS_N_DEFAULT)
-    assert set(cmd.VIEWS) == set(api.VIEWS)
+    """The CLI shows and passes the API's defaults (one home: ``design_checks``), and its
+    --help does not load the simulation."""
+    import inspect
+    defaults = {k: v.default for k, v in inspect.signature(api.design).parameters.items()}
+    args = _parse([])
+    assert args.omega_band == list(defaults["omega_band"]) == [0.8, 1.2]
+    assert (args.n_omega, args.n_eta, args.n_clearance, args.census_n) == (
+        defaults["n_omega"], defaults["n_eta"], defaults["n_clearance"], defaults["census_n"])
+    assert args.amplitude == list(defaults["amplitudes_m"])
+    assert set(api.VIEWS) == set(VIEW_NAMES)
+    loaded = subprocess.run([sys.executable, "-c", "import sys; import vines.cli.design; "
+                             "print(' '.join(sys.modules))"], check=True, capture_output=True,
+                            text=True).stdout.split()
+    assert "numba" not in loaded and "vines.studies.design" not in loaded
 
 
 def test_run_evaluates_a_design():

@@ -7,7 +7,8 @@ import pytest
 
 NUMBA_FREE = ["vines", "vines.plotting", "vines.data.builders", "vines.data.netcdf",
               "vines.pipeline.config", "vines.pipeline.axes",
-              "vines.pipeline.codeversion", "vines.pipeline.stages", "vines.pipeline.jobs"]
+              "vines.pipeline.codeversion", "vines.pipeline.stages", "vines.pipeline.jobs",
+              "vines.studies.design_checks"]
 
 
 def _loaded_after(code: str) -> set[str]:

@@ -15,15 +15,16 @@ from ..core.params import (
     T_END_DEFAULT,
     T_TRANSIENT_DEFAULT,
 )
+from ..studies.design_checks import (
+    CENSUS_N_DEFAULT,
+    DEFAULT_AMPLITUDES_M,
+    DEFAULT_BAND,
+    DEFAULT_N_OMEGA,
+    N_CLEARANCE_DEFAULT,
+    N_ETA_DEFAULT,
+    VIEW_NAMES,
+)
 from .common import VinesArgumentParser, emit, quiet_stdout
-
-#: defaults of vines.studies.design (repeated here so that --help does not load numba;
-#: tests/test_design_cli.py checks that they agree)
-BAND = (0.8, 1.2)
-N_OMEGA = 21
-AMPLITUDES_M = (0.00075, 0.003, 0.006)
-N_ETA, N_CLEARANCE, CENSUS_N = 5, 13, 64
-VIEWS = ("t_end",)
 
 NAME = "design"
 
@@ -49,14 +50,17 @@ def add_parser(subparsers) -> VinesArgumentParser:
                     "compass search). References: the LO alone and the TMD of mass ratio "
                     "eta (eta-max) tuned for the same worst case (closed form).")
     band = p.add_argument_group("excitation")
-    band.add_argument("--omega-band", nargs=2, metavar=("LO", "HI"), default=list(BAND),
+    band.add_argument("--omega-band", nargs=2, metavar=("LO", "HI"),
+                      default=list(DEFAULT_BAND),
                       help=f"band of omega = w/w0 [0 < LO < HI <= 1000; default "
-                           f"{BAND[0]:g} {BAND[1]:g}]")
-    band.add_argument("--n-omega", metavar="N", default=N_OMEGA,
-                      help=f"grid points over the band [an integer >= 2; default {N_OMEGA}]")
-    band.add_argument("--amplitude", nargs="+", metavar="A", default=list(AMPLITUDES_M),
+                           f"{DEFAULT_BAND[0]:g} {DEFAULT_BAND[1]:g}]")
+    band.add_argument("--n-omega", metavar="N", default=DEFAULT_N_OMEGA,
+                      help="grid points over the band [an integer >= 2; default "
+                           f"{DEFAULT_N_OMEGA}]")
+    band.add_argument("--amplitude", nargs="+", metavar="A",
+                      default=list(DEFAULT_AMPLITUDES_M),
                       help="base amplitudes in metres [numbers > 0; default "
-                           + " ".join(f"{a:g}" for a in AMPLITUDES_M) + "]")
+                           + " ".join(f"{a:g}" for a in DEFAULT_AMPLITUDES_M) + "]")
     lo = p.add_argument_group("structure (Table 1 by default)")
     lo.add_argument("--M", metavar="KG", default=None,
                     help=f"LO mass in kg [> 0; default {M_LO_KG:g}]")
@@ -78,15 +82,16 @@ def add_parser(subparsers) -> VinesArgumentParser:
                      help="optimise with 0 < eta <= E; also the TMD's mass ratio")
     des.add_argument("--clearance-range", nargs=2, metavar=("LO", "HI"), default=None,
                      help="clearances searched, metres [default: A_max/2 .. 100 A_min]")
-    des.add_argument("--n-eta", metavar="N", default=N_ETA,
-                     help=f"grid points in eta [default {N_ETA}]")
-    des.add_argument("--n-clearance", metavar="N", default=N_CLEARANCE,
-                     help=f"grid points in log clearance [default {N_CLEARANCE}]")
+    des.add_argument("--n-eta", metavar="N", default=N_ETA_DEFAULT,
+                     help=f"grid points in eta [default {N_ETA_DEFAULT}]")
+    des.add_argument("--n-clearance", metavar="N", default=N_CLEARANCE_DEFAULT,
+                     help=f"grid points in log clearance [default {N_CLEARANCE_DEFAULT}]")
     run = p.add_argument_group("attractor view and runs")
-    run.add_argument("--view", choices=VIEWS, default="t_end",
+    run.add_argument("--view", choices=VIEW_NAMES, default="t_end",
                      help="census view of worst_ratio_any_attractor [default t_end]")
-    run.add_argument("--census-n", metavar="N", default=CENSUS_N,
-                     help=f"initial states per census, 0 to skip the view [default {CENSUS_N}]")
+    run.add_argument("--census-n", metavar="N", default=CENSUS_N_DEFAULT,
+                     help="initial states per census, 0 to skip the view [default "
+                          f"{CENSUS_N_DEFAULT}]")
     run.add_argument("--t-end", metavar="T", default=T_END_DEFAULT,
                      help=f"length of every run [default {T_END_DEFAULT:g}]")
     run.add_argument("--t-transient", metavar="T0", default=T_TRANSIENT_DEFAULT,

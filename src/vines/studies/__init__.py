@@ -10,23 +10,33 @@
   inputs checked by :mod:`vines.studies.design_checks` (docs/design.md).
 
 The studies return plain results (numpy arrays in small dataclasses, with the settings that
-describe them); ``vines.data.builders`` builds their CF datasets.
+describe them); ``vines.data.builders`` builds their CF datasets. The names below are
+imported on first use, so that ``vines.studies.design_checks`` (the design defaults the CLI's
+``--help`` shows) does not load numba and scipy.
 """
-from .contours import area_above, contour_distance, contour_lines, nested_axis
-from .convergence import (
-                          STUDIES,
-                          GridConvergence,
-                          VStickConvergence,
-                          WindowConvergence,
-                          grid_convergence,
-                          vstick_convergence,
-                          window_convergence,
-)
-from .workprecision import WorkPrecisionResult, errors, timed, visible, work_precision
+from importlib import import_module
 
-__all__ = [
-    "STUDIES", "GridConvergence", "VStickConvergence", "WindowConvergence",
-    "WorkPrecisionResult", "area_above", "contour_distance", "contour_lines", "errors",
-    "grid_convergence", "nested_axis", "timed", "visible", "vstick_convergence",
-    "window_convergence", "work_precision",
-]
+#: public names loaded on first access, and their modules
+_LAZY = {
+    **dict.fromkeys(("area_above", "contour_distance", "contour_lines", "nested_axis"),
+                    ".contours"),
+    **dict.fromkeys(("STUDIES", "GridConvergence", "VStickConvergence", "WindowConvergence",
+                     "grid_convergence", "vstick_convergence", "window_convergence"),
+                    ".convergence"),
+    **dict.fromkeys(("WorkPrecisionResult", "errors", "timed", "visible", "work_precision"),
+                    ".workprecision"),
+}
+
+__all__ = sorted(_LAZY)
+
+
+def __getattr__(name):
+    if name in _LAZY:
+        value = getattr(import_module(_LAZY[name], __name__), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_LAZY))

@@ -1,5 +1,6 @@
-"""Validation of the inputs of ``vines.design``: each raises ParameterError naming the
-argument, the value and what is allowed. Numbers only; no simulation is loaded here."""
+"""Defaults and validation of the inputs of ``vines.design``: each check raises
+ParameterError naming the argument, the value and what is allowed. Numbers only; no
+simulation is loaded here."""
 from __future__ import annotations
 
 import math
@@ -18,6 +19,18 @@ from ..core.params import (
     check_param,
     check_real,
 )
+
+#: defaults of ``vines.design`` (here, numba-free, so that ``vines design --help`` shows them
+#: without loading the simulation)
+DEFAULT_BAND = (0.8, 1.2)
+DEFAULT_N_OMEGA = 21
+#: base amplitudes [m] at F = 0.05, 0.2 and 0.4 for the paper's clearance L = 0.015 m
+DEFAULT_AMPLITUDES_M = (0.00075, 0.003, 0.006)
+N_ETA_DEFAULT = 5
+N_CLEARANCE_DEFAULT = 13
+CENSUS_N_DEFAULT = 64
+#: attractor views of the design's worst case (``design.VIEWS``)
+VIEW_NAMES = ("t_end",)
 
 
 def _pair(name, value) -> tuple:
