@@ -82,3 +82,7 @@ def test_command_line():
     assert proc.returncode == 2 and proc.stdout == ""
     assert proc.stderr.splitlines() == [proc.stderr.strip()]
     assert proc.stderr.startswith("vines design: error: argument --threads: ")
+    proc = run_vines("design", "--eta", "0.05")        # half of a design
+    assert proc.returncode == 2 and proc.stderr.strip() == (
+        "vines design: error: missing required option --clearance: give eta and clearance "
+        "(evaluate a design) or eta_max (optimise one)")

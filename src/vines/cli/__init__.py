@@ -199,6 +199,8 @@ def _main(argv: list[str]) -> int:
     except ParameterError as err:
         flag = getattr(modules[args.command], "FLAG_OF", {}).get(err.name) or flag_for(err.name)
         if any(flag in a.option_strings for a in sub._actions):
+            if err.value is None:       # an option the call needs was not given
+                sub.error(f"missing required option {flag}: {err.allowed}")
             sub.error(f"argument {flag}: {err}")
         sub.error(str(err))
     reporting.LOG.info("done in %.1f s", time.perf_counter() - t0)
