@@ -92,6 +92,13 @@ BAD = [  # (path to set, keys joined by '/', value, expected key in the message,
      "orbit_atlases.own", "limits.max_grid_points"),
     (f"orbit_atlases/{OA}/sim_t_end", 1e300, f"orbit_atlases.{OA}.sim_t_end",
      "limits.max_t_end"),
+    # numbers YAML reads as text, and 16.0 for an integer: how to write them
+    ("simulation/t_end", yaml.safe_load("x: 1e4")["x"], "simulation.t_end",
+     "YAML reads 1e4 as text: write 10000.0"),
+    ("simulation/t_end", yaml.safe_load("x: 2.5e3")["x"], "simulation.t_end",
+     "write 2500.0"),
+    ("chunk_size", yaml.safe_load("x: 1e3")["x"], "chunk_size", "write 1000)"),
+    ("chunk_size", 16.0, "chunk_size", "16.0 is not of type 'integer' (write 16)"),
 ]
 
 

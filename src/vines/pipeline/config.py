@@ -6,6 +6,7 @@
 from __future__ import annotations
 
 import copy
+import math
 import re
 
 from ..core.params import PARAM_NAMES
@@ -24,7 +25,12 @@ def _with_defaults(validator_class):
         yield from validate_properties(validator, properties, instance, schema)
 
     import jsonschema
-    return jsonschema.validators.extend(validator_class, {"properties": set_defaults})
+    # an integer key takes ints only (JSON Schema also counts 16.0 as an integer, which the
+    # pipeline would then use as a float: chunk sizes, thread and block counts)
+    strict_int = validator_class.TYPE_CHECKER.redefine(
+        "integer", lambda checker, x: isinstance(x, int) and not isinstance(x, bool))
+    return jsonschema.validators.extend(validator_class, {"properties": set_defaults},
+                                        type_checker=strict_int)
 
 
 #: a run or entry name: one safe path segment (the schema's definitions.name, matched on
@@ -164,6 +170,32 @@ def resolve_point_references(config: dict) -> None:
             points[i] = resolved
 
 
+def _yaml_number_hint(err) -> str:
+    """How to write a number the schema refused for its type: one YAML read as text (YAML
+    1.1 wants a dot and a signed exponent: 1e30, 1.0e30 and 1e+30 are strings, 1.0e+30 is a
+    number), or 16.0 for an integer."""
+    if err.validator != "type":
+        return ""
+    if isinstance(err.instance, float) and err.instance.is_integer():
+        return f" (write {int(err.instance)})"
+    if not isinstance(err.instance, str):
+        return ""
+    try:
+        value = float(err.instance)
+    except ValueError:
+        return ""
+    if not math.isfinite(value):
+        return ""
+    if "integer" in str(err.validator_value) and value.is_integer():
+        written = str(int(value))
+    else:
+        mantissa, _, exponent = repr(value).partition("e")
+        mantissa += "" if "." in mantissa else ".0"
+        written = mantissa + (f"e{'' if exponent[0] in '+-' else '+'}{exponent}"
+                              if exponent else "")
+    return f" (YAML reads {err.instance} as text: write {written})"
+
+
 def validate_config(config: dict, schema: dict) -> dict:
     """Validate ``config`` in place (filling defaults) and check cross-key rules.
 
@@ -177,7 +209,7 @@ def validate_config(config: dict, schema: dict) -> dict:
     if errors:
         err = min(errors, key=lambda e: -len(e.absolute_path))
         key = ".".join(str(p) for p in err.absolute_path) or "<top level>"
-        raise ConfigError(key, err.message)
+        raise ConfigError(key, err.message + _yaml_number_hint(err))
     resolve_point_references(config)
     check_physical(config)   # every value through the API's validators (t_transient < t_end)
     for name, grid in config["grids"].items():
