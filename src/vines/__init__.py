@@ -12,8 +12,7 @@ docs/architecture.md.
 figures does not load numba and the compiled kernels; ``open_run`` (a finished run's
 datasets as one ``xarray.DataTree``) likewise, so that ``import vines`` does not load xarray.
 """
-from importlib import import_module
-
+from ._lazy import lazy_attributes as _lazy_attributes
 from ._numba_cache import refresh as _refresh_numba_cache
 
 _refresh_numba_cache()   # before any jitted function is loaded from the cache
@@ -41,16 +40,4 @@ def _version() -> str:
         return "0+unknown"
 
 
-def __getattr__(name):
-    if name == "__version__":
-        value = globals()["__version__"] = _version()
-        return value
-    if name in _LAZY:
-        value = getattr(import_module(_LAZY[name], __name__), name)
-        globals()[name] = value
-        return value
-    raise AttributeError(f"module 'vines' has no attribute {name!r}")
-
-
-def __dir__():
-    return sorted(set(globals()) | set(_LAZY) | {"__version__"})
+__getattr__, __dir__ = _lazy_attributes(__name__, _LAZY, {"__version__": _version})

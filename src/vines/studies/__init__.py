@@ -14,7 +14,7 @@ describe them); ``vines.data.builders`` builds their CF datasets. The names belo
 imported on first use, so that ``vines.studies.design_checks`` (the design defaults the CLI's
 ``--help`` shows) does not load numba and scipy.
 """
-from importlib import import_module
+from .._lazy import lazy_attributes
 
 #: public names loaded on first access, and their modules
 _LAZY = {
@@ -30,13 +30,4 @@ _LAZY = {
 __all__ = sorted(_LAZY)
 
 
-def __getattr__(name):
-    if name in _LAZY:
-        value = getattr(import_module(_LAZY[name], __name__), name)
-        globals()[name] = value
-        return value
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
-def __dir__():
-    return sorted(set(globals()) | set(_LAZY))
+__getattr__, __dir__ = lazy_attributes(__name__, _LAZY)
