@@ -34,7 +34,7 @@ from vines.pipeline.codeversion import (
     script_version,
 )
 from vines.pipeline.config import ConfigError, load_schema, load_yaml, validate_config
-from vines.pipeline.config_checks import atlas_grid
+from vines.pipeline.config_checks import ONE_TO_ONE, atlas_grid, boundary_family
 
 try:
     # Snakemake's YAML reading keeps the last of a key given twice: refuse that first

@@ -59,7 +59,7 @@ def _family_boundaries():
     return [
         dataset("boundaries", n)
         for n, b in sorted(BOUNDARIES.items())
-        if (str(b.get("walls", "LR")).upper(), int(b.get("periods", 1))) != ("LR", 1)
+        if boundary_family(b) != ONE_TO_ONE
     ]
 
 

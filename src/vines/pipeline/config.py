@@ -189,10 +189,8 @@ def _yaml_number_hint(err) -> str:
     if "integer" in str(err.validator_value) and value.is_integer():
         written = str(int(value))
     else:
-        mantissa, _, exponent = repr(value).partition("e")
-        mantissa += "" if "." in mantissa else ".0"
-        written = mantissa + (f"e{'' if exponent[0] in '+-' else '+'}{exponent}"
-                              if exponent else "")
+        mantissa, e, exponent = repr(value).partition("e")      # repr signs the exponent
+        written = mantissa + ("" if "." in mantissa else ".0") + e + exponent
     return f" (YAML reads {err.instance} as text: write {written})"
 
 

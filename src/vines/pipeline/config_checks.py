@@ -230,6 +230,15 @@ def check_attractor_maps(config: dict, model: dict, limits: dict) -> None:
         _check_size(key, n, limits, "slice points")
 
 
+#: the family of a boundaries entry without walls/periods: the 1:1 orbits
+ONE_TO_ONE = ("LR", 1)
+
+
+def boundary_family(entry: dict) -> tuple[str, int]:
+    """(walls, periods) of the family whose curves a ``boundaries`` entry traces."""
+    return str(entry.get("walls", "LR")).upper(), int(entry.get("periods", 1))
+
+
 def check_boundaries(config: dict, model: dict, limits: dict) -> None:
     """Ranges and F of every boundaries entry are parameters the model accepts."""
     for name, bd in config["boundaries"].items():
@@ -242,8 +251,8 @@ def check_boundaries(config: dict, model: dict, limits: dict) -> None:
                 raise ConfigError(f"{key}.{dim}_range", f"{[lo, hi]} must be [lo, hi], lo < hi")
         _check_param(f"{key}.F", "F", bd["F"], model)
         name_map = bd.get("stability_map")
-        family = (str(bd.get("walls", "LR")).upper(), int(bd.get("periods", 1)))
-        if name_map is not None and family != ("LR", 1):
+        family = boundary_family(bd)
+        if name_map is not None and family != ONE_TO_ONE:
             raise ConfigError(f"{key}.stability_map", f"{name_map!r} seeds 1:1 curves only, "
                               f"not those of walls {family[0]}, periods {family[1]} (drop "
                               "the key)")

@@ -7,9 +7,9 @@ The workflow's ``onstart`` hook (workflow/rules/warmup.smk) runs ``python -m
 vines.pipeline.warmup`` once before the first job: it calls every stage's numerics on one
 tiny case (``TASKS``: core kernel and shortcut, 1:1 seeds, the shooting systems' jets,
 branches, stability map columns and boundaries, attractor census, Lyapunov tangents,
-period-n atlas), spread over the run's cores (a task that reuses another's kernels starts once those are cached), with the
-run's model and simulation settings (the same argument types as the jobs), and writes a
-stamp.
+period-n atlas), spread over the run's cores (a task that reuses another's kernels starts
+once those are cached), with the run's model and simulation settings (the same argument
+types as the jobs), and writes a stamp.
 The stamp holds the hash of the compiled subpackages' sources (``vines._numba_cache``) and
 the numba version and CPU: while they match, the warm-up costs one file read; an edit of
 core/ or orbits/ deletes the cache (``_numba_cache.refresh``) and the next run compiles again.
