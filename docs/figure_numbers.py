@@ -1,16 +1,26 @@
 """Regenerate the measured numbers of docs/figures.md from a run's datasets.
 
-    python docs/figure_numbers.py [results/paper] [--check]
+    python docs/figure_numbers.py [RUN] [--check] [--doc FILE]
 
 Rewrites the part of docs/figures.md between the markers ``<!-- numbers:begin -->`` and
-``<!-- numbers:end -->`` with the numbers measured on the datasets of the run (default
-results/paper, the full study). ``--check``: exit 1 if the file would change (the numbers
-are stale), without writing. Reads datasets only; no computation is rerun.
+``<!-- numbers:end -->`` with the numbers measured on the datasets of the run RUN (a results
+folder, default results/paper), stating the commit and config they were made from (the
+datasets' provenance attributes). ``--check``: print each number line that differs from the
+file (old and new) and exit 1, exit 0 when they agree; nothing is written. Figures whose
+stage is not in the run (the ``all`` figures after a paper run) are reported as "not in
+this run" and are not compared. A path that is not a vines run is refused (exit 2). Reads
+datasets only; no computation is rerun.
 """
 from __future__ import annotations
 
+import argparse
+import hashlib
+import os
 import sys
+from collections import Counter
+from itertools import zip_longest
 from pathlib import Path
+from typing import NamedTuple
 
 import matplotlib.pyplot as plt
 import numpy as np
@@ -209,47 +219,193 @@ def robust(res):
     return out
 
 
-SECTIONS = (("Fig 2", fig2), ("Fig 3", fig3), ("fig3_lyapunov", fig3_lyapunov),
-            ("Fig 4", lambda r: timehistories(r, "fig4")),
-            ("Fig 5", lambda r: timehistories(r, "fig5")), ("Fig 6", lambda r: zoom(r, "fig6")),
-            ("Fig 7", fig7), ("Fig 9", lambda r: timehistories(r, "fig9")),
-            ("Fig 10", lambda r: timehistories(r, "fig10")), ("Fig 11", fig11),
-            ("Fig 12", fig12), ("Fig 14", fig14), ("Fig 15", lambda r: zoom(r, "fig15")),
-            ("Fig 16", fig16), ("robust_tet", robust))
+class Section(NamedTuple):
+    """One figure's numbers: its title, its function of the run folder and the datasets it
+    reads, as (stage folder, dataset name prefix) pairs."""
+    title: str
+    fn: object
+    needs: tuple
 
 
-def numbers(res: Path) -> str:
-    lines = [BEGIN, "", f"Measured on `{res.as_posix()}` by `python docs/figure_numbers.py "
-             f"{res.as_posix()}` (do not edit by hand).", ""]
-    for title, fn in SECTIONS:
+def _th(name):
+    return Section(f"Fig {name[3:]}", lambda r: timehistories(r, name), (("timehistory", name),))
+
+
+SECTIONS = (Section("Fig 2", fig2, (("extract_measures", "fig2"),)),
+            Section("Fig 3", fig3, (("bifurcation_sweep", "fig3"),)),
+            Section("fig3_lyapunov", fig3_lyapunov, (("lyapunov", "fig3"),)),
+            _th("fig4"), _th("fig5"),
+            Section("Fig 6", lambda r: zoom(r, "fig6"), (("map_solve", "fig6"),)),
+            Section("Fig 7", fig7, (("extract_measures", "fig7"),)),
+            _th("fig9"), _th("fig10"),
+            Section("Fig 11", fig11, (("extract_measures", "fig11"),)),
+            Section("Fig 12", fig12, (("extract_measures", "fig12"), ("stability_map", "fig16"))),
+            Section("Fig 14", fig14, (("bifurcation_sweep", "fig14"),)),
+            Section("Fig 15", lambda r: zoom(r, "fig15"), (("map_solve", "fig15"),)),
+            Section("Fig 16", fig16, (("stability_map", "fig16"),)),
+            Section("robust_tet", robust, (("robust_map", "robust"),)))
+
+NOT_IN_RUN = "not in this run"
+
+
+def in_run(res: Path, section: Section) -> bool:
+    """True if the run holds every kind of dataset the section reads."""
+    return all(_files(res, folder, prefix) for folder, prefix in section.needs)
+
+
+def measure(res: Path) -> dict:
+    """{title: [number line, ...]} of every section; ``[NOT_IN_RUN]`` where the run lacks
+    its datasets."""
+    out = {}
+    for s in SECTIONS:
+        if not in_run(res, s):
+            out[s.title] = [NOT_IN_RUN]
+            continue
         try:
-            rows = fn(res)
+            out[s.title] = s.fn(res) or ["no dataset"]
         except (P.FigureInputError, KeyError) as err:
-            rows = [f"not available ({type(err).__name__}: {err})"]
-        lines.append(f"**{title}**")
-        lines.append("")
-        lines += [f"- {r}" for r in rows] or ["- no dataset"]
-        lines.append("")
-    lines.append(END)
-    return "\n".join(lines)
+            out[s.title] = [f"not available ({type(err).__name__}: {err})"]
+    return out
+
+
+def datasets(res: Path) -> list:
+    """The run's stage datasets (``<stage>/<name>.nc``; simulate_grid's chunks excluded)."""
+    return sorted(res.glob("*/*.nc"))
+
+
+def provenance(res: Path) -> dict:
+    """Provenance attributes of the run's datasets that carry them, by file."""
+    import netCDF4
+    out = {}
+    for p in datasets(res):
+        try:
+            with netCDF4.Dataset(p) as nc:
+                attrs = {k: nc.getncattr(k) for k in nc.ncattrs()}
+        except OSError:
+            continue
+        if "vines_version" in attrs:
+            out[p] = attrs
+    return out
+
+
+def origin(res: Path, prov: dict) -> str:
+    """The sentence stating the commit(s) and config the run's datasets were made from."""
+    commits = Counter(a.get("git_commit", "unknown") for a in prov.values())
+    made = ", ".join(f"`{c}`" + (f" ({n} datasets)" if len(commits) > 1 else "")
+                     for c, n in commits.most_common())
+    keys = sorted(f"{p.parent.name}/{p.name}:{a.get('config_sha256', '')}"
+                  for p, a in prov.items())
+    digest = hashlib.sha256("\n".join(keys).encode()).hexdigest()[:16]
+    sims = sorted({(a.get("solver_t_end"), a.get("solver_t_transient")) for a in prov.values()
+                   if "solver_t_end" in a})
+    window = "; ".join(f"t_end = {float(e):g}, t_transient = {float(t):g}" for e, t in sims)
+    return (f"Measured on the {len(prov)} datasets of the run `{res.name}`, made by commit "
+            f"{made} from the config with fingerprint `{digest}` (sha256 of the datasets' "
+            f"`config_sha256` attributes; simulation window {window or 'none'}), by `python "
+            f"docs/figure_numbers.py results/{res.name}` (do not edit by hand).")
+
+
+def render(head: str, sections: dict) -> str:
+    lines = [BEGIN, "", head, ""]
+    for title, rows in sections.items():
+        lines += [f"**{title}**", ""] + [f"- {r}" for r in rows] + [""]
+    return "\n".join(lines + [END])
+
+
+def parse(block: str) -> tuple:
+    """(head line, {title: [line, ...]}) of a generated section."""
+    head, sections, title = "", {}, None
+    for line in block.splitlines():
+        if line.startswith("**") and line.endswith("**"):
+            title = line.strip("*")
+            sections[title] = []
+        elif line.startswith("- ") and title is not None:
+            sections[title].append(line[2:])
+        elif line.strip() and title is None and not line.startswith("<!--"):
+            head = line
+    return head, sections
+
+
+def differences(old: dict, new: dict) -> list:
+    """Lines ``title: old ... / new ...`` for every number line that differs; sections
+    not in the new run are skipped."""
+    out = []
+    for title, rows in new.items():
+        if rows == [NOT_IN_RUN]:
+            continue
+        for a, b in zip_longest(old.get(title, []), rows, fillvalue="(no line)"):
+            if a != b:
+                out.append(f"{title}:\n  old: {a}\n  new: {b}")
+    return out
+
+
+def refuse(msg: str) -> int:
+    print(f"figure_numbers.py: {msg}", file=sys.stderr)
+    return 2
+
+
+def run_provenance(res: Path) -> tuple:
+    """(why ``res`` is not a vines run or None, provenance of its datasets)."""
+    if not res.is_dir():
+        return f"RUN = '{res}' is not a folder; give a run's results folder, e.g. results/paper", {}
+    prov = provenance(res)
+    if not prov:
+        return (f"RUN = '{res}' holds no vines datasets (<stage>/<name>.nc with provenance "
+                "attributes); give a run's results folder, e.g. results/paper"), {}
+    return None, prov
+
+
+def parser() -> argparse.ArgumentParser:
+    ap = argparse.ArgumentParser(
+        prog="python docs/figure_numbers.py",
+        description="Regenerate the measured numbers of docs/figures.md (between its "
+                    "numbers markers) from the datasets of a run.")
+    ap.add_argument("run", nargs="?", default="results/paper", metavar="RUN",
+                    help="a run's results folder (default: results/paper)")
+    ap.add_argument("--check", action="store_true",
+                    help="write nothing; print each number that differs from the file and "
+                         "exit 1 (0 when they agree); figures not in this run are skipped")
+    ap.add_argument("--doc", type=Path, default=DOC, help=f"file to update (default: {DOC.name} "
+                    "beside this script)")
+    return ap
 
 
 def main(argv=None) -> int:
-    args = sys.argv[1:] if argv is None else argv
-    check = "--check" in args
-    args = [a for a in args if a != "--check"]
-    res = Path(args[0] if args else "results/paper")
-    text = DOC.read_text()
+    args = parser().parse_args(argv)
+    res = Path(args.run)
+    why, prov = run_provenance(res)
+    if why:
+        return refuse(why)
+    text = args.doc.read_text() if args.doc.is_file() else ""
     if BEGIN not in text or END not in text:
-        print(f"{DOC}: markers {BEGIN} / {END} missing", file=sys.stderr)
-        return 2
-    head, rest = text.split(BEGIN, 1)
-    new = head + numbers(res) + rest.split(END, 1)[1]
-    if check:
-        return 0 if new == text else 1
-    DOC.write_text(new)
+        return refuse(f"--doc = '{args.doc}' has no markers {BEGIN} / {END}")
+    before, rest = text.split(BEGIN, 1)
+    block, after = rest.split(END, 1)
+    new, head = measure(res), origin(res, prov)
+    missing = [t for t, rows in new.items() if rows == [NOT_IN_RUN]]
+    if missing:
+        print(f"{NOT_IN_RUN} ({res}): {', '.join(missing)}")
+    if args.check:
+        old_head, old = parse(block)
+        diffs = differences(old, new)
+        print("\n".join(diffs) if diffs else "numbers agree with the file")
+        if old_head != head:
+            print(f"note: the file says: {old_head}\n      this run: {head}")
+        return 1 if diffs else 0
+    _write(args.doc, before + render(head, new) + after)
+    print(f"wrote {args.doc}")
     return 0
 
 
+def _write(path: Path, text: str) -> None:
+    tmp = path.with_name(f".{path.name}.tmp")
+    tmp.write_text(text)
+    os.replace(tmp, path)
+
+
 if __name__ == "__main__":
-    sys.exit(main())
+    try:
+        sys.exit(main())
+    except KeyboardInterrupt:
+        print("figure_numbers.py: interrupted; nothing written", file=sys.stderr)
+        sys.exit(130)
