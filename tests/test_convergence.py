@@ -279,7 +279,7 @@ def test_figure_script_draws_the_datasets(window_ds, vstick_ds, grid_ds, tmp_pat
                          output=SimpleNamespace(pdf=str(tmp_path / "c.pdf"),
                                                 png=str(tmp_path / "c.png")),
                          log=[str(tmp_path / "c.log")], wildcards={},
-                         rule="figure_convergence")
+                         params=SimpleNamespace(colormap="viridis"), rule="figure_convergence")
     scripts = ROOT / "workflow" / "scripts" / "figures"
     monkeypatch.syspath_prepend(str(scripts))
     runpy.run_path(str(scripts / "convergence.py"), init_globals={"snakemake": sm})

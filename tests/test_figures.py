@@ -232,7 +232,7 @@ def test_editing_a_figure_script_reruns_only_its_figures(tmp_path):
     _copy_datasets(tmp_path, ("simulate_grid", "extract_measures", "stability_map",
                                     "boundaries", "timehistory"))
     smoke = ["--configfile", str(tmp_path / "config" / "smoke.yaml")]
-    names = ("fig2", "fig16") + TH_FIGURES
+    names = ("fig2", "fig12", "fig16") + TH_FIGURES
     figs = [f"results/smoke/figures/{f}.{e}" for f in names for e in ("pdf", "png")]
     assert _planned(_smk(tmp_path, "-n", *figs, *smoke)) == dict.fromkeys(names, 1)
     _smk(tmp_path, *figs, *smoke)
@@ -247,10 +247,10 @@ def test_editing_a_figure_script_reruns_only_its_figures(tmp_path):
         f.write_text(text)
         os.utime(f, ns=(st.st_atime_ns, st.st_mtime_ns))   # as before the edit
     assert _planned(_smk(tmp_path, "-n", *figs, *smoke)) == {}
-    # another colour map (a figure-rule param) reruns the figures and nothing else
+    # another colour map (a param of the figures that draw with it) reruns those figures only
     cfg = tmp_path / "config" / "smoke.yaml"
     cfg.write_text(cfg.read_text().replace("colormap: viridis", "colormap: jet"))
-    assert _planned(_smk(tmp_path, "-n", *figs, *smoke)) == dict.fromkeys(names, 1)
+    assert _planned(_smk(tmp_path, "-n", *figs, *smoke)) == {"fig12": 1}
 
 
 @needs_snakemake
@@ -312,7 +312,7 @@ def test_colormap_choices_are_one_list():
         P.palette.use_colormap("rainbow")
     P.configure(SimpleNamespace(params=SimpleNamespace(colormap="jet")))
     assert P.palette.colormap().name == "jet"
-    P.configure(SimpleNamespace())
+    P.configure(SimpleNamespace(params=SimpleNamespace(colormap="viridis")))
     assert P.palette.colormap_name() == P.palette.DEFAULT_COLORMAP
     # no colour map named in the figure code outside the palette
     for f in list(SCRIPTS.glob("*.py")) + list((ROOT / "src" / "vines" / "plotting").glob("*.py")):

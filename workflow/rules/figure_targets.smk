@@ -113,6 +113,19 @@ FIG_INPUTS = {
 }
 # figure -> inputs drawn when configured (may be empty; the figure is requested without them)
 FIG_OPTIONAL_INPUTS = {"atlas": {"boundaries": _family_boundaries()}}
+# figures that draw with the configured colour map (`figures.colormap`: plotting.contour_map,
+# palette.colormap, palette.sequence), the only ones it is passed to as a param, so that
+# changing it reruns them and no other figure (tests/test_figure_params.py)
+COLORMAP_FIGURES = ("fig7", "fig12", "robust_tet", "design", "convergence")
+
+
+def figure_params(fig):
+    """The keys of config `figures` the figure reads (its rule's params besides code)."""
+    if fig in COLORMAP_FIGURES:
+        return {"colormap": config["figures"]["colormap"]}
+    return {}
+
+
 REQUESTED_FIGURES = [f for f, ins in FIG_INPUTS.items() if all(ins.values())]
 _missing = [f for f in FIG_INPUTS if f not in REQUESTED_FIGURES]
 if _missing and REQUESTED_FIGURES:
@@ -190,8 +203,8 @@ def figure_rule_for(fig):
         conda:
             "../../environment.yml"
         params:
+            **figure_params(fig),
             code=CODE_FIGURES,
             script=script_of(f"figures/{figure_script(fig)}.py"),
-            colormap=config["figures"]["colormap"],
         script:
             f"../scripts/figures/{figure_script(fig)}.py"

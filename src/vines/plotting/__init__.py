@@ -109,6 +109,10 @@ __all__ = [
 
 def configure(sm) -> None:
     """Settings of a figure job from its rule's params: the colour map of continuous
-    quantities (``figures.colormap``; the default when the rule gives none)."""
-    params = getattr(sm, "params", None)
-    palette.use_colormap(getattr(params, "colormap", None) or palette.DEFAULT_COLORMAP)
+    quantities (``figures.colormap``), passed only to the figures that draw with it; without
+    it reading the colour map is an error (``palette.forbid_colormap``)."""
+    name = getattr(getattr(sm, "params", None), "colormap", None)
+    if name is None:
+        palette.forbid_colormap()
+    else:
+        palette.use_colormap(name)

@@ -68,14 +68,24 @@ def use_colormap(name: str) -> None:
     _current[0] = name
 
 
+def forbid_colormap() -> None:
+    """For a figure whose rule passes no ``figures.colormap`` (it would not rerun when the
+    key changes): reading the colour map is then an error."""
+    _current[0] = None
+
+
 def colormap_name() -> str:
+    if _current[0] is None:
+        raise RuntimeError("this figure reads figures.colormap but its rule does not pass it:"
+                           " add the figure to COLORMAP_FIGURES in "
+                           "workflow/rules/figure_targets.smk")
     return _current[0]
 
 
 def colormap(n: int | None = None):
     """The configured colour map (``n`` discrete colours when given)."""
     import matplotlib
-    cmap = matplotlib.colormaps[_current[0]]
+    cmap = matplotlib.colormaps[colormap_name()]
     return cmap.resampled(n) if n else cmap
 
 
