@@ -43,3 +43,18 @@ def test_continue_text_is_a_summary_unless_all():
     assert n_short <= 40 < n_full
     events = [ln for ln in full.stdout.splitlines() if "event " in ln]
     assert events and all(ev in short.stdout for ev in events)
+
+
+@pytest.mark.parametrize("command", COMMANDS)
+def test_help_points_to_the_docs_not_the_readme(command):
+    text = run_vines(command, "--help").stdout
+    assert "README" not in text
+    if command == "simulate":        # the JSON keys: docs/usage.md, linked from docs/cli.md
+        assert "docs/usage.md" in " ".join(text.split()) and "docs/cli.md" in text
+    if command == "design":          # --view: the one view it offers, said in words
+        assert "the only one is t_end" in " ".join(text.split())
+
+
+def test_top_level_help_names_the_reference():
+    text = " ".join(run_vines("--help").stdout.split())
+    assert "docs/cli.md" in text and "docs/usage.md" in text

@@ -198,3 +198,17 @@ def test_batch_matches_single_runs_and_thread_count():
 def test_batch_rejects_bad_point_before_work():
     with pytest.raises(vines.ParameterError, match="eta"):
         vines.simulate_batch([0.1, -0.2], 1.0, 0.1)
+
+
+@pytest.mark.parametrize("solver, t_end", [("exact", 7000.0), ("exact", 300.0),
+                                           ("rk", 300.0)])
+def test_result_numbers_are_python_scalars(solver, t_end):
+    # every number of a result is a Python float or int (json, repr and type checks alike),
+    # also when the periodic shortcut completes the run (t_end 7000: it does here)
+    res = vines.simulate(eta=0.05, omega=1.0, F=0.05, solver=solver, t_end=t_end,
+                         t_transient=t_end - 100.0)
+    numbers = {k: v for k, v in vars(res).items() if isinstance(v, (float, int, np.generic))}
+    assert {"ke_ratio", "K_m", "K_b", "xmax", "t_stuck", "n_impacts", "period"} <= set(numbers)
+    assert {k: type(v) for k, v in numbers.items() if type(v) not in (float, int, bool)} == {}
+    assert type(res.ke_ratio) is type(res.xmax_m) is float
+    assert res.ke_ratio == res.K_b / (res.K_m + res.K_b)

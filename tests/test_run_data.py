@@ -86,3 +86,47 @@ def test_open_run_names_a_missing_or_empty_directory(tmp_path):
         vines.open_run(tmp_path / "no-such-run")
     with pytest.raises(ValueError, match="no dataset"):
         vines.open_run(tmp_path)
+
+
+def _fake_run(root):
+    """Two stages: 'alpha' with 6 datasets, 'beta' with one grid of 2 chunks."""
+    for k in range(6):
+        write_dataset(_small_dataset(), root / "alpha" / f"d{k}.nc")
+    for k in range(2):
+        write_dataset(_small_dataset().rename({"y": "chunk_var"}),
+                      root / "beta" / "g1" / f"chunk_{k}.nc")
+    return {s: sum(f.stat().st_size for f in (root / s).rglob("*.nc")) for s in ("alpha", "beta")}
+
+
+def test_a_runs_repr_is_a_summary_with_the_full_tree_one_call_away(tmp_path):
+    sizes = _fake_run(tmp_path / "myrun")
+    with vines.open_run(tmp_path / "myrun") as run:
+        text = repr(run)
+        assert str(run) == text
+        lines = text.splitlines()
+        assert len(lines) == 4                           # the run, 2 stages, the hint
+        total = sum(sizes.values()) / 1e3
+        assert lines[0] == f"vines run 'myrun': 2 stages, 8 datasets, {total:.1f} kB on disk " \
+                           "(read lazily)"
+        assert lines[1].split()[:3] == ["alpha", "6", "datasets"]
+        assert f"{sizes['alpha'] / 1e3:.1f} kB" in lines[1]
+        assert lines[1].endswith("d0, d1, d2, d3, ... (+2)")
+        assert lines[2].split()[:3] == ["beta", "2", "datasets"] and lines[2].endswith("g1")
+        assert "run.full_repr()" in lines[3]
+        assert "chunk_var" not in text and "sine of x" not in text
+        full = run.full_repr()                           # xarray's tree: every variable
+        assert full.startswith("<xarray.DataTree>") and "chunk_var" in full
+        assert full.count("Group: /alpha/d") == 6
+        # a stage or a dataset keeps xarray's repr
+        assert repr(run["alpha/d1"]).startswith("<xarray.DataTree 'd1'>")
+        assert "y " in repr(run["alpha/d1"])
+
+
+def test_readme_opens_the_run_of_its_quick_start():
+    # the README's first open_run line opens the run its first pipeline command made (a
+    # reader who ran only the quick start has no smoke run)
+    text = (ROOT / "README.md").read_text()
+    first = text.index("vines.open_run(")
+    command = next(ln for ln in text[:first].splitlines() if "snakemake -c2" in ln)
+    made = "results/smoke" if "smoke.yaml" in command else "results/paper"
+    assert text[first:].split('"')[1] == made

@@ -1,6 +1,6 @@
 """Command-line interface: ``vines <command> ...`` (also ``python -m vines``).
 
-Contract (see the README and the project specification, section 7):
+Contract (see docs/cli.md and the project specification, section 7):
 
 * ``--json`` prints exactly one JSON object on stdout (NaN and infinities become null).
 * Bad input of any kind (a non-number, a value out of range, an unknown flag, a missing
@@ -90,6 +90,8 @@ def build_parser(with_modules: bool = False) -> tuple:
         prog=PROG,
         description="Exact simulation and map-based analysis of the vibro-impact nonlinear "
                     "energy sink (VI NES).",
+        epilog="Every command's options: docs/cli.md; worked examples and the JSON keys: "
+               "docs/usage.md.",
     )
     parser.add_argument("--version", action="version", version=f"{PROG} {__version__}")
     subparsers = parser.add_subparsers(dest="command", metavar="command",

@@ -88,7 +88,8 @@ def add_parser(subparsers) -> VinesArgumentParser:
                      help=f"grid points in log clearance [default {N_CLEARANCE_DEFAULT}]")
     run = p.add_argument_group("attractor view and runs")
     run.add_argument("--view", choices=VIEW_NAMES, default="t_end",
-                     help="census view of worst_ratio_any_attractor [default t_end]")
+                     help="census view of worst_ratio_any_attractor; the only one is "
+                          "t_end: the attractor each state is on at t-end [default t_end]")
     run.add_argument("--census-n", metavar="N", default=CENSUS_N_DEFAULT,
                      help="initial states per census, 0 to skip the view [default "
                           f"{CENSUS_N_DEFAULT}]")

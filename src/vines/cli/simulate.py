@@ -65,7 +65,8 @@ def add_parser(subparsers) -> VinesArgumentParser:
         "--max-impacts": f"an integer >= 1 and <= {MAX_IMPACTS_MAX}",
     })
     p.add_argument("--json", action="store_true",
-                   help="print one JSON object on stdout (keys: see the README)")
+                   help="print one JSON object on stdout (keys: docs/usage.md, 'The simulate "
+                        "command'; every command's options: docs/cli.md)")
     return p
 
 

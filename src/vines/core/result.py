@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 
 import numpy as np
 
@@ -99,6 +99,14 @@ class SimulationResult:
     _state_at: Callable = field(repr=False, default=None)
     shortcut_time: float = math.nan
     shortcut_period: int = 0
+
+    def __post_init__(self):
+        # every number a Python float or int, whatever a backend computed it in (a numpy
+        # scalar's .item() is the same number)
+        for f in fields(self):
+            value = getattr(self, f.name)
+            if isinstance(value, np.generic):
+                setattr(self, f.name, value.item())
 
     @property
     def xmax_m(self) -> float:
