@@ -9,6 +9,11 @@ and for a failed job the rule, its wildcards, its log file and the last lines of
 Snakemake's other messages (the plan, warnings, errors, "Nothing to be done") pass
 unchanged; its scheduling chatter ("Select jobs to execute...", "Execute 2 jobs...") is
 left out. ``--quiet progress`` drops the job lines, ``--quiet all`` keeps errors only.
+
+A dry run (``-n``) prints the job table once, why the jobs run (per rule, in place of
+Snakemake's summary that points to the hidden job displays) and an estimate of the cost
+from measured job times (``cost``: the benchmark files of the run, or the costs shipped in
+``measured``).
 Snakemake finds the plugin by its module name (``snakemake_logger_plugin_<name>``) on
 ``sys.path`` when it parses the command line: it is installed with vines (``pip install
 -e .``; ``src/`` on ``PYTHONPATH`` works too). Without it, ``--logger vines`` is refused:
@@ -18,11 +23,14 @@ from __future__ import annotations
 
 import logging
 import sys
+import textwrap
 import time
 from pathlib import Path
 
 from snakemake_interface_logger_plugins.base import LogHandlerBase
 from snakemake_interface_logger_plugins.common import LogEvent
+
+from .cost import cores_of, estimate
 
 #: messages without an event that say nothing to a user (prefixes)
 CHATTER = ("Select jobs to execute", "Execute ", "Assuming unrestricted shared filesystem",
@@ -30,6 +38,10 @@ CHATTER = ("Select jobs to execute", "Execute ", "Assuming unrestricted shared f
            "Building DAG of jobs", "host:")
 #: lines of a failed job's log shown on the console
 LOG_TAIL = 15
+#: Snakemake's dry-run messages that point to the job displays this plugin hides:
+#: (start of the message, what replaces the reference)
+HIDDEN_REFERENCES = (("see 'reason' section in the rule displays above",
+                      "see the reasons above"),)
 
 
 def job_line(done: int, total: int, rule: str, wildcards: dict, seconds: float | None) -> str:
@@ -38,6 +50,32 @@ def job_line(done: int, total: int, rule: str, wildcards: dict, seconds: float |
     took = f" ({seconds:.1f} s)" if seconds is not None else ""
     width = len(str(total))
     return f"[{done:>{width}}/{total}] {rule}{' ' + wc if wc else ''}{took}"
+
+
+def short_reason(reason: str) -> str:
+    """Snakemake's reason of a job without its file lists: "missing output files; ..."."""
+    heads = [part.split(":", 1)[0].strip() for part in str(reason or "").split("; ")]
+    return "; ".join(h[:1].lower() + h[1:] for h in heads if h) or "no reason given"
+
+
+#: how to see every job's display (files, reason) with the plan of the default profile
+FULL_DISPLAY = "--workflow-profile none --rerun-triggers mtime params input software-env"
+
+
+def reasons_block(planned) -> str:
+    """Why the planned (rule, reason) jobs run: per reason, its rules with their numbers
+    of jobs."""
+    counts: dict[str, dict[str, int]] = {}
+    for rule, reason in planned:
+        per_rule = counts.setdefault(short_reason(reason), {})
+        per_rule[rule] = per_rule.get(rule, 0) + 1
+    lines = [f"Reasons (rules and their numbers of jobs; every job's files and reason: the "
+             f"same command with {FULL_DISPLAY}):"]
+    for why, rules in sorted(counts.items()):
+        lines.append(f"    {why}:")
+        lines += textwrap.wrap(", ".join(f"{r} ({n})" for r, n in sorted(rules.items())),
+                               width=92, initial_indent=" " * 8, subsequent_indent=" " * 8)
+    return "\n".join(lines)
 
 
 def log_tail(paths, n: int = LOG_TAIL) -> list[str]:
@@ -62,6 +100,9 @@ class LogHandler(LogHandlerBase):
         self.errors_only = "all" in quiet                       # --quiet all
         self.no_progress = self.errors_only or "progress" in quiet
         self.stream = sys.stdout if self.common_settings.stdout else sys.stderr
+        self.dryrun = bool(getattr(self.common_settings, "dryrun", False))
+        self.planned: list[tuple[str, str, str | None]] = []   # dry run: rule, reason, bench
+        self.table_shown = False
 
     # the plugin interface's properties
     @property
@@ -98,6 +139,9 @@ class LogHandler(LogHandlerBase):
         if event == LogEvent.JOB_INFO:
             self.jobs[record.jobid] = (record.rule_name, dict(record.wildcards or {}),
                                        time.monotonic())
+            if self.dryrun:
+                self.planned.append((record.rule_name, getattr(record, "reason", ""),
+                                     getattr(record, "benchmark", None)))
         elif event == LogEvent.JOB_FINISHED:
             self.finished.append(record.job_id)
         elif event == LogEvent.PROGRESS:
@@ -106,7 +150,7 @@ class LogHandler(LogHandlerBase):
             self._error(record)
         elif event == LogEvent.RUN_INFO:
             if not self.errors_only and record.levelno >= logging.INFO:
-                self._print(record.getMessage())
+                self._info(record.getMessage())
         elif event is None:
             self._message(record)
         elif record.levelno >= logging.WARNING:     # e.g. an exception (event ERROR)
@@ -142,6 +186,23 @@ class LogHandler(LogHandlerBase):
         if not text:
             return
         chatter = self.errors_only or text.startswith(CHATTER)
-        if record.levelno >= logging.WARNING or (record.levelno >= logging.INFO
-                                                 and not chatter):
+        if record.levelno >= logging.WARNING:
             self._print(text)
+        elif record.levelno >= logging.INFO and not chatter:
+            self._info(text)
+
+    def _info(self, text: str) -> None:
+        """An info message: the job table once, a dry run's reasons and cost estimate in
+        place of the references to the hidden job displays."""
+        if text.startswith("Job stats:"):
+            if self.table_shown:
+                return
+            self.table_shown = True
+        elif text.startswith("Reasons:") and self.planned:
+            text = reasons_block((rule, why) for rule, why, _ in self.planned)
+        elif text.startswith("This was a dry-run") and self.planned:
+            self._print(estimate([(rule, bench) for rule, _, bench in self.planned],
+                                 cores_of(sys.argv)))
+        for old, new in HIDDEN_REFERENCES:
+            text = text.replace(old, new)
+        self._print(text)
