@@ -4,6 +4,9 @@ scheduling chatter left out. Fed the records Snakemake emits (event and fields a
 snakemake.jobs and snakemake.scheduling.job_scheduler)."""
 import io
 import logging
+import os
+import sys
+from pathlib import Path
 from types import SimpleNamespace
 
 import pytest
@@ -13,12 +16,15 @@ from snakemake_interface_logger_plugins.common import LogEvent  # noqa: E402
 from snakemake_interface_logger_plugins.registry import LoggerPluginRegistry  # noqa: E402
 
 import snakemake_logger_plugin_vines as plugin  # noqa: E402
+from snakemake_logger_plugin_vines import cost  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[1]
 
 
-def _handler(quiet=()):
+def _handler(quiet=(), dryrun=False):
     settings = SimpleNamespace(quiet=set(quiet), stdout=False, printshellcmds=False,
                                nocolor=True, debug_dag=False, verbose=False,
-                               show_failed_logs=False, dryrun=False)
+                               show_failed_logs=False, dryrun=dryrun)
     h = plugin.LogHandler(settings, None)
     h.stream = io.StringIO()
     return h
@@ -87,3 +93,105 @@ def test_messages_and_errors_pass_and_quiet_all_keeps_errors_only():
     _finish(h, 1, 1, 2)
     h.handle(_record("MissingInputException in rule x", level=logging.ERROR))
     assert h.stream.getvalue().splitlines() == ["MissingInputException in rule x"]
+
+
+# ------------------------------------------------------------------ dry run (-n)
+
+TABLE = "Job stats:\njob    count\n-----  -----\nsimulate_grid  2\nfig7  1\ntotal  3\n"
+REASONS = ("Reasons:\n    (check individual jobs above for details)\n    output files have to be"
+           " generated:\n        fig7, simulate_grid")
+PROVENANCE = ("Some jobs were triggered by provenance information, see 'reason' section in "
+              "the rule displays above.\nIf you prefer that only modification time is used ...")
+
+
+def _job(h, jobid, rule, reason, benchmark=None, output=None):
+    output = f"results/tiny/{rule}/{jobid}.nc" if output is None else output
+    h.handle(_record(f" Rule: {rule}, Jobid: {jobid}", event=LogEvent.JOB_INFO, jobid=jobid,
+                     rule_name=rule, wildcards={"k": str(jobid)}, reason=reason,
+                     benchmark=benchmark, output=[output] if output else []))
+
+
+def _bench(path, cpu, wall):
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text("s\th:m:s\tmax_rss\tcpu_time\n"
+                    f"{wall}\t0:00:01\t10.0\t{cpu}\n")
+
+
+def _dry_run(h, jobs):
+    h.handle(_record(TABLE, event=LogEvent.RUN_INFO))            # before scheduling
+    for k, job in enumerate(jobs):
+        _job(h, k, *job)
+    h.handle(_record(TABLE, event=LogEvent.RUN_INFO))            # and again after it
+    h.handle(_record(REASONS))
+    h.handle(_record(PROVENANCE))
+    h.handle(_record("This was a dry-run (flag -n). The order of jobs does not reflect ..."))
+    return h.stream.getvalue()
+
+
+def test_dry_run_prints_one_table_and_the_reasons_it_does_not_hide(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    out = _dry_run(_handler(dryrun=True), [
+        ("simulate_grid", "Missing output files: a.nc, b.nc", "results/tiny/benchmarks/s/1.tsv"),
+        ("simulate_grid", "Missing output files: c.nc", "results/tiny/benchmarks/s/2.tsv"),
+        ("fig7", "Params have changed since last execution: code, colormap")])
+    assert out.count("Job stats:") == 1
+    assert "above for details" not in out and "rule displays above" not in out
+    assert "see the reasons above" in out
+    lines = out.splitlines()
+    k = lines.index("    missing output files:")
+    assert lines[k + 1] == "        simulate_grid (2)"
+    k = lines.index("    params have changed since last execution:")
+    assert lines[k + 1] == "        fig7 (1)"
+    assert "--workflow-profile none" in out        # where every job's display is
+    assert out.rstrip().splitlines()[-1].startswith("This was a dry-run")
+
+
+def test_dry_run_estimate_from_the_benchmark_files_of_the_run(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    bench = Path("results/tiny/benchmarks")
+    _bench(bench / "simulate_grid" / "g" / "k1.tsv", cpu=300.0, wall=160.0)   # own last run
+    _bench(bench / "simulate_grid" / "g" / "k0.tsv", cpu=100.0, wall=60.0)
+    monkeypatch.setattr(cost, "FIGURE_SECONDS", {"tiny": 30.0})
+    monkeypatch.setattr(sys, "argv", ["snakemake", "-c2", "-n", "all"])
+    out = _dry_run(_handler(dryrun=True), [
+        ("simulate_grid", "Params have changed", str(bench / "simulate_grid/g/k1.tsv")),
+        ("simulate_grid", "Missing output files", str(bench / "simulate_grid/g/k9.tsv")),
+        ("fig7", "Missing output files", None, "results/tiny/figures/fig7.png"),
+        ("all", "Input files updated by another job", None, "")])      # a target: no cost
+    line = next(ln for ln in out.splitlines() if ln.startswith("Cost estimate"))
+    # 300 s (own file) + 200 s (mean of the rule's files) + 30 s (figure): 530 s on 2 cores
+    assert line.startswith("Cost estimate: about 4 min on 2 cores for 3 jobs (9 min of CPU")
+    assert "benchmark files of results/tiny (1 jobs their own last run, 1 the mean" in line
+    assert "An estimate" in line
+
+
+def test_estimate_without_benchmark_files_uses_shipped_costs_or_says_none(tmp_path,
+                                                                         monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    jobs = [("simulate_grid", "results/paper/benchmarks/simulate_grid/g/k.tsv", None)] * 4
+    shipped = {"paper": {"simulate_grid": (12, 45.0, 50.0)}}
+    line = cost.estimate(jobs, cores=2, measured=shipped, figures={})
+    assert line.startswith("Cost estimate: about 90 s on 2 cores for 4 jobs (3 min of CPU")
+    assert "costs shipped with vines" in line
+    line = cost.estimate(jobs, cores=2, measured={}, figures={})
+    assert line.startswith("Cost estimate: none")
+    # the longest job bounds the estimate from below
+    long = {"paper": {"simulate_grid": (1, 10.0, 600.0)}}
+    assert "about 10 min on 2 cores" in cost.estimate(jobs, 2, measured=long, figures={})
+
+
+def test_shipped_costs_cover_the_rules_with_benchmarks():
+    from snakemake_logger_plugin_vines.measured import FIGURE_SECONDS, MEASURED
+    for run in ("paper", "smoke"):
+        assert run in MEASURED and run in FIGURE_SECONDS
+        assert all(n >= 1 and cpu > 0 and wall > 0 for n, cpu, wall in MEASURED[run].values())
+    rules = {p.stem for p in (ROOT / "workflow" / "rules").glob("*.smk")
+             if "benchmark:" in p.read_text()}
+    assert rules <= set(MEASURED["paper"]) and rules <= set(MEASURED["smoke"])
+
+
+@pytest.mark.parametrize("argv, cores", [(["-c2"], 2), (["--cores", "3", "-n"], 3),
+                                         (["-j", "4"], 4), (["--cores=5"], 5),
+                                         (["-n", "--configfile", "c.yaml"], None)])
+def test_cores_of_the_command_line(argv, cores):
+    assert cost.cores_of(["snakemake", *argv]) == (cores or os.cpu_count())

@@ -101,7 +101,7 @@ class LogHandler(LogHandlerBase):
         self.no_progress = self.errors_only or "progress" in quiet
         self.stream = sys.stdout if self.common_settings.stdout else sys.stderr
         self.dryrun = bool(getattr(self.common_settings, "dryrun", False))
-        self.planned: list[tuple[str, str, str | None]] = []   # dry run: rule, reason, bench
+        self.planned: list[tuple] = []        # dry run: rule, reason, benchmark, output
         self.table_shown = False
 
     # the plugin interface's properties
@@ -140,8 +140,9 @@ class LogHandler(LogHandlerBase):
             self.jobs[record.jobid] = (record.rule_name, dict(record.wildcards or {}),
                                        time.monotonic())
             if self.dryrun:
+                outputs = list(getattr(record, "output", None) or [None])
                 self.planned.append((record.rule_name, getattr(record, "reason", ""),
-                                     getattr(record, "benchmark", None)))
+                                     getattr(record, "benchmark", None), outputs[0]))
         elif event == LogEvent.JOB_FINISHED:
             self.finished.append(record.job_id)
         elif event == LogEvent.PROGRESS:
@@ -199,9 +200,9 @@ class LogHandler(LogHandlerBase):
                 return
             self.table_shown = True
         elif text.startswith("Reasons:") and self.planned:
-            text = reasons_block((rule, why) for rule, why, _ in self.planned)
+            text = reasons_block((job[0], job[1]) for job in self.planned)
         elif text.startswith("This was a dry-run") and self.planned:
-            self._print(estimate([(rule, bench) for rule, _, bench in self.planned],
+            self._print(estimate([(rule, bench, out) for rule, _, bench, out in self.planned],
                                  cores_of(sys.argv)))
         for old, new in HIDDEN_REFERENCES:
             text = text.replace(old, new)

@@ -3,23 +3,25 @@
 A planned job's cost is the CPU time of a measured run of it, taken in this order: its own
 benchmark file in ``results/<run>/benchmarks/`` (the last run of that very job), the mean
 over the benchmark files of its rule in the same run, the costs shipped in ``measured.py``
-(measured on the named runs). The estimate is the planned jobs' CPU time spread over the
+(measured on the named runs); a figure job (no benchmark file) costs the mean figure job of
+``measured.FIGURE_SECONDS``. The estimate is the planned jobs' CPU time spread over the
 cores, and at least the longest job's wall time: an estimate, exact only when the jobs
-pack perfectly and the machine is as fast as the measured one. Jobs without a benchmark
-(figures, targets) are not counted; the message says how many.
+pack perfectly and the machine is as fast as the measured one.
 
-Regenerate the shipped costs from finished runs (their benchmark files)::
+Regenerate the shipped costs from finished runs (their benchmark files, and the figure job
+lines of their console output)::
 
-    python -m snakemake_logger_plugin_vines.cost results/paper results/smoke
+    python -m snakemake_logger_plugin_vines.cost results/paper:paper.log results/smoke:smoke.log
 """
 from __future__ import annotations
 
 import os
+import re
 import sys
 from dataclasses import dataclass
 from pathlib import Path
 
-from .measured import MEASURED, SOURCE
+from .measured import FIGURE_SECONDS, MEASURED, NOT_COUNTED, SOURCE
 
 
 @dataclass(frozen=True)
@@ -51,10 +53,14 @@ def rule_costs(run_dir) -> dict:
     return out
 
 
-def run_of(benchmark: str) -> str | None:
-    """``results/<run>`` of a benchmark path ``results/<run>/benchmarks/...``."""
-    parts = Path(benchmark).parts
-    return str(Path(*parts[:parts.index("benchmarks")])) if "benchmarks" in parts else None
+def run_of(benchmark: str | None, output: str | None) -> str | None:
+    """``results/<run>`` of a job: the folder above ``benchmarks/`` in its benchmark path,
+    else the first two parts of its first output (``results/<run>/...``)."""
+    if benchmark and "benchmarks" in Path(benchmark).parts:
+        parts = Path(benchmark).parts
+        return str(Path(*parts[:parts.index("benchmarks")]))
+    parts = Path(output).parts if output else ()
+    return str(Path(*parts[:2])) if len(parts) > 2 else None
 
 
 def cores_of(argv) -> int:
@@ -72,42 +78,52 @@ def cores_of(argv) -> int:
 
 
 def _minutes(seconds: float) -> str:
-    return f"{seconds / 60:.0f} min" if seconds >= 90 else f"{seconds:.0f} s"
+    return f"{seconds / 60:.0f} min" if seconds >= 120 else f"{seconds:.0f} s"
 
 
-def estimate(jobs, cores: int, measured=MEASURED) -> str:
-    """The estimate sentence for planned ``jobs``: (rule, benchmark path or None) pairs."""
-    found = {"own": 0, "rule": 0, "shipped": 0}
+def estimate(jobs, cores: int, measured=None, figures=None) -> str:
+    """The estimate sentence for planned ``jobs``: (rule, benchmark path or None, first
+    output or None) triples; ``measured``, ``figures``: the shipped costs (default
+    ``MEASURED``, ``FIGURE_SECONDS``)."""
+    measured = MEASURED if measured is None else measured
+    figures = FIGURE_SECONDS if figures is None else figures
+    found = {"own": 0, "rule": 0, "shipped": 0, "figure": 0}
     cpu = longest = 0.0
-    unbenchmarked = unknown = 0
-    runs, own_rules = set(), {}
-    for rule, benchmark in jobs:
-        if not benchmark:
-            unbenchmarked += 1
+    runs, own_rules, unknown = set(), {}, 0
+    for rule, benchmark, output in jobs:
+        run = run_of(benchmark, output)
+        if run is None:            # a target rule (all, paper, figures): no work of its own
             continue
-        run = run_of(benchmark)
         runs.add(run)
         if run not in own_rules:
-            own_rules[run] = rule_costs(run) if run else {}
-        cost, kind = read_benchmark(benchmark), "own"
-        if cost is None and rule in own_rules[run]:
-            _, mean, wall = own_rules[run][rule]
-            cost, kind = Cost(mean, wall), "rule"
-        name = Path(run).name if run else ""
-        if cost is None and rule in measured.get(name, {}):
-            _, mean, wall = measured[name][rule]
-            cost, kind = Cost(mean, wall), "shipped"
+            own_rules[run] = rule_costs(run)
+        cost, kind = _job_cost(rule, benchmark, own_rules[run], Path(run).name, measured,
+                               figures)
         if cost is None:
             unknown += 1
             continue
         found[kind] += 1
         cpu += cost.cpu
         longest = max(longest, cost.wall)
-    return _sentence(found, cpu, longest, cores, sorted(r for r in runs if r),
-                     unbenchmarked, unknown)
+    return _sentence(found, cpu, longest, cores, sorted(runs), unknown)
 
 
-def _sentence(found, cpu, longest, cores, runs, unbenchmarked, unknown) -> str:
+def _job_cost(rule, benchmark, own, name, measured, figures):
+    """(Cost, where from) of one job, or (None, "")."""
+    if benchmark:
+        cost = read_benchmark(benchmark)
+        if cost is not None:
+            return cost, "own"
+        if rule in own:
+            return Cost(own[rule][1], own[rule][2]), "rule"
+        if rule in measured.get(name, {}):
+            return Cost(measured[name][rule][1], measured[name][rule][2]), "shipped"
+    elif rule.startswith("fig") and name in figures:
+        return Cost(figures[name], figures[name]), "figure"
+    return None, ""
+
+
+def _sentence(found, cpu, longest, cores, runs, unknown) -> str:
     counted = sum(found.values())
     if not counted:
         return ("Cost estimate: none (no benchmark files of an earlier run of these jobs and "
@@ -117,28 +133,43 @@ def _sentence(found, cpu, longest, cores, runs, unbenchmarked, unknown) -> str:
         where.append(f"the benchmark files of {', '.join(runs)} ({found['own']} jobs their own"
                      f" last run, {found['rule']} the mean of their rule there)")
     if found["shipped"]:
-        where.append(f"the costs shipped with vines for {found['shipped']} jobs ({SOURCE})")
-    left = [f"{n} {what}" for n, what in ((unbenchmarked, "jobs without benchmark (figures, "
-                                                           "targets; seconds each)"),
-                                          (unknown, "jobs never measured")) if n]
+        where.append(f"the costs shipped with vines for {found['shipped']} jobs")
+    if found["figure"]:
+        where.append(f"the mean figure job for {found['figure']} figures")
+    left = [f"{unknown} jobs never measured"] if unknown else []
     return (f"Cost estimate: about {_minutes(max(cpu / cores, longest))} on {cores} cores "
-            f"for {counted} jobs ({_minutes(cpu)} CPU), measured from "
-            f"{' and '.join(where)}. An estimate: the jobs' CPU time over the cores, on a "
-            "machine as fast as the measured one; not counted: "
-            f"{', '.join(left + ['the numba compilation when its cache is cold'])}.")
+            f"for {counted} jobs ({_minutes(cpu)} of CPU time), measured from "
+            f"{'; '.join(where)}{f' ({SOURCE})' if found['shipped'] or found['figure'] else ''}"
+            ". An estimate: their CPU time spread over the cores, on a machine as fast as the "
+            f"measured one; not counted: {', '.join(left + [NOT_COUNTED])}.")
+
+
+def figure_seconds(console: str) -> float | None:
+    """Mean seconds of the figure jobs in a console log of this plugin ("[ 3/9] fig7 (2.1
+    s)" lines), or None without any."""
+    times = [float(m.group(1)) for m in re.finditer(r"^\[ *\d+/\d+\] fig\S* .*?\(([\d.]+) s\)$",
+                                                    console, re.M)]
+    return round(sum(times) / len(times), 1) if times else None
 
 
 def main(argv=None) -> int:
-    """Print the ``MEASURED`` table of the runs given (for measured.py)."""
+    """Print the tables of measured.py from runs given as RUN_DIR[:CONSOLE_LOG] (the
+    benchmark files of the run; the figure job lines of its console log)."""
     args = sys.argv[1:] if argv is None else argv
-    table = {Path(run).name: rule_costs(run) for run in args}
+    measured, figures = {}, {}
+    for arg in args:
+        run, _, console = arg.partition(":")
+        measured[Path(run).name] = rule_costs(run)
+        if console and (f := figure_seconds(Path(console).read_text())) is not None:
+            figures[Path(run).name] = f
     print("MEASURED = {")
-    for run, rules in table.items():
+    for run, rules in measured.items():
         print(f"    {run!r}: {{")
         for rule, cost in rules.items():
             print(f"        {rule!r}: {cost},")
         print("    },")
     print("}")
+    print(f"FIGURE_SECONDS = {figures!r}")
     return 0
 
 
