@@ -5,6 +5,7 @@ snakemake.jobs and snakemake.scheduling.job_scheduler)."""
 import io
 import logging
 import os
+import shutil
 import sys
 from pathlib import Path
 from types import SimpleNamespace
@@ -195,3 +196,26 @@ def test_shipped_costs_cover_the_rules_with_benchmarks():
                                          (["-n", "--configfile", "c.yaml"], None)])
 def test_cores_of_the_command_line(argv, cores):
     assert cost.cores_of(["snakemake", *argv]) == (cores or os.cpu_count())
+
+
+@pytest.mark.skipif(shutil.which("snakemake") is None, reason="snakemake not installed")
+def test_snakemake_dry_run_of_the_smoke_config_explains_itself(tmp_path):
+    # the real dry run: one table, no reference to the hidden displays, a cost estimate
+    from test_pipeline import _copy_workflow, _smk
+    _copy_workflow(tmp_path)
+    smoke = ["--configfile", str(tmp_path / "config" / "smoke.yaml")]
+    r = _smk(tmp_path, "-n", "all", *smoke)
+    out = r.stdout + r.stderr
+    assert out.count("Job stats:") == 1
+    assert "above for details" not in out and "displays above" not in out
+    assert "\n    missing output files:\n" in out
+    line = next(ln for ln in out.splitlines() if ln.startswith("Cost estimate"))
+    assert line.startswith("Cost estimate: about ") and "on 2 cores" in line
+    assert "costs shipped with vines" in line
+    # after a run, from its benchmark files (here one made up for a lyapunov job)
+    bench = tmp_path / "results" / "smoke" / "benchmarks" / "lyapunov"
+    _bench(bench / "fig3.tsv", cpu=7200.0, wall=3700.0)
+    out = _smk(tmp_path, "-n", "all", *smoke).stdout
+    line = next(ln for ln in out.splitlines() if ln.startswith("Cost estimate"))
+    assert "benchmark files of results/smoke (1 jobs their own last run, 3 the mean" in line
+    assert line.startswith("Cost estimate: about ") and " min on 2 cores" in line
