@@ -162,7 +162,8 @@ def test_dry_run_estimate_from_the_benchmark_files_of_the_run(tmp_path, monkeypa
     line = next(ln for ln in out.splitlines() if ln.startswith("Cost estimate"))
     # 300 s (own file) + 200 s (mean of the rule's files) + 30 s (figure): 530 s on 2 cores
     assert line.startswith("Cost estimate: about 4 min on 2 cores for 3 jobs (9 min of CPU")
-    assert "benchmark files of results/tiny (1 jobs their own last run, 1 the mean" in line
+    assert ("benchmark files of results/tiny (1 jobs from their own last run, 1 at the "
+            "mean of their rule there)") in line
     assert "An estimate" in line
 
 
@@ -217,5 +218,6 @@ def test_snakemake_dry_run_of_the_smoke_config_explains_itself(tmp_path):
     _bench(bench / "fig3.tsv", cpu=7200.0, wall=3700.0)
     out = _smk(tmp_path, "-n", "all", *smoke).stdout
     line = next(ln for ln in out.splitlines() if ln.startswith("Cost estimate"))
-    assert "benchmark files of results/smoke (1 jobs their own last run, 3 the mean" in line
+    assert ("benchmark files of results/smoke (1 jobs from their own last run, 3 at the "
+            "mean of their rule there)") in line
     assert line.startswith("Cost estimate: about ") and " min on 2 cores" in line

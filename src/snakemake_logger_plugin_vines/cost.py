@@ -130,8 +130,10 @@ def _sentence(found, cpu, longest, cores, runs, unknown) -> str:
                 "no shipped costs for this run).")
     where = []
     if found["own"] or found["rule"]:
-        where.append(f"the benchmark files of {', '.join(runs)} ({found['own']} jobs their own"
-                     f" last run, {found['rule']} the mean of their rule there)")
+        parts = [f"{n} {what}" for n, what in ((found["own"], "jobs from their own last run"),
+                                               (found["rule"], "at the mean of their rule "
+                                                               "there")) if n]
+        where.append(f"the benchmark files of {', '.join(runs)} ({', '.join(parts)})")
     if found["shipped"]:
         where.append(f"the costs shipped with vines for {found['shipped']} jobs")
     if found["figure"]:
