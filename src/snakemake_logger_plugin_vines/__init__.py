@@ -9,15 +9,15 @@ and for a failed job the rule, its wildcards, its log file and the last lines of
 Snakemake's other messages (the plan, warnings, errors, "Nothing to be done") pass
 unchanged; its scheduling chatter ("Select jobs to execute...", "Execute 2 jobs...") is
 left out. ``--quiet progress`` drops the job lines, ``--quiet all`` keeps errors only.
-
-A dry run (``-n``) prints the job table once, why the jobs run (per rule, in place of
-Snakemake's summary that points to the hidden job displays) and an estimate of the cost
-from measured job times (``cost``: the benchmark files of the run, or the costs shipped in
-``measured``).
 Snakemake finds the plugin by its module name (``snakemake_logger_plugin_<name>``) on
 ``sys.path`` when it parses the command line: it is installed with vines (``pip install
 -e .``; ``src/`` on ``PYTHONPATH`` works too). Without it, ``--logger vines`` is refused:
 ``--workflow-profile none`` then runs with Snakemake's own output.
+
+A dry run (``-n``) prints the job table once, why the jobs run (per reason the rules and
+their numbers of jobs, in place of Snakemake's summary that points to the job displays
+hidden here) and an estimate of the cost from measured job times (``cost``: the benchmark
+files of the run, else the costs shipped in ``measured``).
 """
 from __future__ import annotations
 
@@ -38,10 +38,11 @@ CHATTER = ("Select jobs to execute", "Execute ", "Assuming unrestricted shared f
            "Building DAG of jobs", "host:")
 #: lines of a failed job's log shown on the console
 LOG_TAIL = 15
-#: Snakemake's dry-run messages that point to the job displays this plugin hides:
-#: (start of the message, what replaces the reference)
+#: references of Snakemake's dry-run messages to the job displays hidden here, and what
+#: replaces them
 HIDDEN_REFERENCES = (("see 'reason' section in the rule displays above",
-                      "see the reasons above"),)
+                      "see the reasons above"),
+                     ("\n    (check individual jobs above for details)", ""))
 
 
 def job_line(done: int, total: int, rule: str, wildcards: dict, seconds: float | None) -> str:
