@@ -147,11 +147,32 @@ def _sentence(found, cpu, longest, cores, runs, unknown) -> str:
 
 
 def figure_seconds(console: str) -> float | None:
-    """Mean seconds of the figure jobs in a console log of this plugin ("[ 3/9] fig7 (2.1
-    s)" lines), or None without any."""
-    times = [float(m.group(1)) for m in re.finditer(r"^\[ *\d+/\d+\] fig\S* .*?\(([\d.]+) s\)$",
-                                                    console, re.M)]
+    """Mean seconds of the figure jobs (rules fig*) in a console log, or None without any:
+    this plugin's lines ("[ 3/9] fig7 (2.1 s)") or Snakemake's own log
+    (.snakemake/log/*.snakemake.log: a job's start and "Finished jobid" times, to the
+    second)."""
+    times = [float(t) for t in re.findall(r"^\[ *\d+/\d+\] fig\S* .*?\(([\d.]+) s\)$",
+                                          console, re.M)]
+    times += _snakemake_log_seconds(console, "fig")
     return round(sum(times) / len(times), 1) if times else None
+
+
+def _snakemake_log_seconds(text: str, prefix: str) -> list:
+    """Durations of the jobs of rules ``prefix*`` in Snakemake's own log format."""
+    from datetime import datetime
+    out, started, stamp, rule = [], {}, None, None
+    for line in text.splitlines():
+        if m := re.fullmatch(r"\[(\w{3} \w{3} +\d+ [\d:]+ \d{4})\]", line):
+            stamp = datetime.strptime(m.group(1), "%a %b %d %H:%M:%S %Y")
+        elif m := re.fullmatch(r"(?:local)?rule (\S+):", line):
+            rule = m.group(1)
+        elif (m := re.fullmatch(r"    jobid: (\d+)", line)) and rule and stamp:
+            started[m.group(1)] = (rule, stamp)
+        elif (m := re.match(r"Finished jobid: (\d+)", line)) and m.group(1) in started:
+            rule, start = started.pop(m.group(1))
+            if rule.startswith(prefix) and stamp:
+                out.append((stamp - start).total_seconds())
+    return out
 
 
 def main(argv=None) -> int:
