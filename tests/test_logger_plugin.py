@@ -105,11 +105,11 @@ PROVENANCE = ("Some jobs were triggered by provenance information, see 'reason' 
               "the rule displays above.\nIf you prefer that only modification time is used ...")
 
 
-def _job(h, jobid, rule, reason, benchmark=None, output=None):
+def _job(h, jobid, rule, reason, benchmark=None, output=None, threads=1):
     output = f"results/tiny/{rule}/{jobid}.nc" if output is None else output
     h.handle(_record(f" Rule: {rule}, Jobid: {jobid}", event=LogEvent.JOB_INFO, jobid=jobid,
                      rule_name=rule, wildcards={"k": str(jobid)}, reason=reason,
-                     benchmark=benchmark, output=[output] if output else []))
+                     benchmark=benchmark, output=[output] if output else [], threads=threads))
 
 
 def _bench(path, cpu, wall):
@@ -155,38 +155,39 @@ def test_dry_run_estimate_from_the_benchmark_files_of_the_run(tmp_path, monkeypa
     monkeypatch.setattr(cost, "FIGURE_SECONDS", {"tiny": 30.0})
     monkeypatch.setattr(sys, "argv", ["snakemake", "-c2", "-n", "all"])
     out = _dry_run(_handler(dryrun=True), [
-        ("simulate_grid", "Params have changed", str(bench / "simulate_grid/g/k1.tsv")),
-        ("simulate_grid", "Missing output files", str(bench / "simulate_grid/g/k9.tsv")),
-        ("fig7", "Missing output files", None, "results/tiny/figures/fig7.png"),
+        ("simulate_grid", "Params have changed", str(bench / "simulate_grid/g/k1.tsv"), None, 2),
+        ("simulate_grid", "Missing output files", str(bench / "simulate_grid/g/k9.tsv"), None, 2),
+        ("fig7", "Missing output files", None, "results/tiny/figures/fig7.png", 1),
         ("all", "Input files updated by another job", None, "")])      # a target: no cost
     line = next(ln for ln in out.splitlines() if ln.startswith("Cost estimate"))
-    # 300 s (own file) + 200 s (mean of the rule's files) + 30 s (figure): 530 s on 2 cores
-    assert line.startswith("Cost estimate: about 4 min on 2 cores for 3 jobs (9 min of CPU")
+    # two 2-thread jobs of 160 s (own file) and 110 s (mean of the rule's files) take both
+    # cores, the figure (30 s, 1 thread) one: (320 + 220 + 30) / 2 = 285 s
+    assert line.startswith("Cost estimate: about 5 min on 2 cores for 3 jobs, from their ")
     assert ("benchmark files of results/tiny (1 jobs from their own last run, 1 at the "
             "mean of their rule there)") in line
-    assert "An estimate" in line
+    assert "the mean figure job for 1 figures" in line and "An estimate" in line
 
 
 def test_estimate_without_benchmark_files_uses_shipped_costs_or_says_none(tmp_path,
                                                                          monkeypatch):
     monkeypatch.chdir(tmp_path)
-    jobs = [("simulate_grid", "results/paper/benchmarks/simulate_grid/g/k.tsv", None)] * 4
+    jobs = [("simulate_grid", "results/paper/benchmarks/simulate_grid/g/k.tsv", None, 1)] * 4
     shipped = {"paper": {"simulate_grid": (12, 45.0, 50.0)}}
     line = cost.estimate(jobs, cores=2, measured=shipped, figures={})
-    assert line.startswith("Cost estimate: about 90 s on 2 cores for 4 jobs (3 min of CPU")
-    assert "costs shipped with vines" in line
-    line = cost.estimate(jobs, cores=2, measured={}, figures={})
-    assert line.startswith("Cost estimate: none")
+    assert line.startswith("Cost estimate: about 90 s on 2 cores for 4 jobs")   # 4 x 45 / 2
+    assert "costs shipped with vines for 4 jobs" in line
+    assert cost.estimate(jobs, cores=2, measured={}, figures={}).startswith(
+        "Cost estimate: none")
     # the longest job bounds the estimate from below
-    long = {"paper": {"simulate_grid": (1, 10.0, 600.0)}}
-    assert "about 10 min on 2 cores" in cost.estimate(jobs, 2, measured=long, figures={})
+    long = {"paper": {"simulate_grid": (1, 600.0, 600.0)}}
+    assert "about 10 min on 4 cores" in cost.estimate(jobs[:1], 4, measured=long, figures={})
 
 
 def test_shipped_costs_cover_the_rules_with_benchmarks():
     from snakemake_logger_plugin_vines.measured import FIGURE_SECONDS, MEASURED
     for run in ("paper", "smoke"):
         assert run in MEASURED and run in FIGURE_SECONDS
-        assert all(n >= 1 and cpu > 0 and wall > 0 for n, cpu, wall in MEASURED[run].values())
+        assert all(n >= 1 and 0 < mean <= longest for n, mean, longest in MEASURED[run].values())
     rules = {p.stem for p in (ROOT / "workflow" / "rules").glob("*.smk")
              if "benchmark:" in p.read_text()}
     assert rules <= set(MEASURED["paper"]) and rules <= set(MEASURED["smoke"])

@@ -102,7 +102,7 @@ class LogHandler(LogHandlerBase):
         self.no_progress = self.errors_only or "progress" in quiet
         self.stream = sys.stdout if self.common_settings.stdout else sys.stderr
         self.dryrun = bool(getattr(self.common_settings, "dryrun", False))
-        self.planned: list[tuple] = []        # dry run: rule, reason, benchmark, output
+        self.planned: list[tuple] = []   # dry run: rule, reason, benchmark, output, threads
         self.table_shown = False
 
     # the plugin interface's properties
@@ -143,7 +143,8 @@ class LogHandler(LogHandlerBase):
             if self.dryrun:
                 outputs = list(getattr(record, "output", None) or [None])
                 self.planned.append((record.rule_name, getattr(record, "reason", ""),
-                                     getattr(record, "benchmark", None), outputs[0]))
+                                     getattr(record, "benchmark", None), outputs[0],
+                                     getattr(record, "threads", 1)))
         elif event == LogEvent.JOB_FINISHED:
             self.finished.append(record.job_id)
         elif event == LogEvent.PROGRESS:
@@ -203,7 +204,7 @@ class LogHandler(LogHandlerBase):
         elif text.startswith("Reasons:") and self.planned:
             text = reasons_block((job[0], job[1]) for job in self.planned)
         elif text.startswith("This was a dry-run") and self.planned:
-            self._print(estimate([(rule, bench, out) for rule, _, bench, out in self.planned],
+            self._print(estimate([(job[0], *job[2:]) for job in self.planned],
                                  cores_of(sys.argv)))
         for old, new in HIDDEN_REFERENCES:
             text = text.replace(old, new)

@@ -1,15 +1,16 @@
 """The cost estimate of a dry run (``snakemake -n``), from measured job times.
 
-A planned job's cost is the CPU time of a measured run of it, taken in this order: its own
-benchmark file in ``results/<run>/benchmarks/`` (the last run of that very job), the mean
-over the benchmark files of its rule in the same run, the costs shipped in ``measured.py``
-(measured on the named runs); a figure job (no benchmark file) costs the mean figure job of
-``measured.FIGURE_SECONDS``. The estimate is the planned jobs' CPU time spread over the
-cores, and at least the longest job's wall time: an estimate, exact only when the jobs
-pack perfectly and the machine is as fast as the measured one.
+A planned job's cost is the wall time of a measured run of it, taken in this order: its
+own benchmark file in ``results/<run>/benchmarks/`` (the last run of that very job), the
+mean over the benchmark files of its rule in the same run, the costs shipped in
+``measured.py`` (measured on the named runs); a figure job (no benchmark file) costs the
+mean figure job of ``measured.FIGURE_SECONDS``. A job of k threads takes k of the cores
+for its time: the estimate is the sum of time x threads over the cores, at least the
+longest job. An estimate: exact only when the jobs pack perfectly and the machine is as
+fast and as loaded as the measured one.
 
 Regenerate the shipped costs from finished runs (their benchmark files, and the figure job
-lines of their console output)::
+times of their console logs)::
 
     python -m snakemake_logger_plugin_vines.cost results/paper:paper.log results/smoke:smoke.log
 """
@@ -18,38 +19,30 @@ from __future__ import annotations
 import os
 import re
 import sys
-from dataclasses import dataclass
 from pathlib import Path
 
 from .measured import FIGURE_SECONDS, MEASURED, NOT_COUNTED, SOURCE
 
 
-@dataclass(frozen=True)
-class Cost:
-    """CPU seconds of one job and its wall seconds."""
-    cpu: float
-    wall: float
-
-
-def read_benchmark(path) -> Cost | None:
-    """The (last) row of a Snakemake benchmark file, or None if unreadable."""
+def read_benchmark(path) -> float | None:
+    """Wall seconds (column ``s``) of the last row of a Snakemake benchmark file, or None."""
     try:
         head, *rows = Path(path).read_text().splitlines()
         row = dict(zip(head.split("\t"), rows[-1].split("\t"), strict=True))
-        return Cost(cpu=float(row["cpu_time"]), wall=float(row["s"]))
+        return float(row["s"])
     except (OSError, ValueError, KeyError, IndexError):
         return None
 
 
 def rule_costs(run_dir) -> dict:
-    """{rule: (jobs, mean CPU seconds, longest wall seconds)} of a run's benchmark files."""
+    """{rule: (jobs, mean wall seconds, longest wall seconds)} of a run's benchmark files."""
     out = {}
     bench = Path(run_dir) / "benchmarks"
     for rule_dir in sorted(p for p in bench.glob("*") if p.is_dir()):
-        costs = [c for c in map(read_benchmark, sorted(rule_dir.rglob("*.tsv"))) if c]
-        if costs:
-            out[rule_dir.name] = (len(costs), round(sum(c.cpu for c in costs) / len(costs), 2),
-                                  round(max(c.wall for c in costs), 2))
+        times = [t for t in map(read_benchmark, sorted(rule_dir.rglob("*.tsv"))) if t is not None]
+        if times:
+            out[rule_dir.name] = (len(times), round(sum(times) / len(times), 2),
+                                  round(max(times), 2))
     return out
 
 
@@ -83,47 +76,47 @@ def _minutes(seconds: float) -> str:
 
 def estimate(jobs, cores: int, measured=None, figures=None) -> str:
     """The estimate sentence for planned ``jobs``: (rule, benchmark path or None, first
-    output or None) triples; ``measured``, ``figures``: the shipped costs (default
+    output or None, threads) tuples; ``measured``, ``figures``: the shipped costs (default
     ``MEASURED``, ``FIGURE_SECONDS``)."""
     measured = MEASURED if measured is None else measured
     figures = FIGURE_SECONDS if figures is None else figures
     found = {"own": 0, "rule": 0, "shipped": 0, "figure": 0}
-    cpu = longest = 0.0
+    core_seconds = longest = 0.0
     runs, own_rules, unknown = set(), {}, 0
-    for rule, benchmark, output in jobs:
+    for rule, benchmark, output, threads in jobs:
         run = run_of(benchmark, output)
         if run is None:            # a target rule (all, paper, figures): no work of its own
             continue
         runs.add(run)
         if run not in own_rules:
             own_rules[run] = rule_costs(run)
-        cost, kind = _job_cost(rule, benchmark, own_rules[run], Path(run).name, measured,
-                               figures)
-        if cost is None:
+        seconds, kind = _job_seconds(rule, benchmark, own_rules[run], Path(run).name,
+                                     measured, figures)
+        if seconds is None:
             unknown += 1
             continue
         found[kind] += 1
-        cpu += cost.cpu
-        longest = max(longest, cost.wall)
-    return _sentence(found, cpu, longest, cores, sorted(runs), unknown)
+        core_seconds += seconds * min(max(int(threads or 1), 1), cores)
+        longest = max(longest, seconds)
+    return _sentence(found, max(core_seconds / cores, longest), cores, sorted(runs), unknown)
 
 
-def _job_cost(rule, benchmark, own, name, measured, figures):
-    """(Cost, where from) of one job, or (None, "")."""
+def _job_seconds(rule, benchmark, own, name, measured, figures):
+    """(wall seconds, where from) of one job, or (None, "")."""
     if benchmark:
-        cost = read_benchmark(benchmark)
-        if cost is not None:
-            return cost, "own"
+        seconds = read_benchmark(benchmark)
+        if seconds is not None:
+            return seconds, "own"
         if rule in own:
-            return Cost(own[rule][1], own[rule][2]), "rule"
+            return own[rule][1], "rule"
         if rule in measured.get(name, {}):
-            return Cost(measured[name][rule][1], measured[name][rule][2]), "shipped"
+            return measured[name][rule][1], "shipped"
     elif rule.startswith("fig") and name in figures:
-        return Cost(figures[name], figures[name]), "figure"
+        return figures[name], "figure"
     return None, ""
 
 
-def _sentence(found, cpu, longest, cores, runs, unknown) -> str:
+def _sentence(found, seconds, cores, runs, unknown) -> str:
     counted = sum(found.values())
     if not counted:
         return ("Cost estimate: none (no benchmark files of an earlier run of these jobs and "
@@ -138,11 +131,11 @@ def _sentence(found, cpu, longest, cores, runs, unknown) -> str:
         where.append(f"the costs shipped with vines for {found['shipped']} jobs")
     if found["figure"]:
         where.append(f"the mean figure job for {found['figure']} figures")
+    shipped = f" ({SOURCE})" if found["shipped"] or found["figure"] else ""
     left = [f"{unknown} jobs never measured"] if unknown else []
-    return (f"Cost estimate: about {_minutes(max(cpu / cores, longest))} on {cores} cores "
-            f"for {counted} jobs ({_minutes(cpu)} of CPU time), measured from "
-            f"{'; '.join(where)}{f' ({SOURCE})' if found['shipped'] or found['figure'] else ''}"
-            ". An estimate: their CPU time spread over the cores, on a machine as fast as the "
+    return (f"Cost estimate: about {_minutes(seconds)} on {cores} cores for {counted} jobs, "
+            f"from their measured times: {'; '.join(where)}{shipped}. An estimate: each job "
+            "takes its threads' share of the cores, on a machine as fast and as loaded as the "
             f"measured one; not counted: {', '.join(left + [NOT_COUNTED])}.")
 
 
