@@ -95,6 +95,7 @@ class Report:
     faults_asked: int
     faults: list = field(default_factory=list)
     findings: list = field(default_factory=list)
+    notes: list = field(default_factory=list)       # seen, not failures
     attempts: int = 0
     unlocks: int = 0
     wall_s: float = 0.0
@@ -373,6 +374,34 @@ def _cache_damage(text: str, where: str, report: Report) -> None:
             return
 
 
+def check_cache(src: Path, report: Report) -> None:
+    """Load every numba cache index (.nbi) and data file (.nbc) under ``src`` as numba's
+    loader does: one that fails is a finding; temporary files left by a kill, a note."""
+    import pickle
+    for nbi in sorted(src.rglob("*.nbi")):
+        try:
+            with open(nbi, "rb") as f:
+                pickle.load(f)                               # numba's version
+                _stamp, overloads = pickle.loads(f.read())
+            for name in overloads.values():
+                if (nbi.parent / name).exists():
+                    pickle.loads((nbi.parent / name).read_bytes())
+        except Exception as err:  # noqa: BLE001 (any failure to load is the finding)
+            report.findings.append(f"numba cache damaged: {nbi.relative_to(src)} (or a data "
+                                   f"file it names): {type(err).__name__}: {err}")
+    tmp = [p for p in src.rglob("*") if ".tmp." in p.name or p.name.startswith(".numba-warm")]
+    if tmp:
+        report.notes.append(f"{len(tmp)} temporary cache files left by kills, e.g. "
+                            f"{tmp[0].relative_to(src)}")
+
+
+def _tracebacks(text: str, where: str, report: Report) -> None:
+    if "Traceback" in text:
+        lines = text.splitlines()
+        last = next((ln for ln in reversed(lines) if ln and not ln.startswith(" ")), "")
+        report.notes.append(f"{where}: a traceback ({last.strip()[:160]})")
+
+
 # ------------------------------------------------------------------ comparison
 
 def same_array(a, b) -> bool:
@@ -536,6 +565,9 @@ def main(argv=None) -> int:
                                    + " | ".join(plan.strip().splitlines()[-4:]))
         for p in sorted((work / "results" / RUN / "logs").rglob("*.log")):
             _cache_damage(p.read_text(errors="replace"), str(p.relative_to(work)), report)
+        for p in sorted(logs.glob("*.log")):
+            _tracebacks(p.read_text(errors="replace"), p.name, report)
+        check_cache(work / "src", report)
         compare_results(ref, work / "results" / RUN, report)
     finally:
         report.wall_s = round(time.monotonic() - t_start, 1)
@@ -551,6 +583,8 @@ def _summary(report: Report, args) -> None:
     for f in report.faults:
         key = f"{f.signal} {f.target}"
         kinds[key] = kinds.get(key, 0) + 1
+    for line in report.notes:
+        print("  note:", line)
     for line in report.findings:
         print("  finding:", line)
     print(f"fault injection (seed {report.seed}): {len(report.faults)} faults "

@@ -8,11 +8,10 @@ import subprocess
 import time
 from pathlib import Path
 
+import fault_injection as fi
 import numpy as np
 import pytest
 import xarray as xr
-
-import fault_injection as fi
 
 needs_proc = pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="needs /proc")
 needs_snakemake = pytest.mark.skipif(shutil.which("snakemake") is None,
