@@ -375,20 +375,22 @@ def _cache_damage(text: str, where: str, report: Report) -> None:
 
 
 def check_cache(src: Path, report: Report) -> None:
-    """Load every numba cache index (.nbi) and data file (.nbc) under ``src`` as numba's
-    loader does: one that fails is a finding; temporary files left by a kill, a note."""
-    import pickle
-    for nbi in sorted(src.rglob("*.nbi")):
+    """Read every numba cache file under ``src`` to the end of its pickles (an index .nbi
+    holds two: numba's version, then the overloads; a data file .nbc one), without running
+    them: a truncated or empty file is a finding; temporary files left by a kill, a note."""
+    import io
+    import pickletools
+    for path in sorted([*src.rglob("*.nbi"), *src.rglob("*.nbc")]):
+        stream = io.BytesIO(path.read_bytes())
         try:
-            with open(nbi, "rb") as f:
-                pickle.load(f)                               # numba's version
-                _stamp, overloads = pickle.loads(f.read())
-            for name in overloads.values():
-                if (nbi.parent / name).exists():
-                    pickle.loads((nbi.parent / name).read_bytes())
-        except Exception as err:  # noqa: BLE001 (any failure to load is the finding)
-            report.findings.append(f"numba cache damaged: {nbi.relative_to(src)} (or a data "
-                                   f"file it names): {type(err).__name__}: {err}")
+            for _ in range(2 if path.suffix == ".nbi" else 1):
+                for _op in pickletools.genops(stream):
+                    pass
+            if stream.read(1):
+                raise ValueError("bytes after the last pickle")
+        except Exception as err:  # noqa: BLE001 (any failure to read is the finding)
+            report.findings.append(f"numba cache damaged: {path.relative_to(src)}: "
+                                   f"{type(err).__name__}: {err}")
     tmp = [p for p in src.rglob("*") if ".tmp." in p.name or p.name.startswith(".numba-warm")]
     if tmp:
         report.notes.append(f"{len(tmp)} temporary cache files left by kills, e.g. "

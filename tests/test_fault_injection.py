@@ -5,6 +5,7 @@ import os
 import shutil
 import signal
 import subprocess
+import sys
 import time
 from pathlib import Path
 
@@ -109,3 +110,18 @@ def test_three_random_faults_leave_every_dataset_as_an_uninterrupted_run(tmp_pat
 @pytest.mark.slow
 def test_thirty_random_faults_leave_every_dataset_as_an_uninterrupted_run(tmp_path):
     _faults(tmp_path, seed=2, n=30)
+
+
+def test_a_truncated_numba_cache_file_is_a_finding(tmp_path):
+    pytest.importorskip("numba")
+    (tmp_path / "kern.py").write_text(
+        "from numba import njit\n\n\n@njit(cache=True)\ndef f(x):\n    return x + 1\n")
+    subprocess.run([sys.executable, "-c", "import kern; kern.f(1)"], cwd=tmp_path, check=True,
+                   env=dict(os.environ, PYTHONPATH=str(tmp_path)))
+    report = fi.Report(seed=0, faults_asked=0)
+    fi.check_cache(tmp_path, report)
+    assert report.findings == []                          # a sound cache loads
+    nbc = next(tmp_path.rglob("*.nbc"))
+    nbc.write_bytes(nbc.read_bytes()[:100])               # what a full disk can leave
+    fi.check_cache(tmp_path, report)
+    assert len(report.findings) == 1 and "numba cache damaged" in report.findings[0]
