@@ -570,6 +570,11 @@ def main(argv=None) -> int:
         for p in sorted(logs.glob("*.log")):
             _tracebacks(p.read_text(errors="replace"), p.name, report)
         check_cache(work / "src", report)
+        partial = sorted(str(q.relative_to(work)) for q in (work / "results").rglob(".*")
+                         if q.is_file())
+        if partial:
+            report.notes.append(f"{len(partial)} temporary files of killed writes left in "
+                                f"results/: {', '.join(partial[:5])}")
         compare_results(ref, work / "results" / RUN, report)
     finally:
         report.wall_s = round(time.monotonic() - t_start, 1)
