@@ -91,8 +91,9 @@ def test_a_process_ending_within_the_grace_is_no_finding():
     assert report.findings == [] and time.monotonic() - t0 < 10
 
 
-def _faults(tmp_path, seed: int, n: int) -> None:
-    args = ["--seed", str(seed), "--faults", str(n), "--run-dir", str(tmp_path)]
+def _faults(tmp_path, seed: int, n: int, warmup: int) -> None:
+    args = ["--seed", str(seed), "--faults", str(n), "--warmup-faults", str(warmup),
+            "--run-dir", str(tmp_path)]
     rc = fi.main(args)
     assert rc == 0, "findings above (stdout)"
 
@@ -102,14 +103,14 @@ def _faults(tmp_path, seed: int, n: int) -> None:
 @pytest.mark.slow
 def test_three_random_faults_leave_every_dataset_as_an_uninterrupted_run(tmp_path):
     """The short version (CI runs it through .ci/run); makes its own reference run."""
-    _faults(tmp_path, seed=1, n=3)
+    _faults(tmp_path, seed=1, n=3, warmup=1)
 
 
 @needs_proc
 @needs_snakemake
 @pytest.mark.slow
 def test_thirty_random_faults_leave_every_dataset_as_an_uninterrupted_run(tmp_path):
-    _faults(tmp_path, seed=2, n=30)
+    _faults(tmp_path, seed=2, n=30, warmup=3)
 
 
 def test_a_truncated_numba_cache_file_is_a_finding(tmp_path):
