@@ -73,6 +73,7 @@ CACHE_DAMAGE = ("UnpicklingError", "pickle data was truncated", "EOFError: Ran o
 WARMUP = "vines.pipeline.warmup"                # the onstart warm-up's module
 SCRIPTS = ".snakemake/scripts/"                  # where Snakemake puts a job's script
 WARMUP_WINDOW = 20.0                             # seconds: warm-up fault instants
+TARGETS = ("snakemake", "run", "job")
 SIGNALS = {"SIGKILL": signal.SIGKILL, "SIGTERM": signal.SIGTERM}
 
 
@@ -246,14 +247,15 @@ def wait_exit(proc: subprocess.Popen, timeout: float) -> int | None:
         return None
 
 
-def strike(proc, rng, fault: Fault) -> None:
+def strike(proc, rng, fault: Fault, targets) -> None:
     """Send the fault's signal to its target, drawn among what runs now (while the warm-up
     runs, a job target is one of its processes)."""
     sid = proc.pid                                 # session leader: sid == its pid
     jobs = job_pids(sid, proc.pid)
     warm = [p for p in jobs if WARMUP in _cmdline(p)]
     jobs = warm or jobs
-    fault.target = rng.choice(["snakemake", "run"] + (["job"] if jobs else []))
+    kinds = [k for k in TARGETS if k in targets and (k != "job" or jobs)]
+    fault.target = rng.choice(kinds or ["snakemake"])
     sig = SIGNALS[fault.signal]
     if fault.target == "snakemake":
         fault.process = _cmdline(proc.pid)
@@ -291,7 +293,7 @@ def run_with_faults(run: Run, args, rng, report: Report, orphans: Orphans,
         faulting = n_fault < args.faults
         left = 1.0 - len(output_files(res)) / max(total, 1)
         delay, from_warmup = _instant(rng, args, n_fault, left, ref_seconds)
-        sig = rng.choice(sorted(SIGNALS))
+        sig = rng.choice(args.signals)
         last = report.faults[-1] if report.faults else None
         if last is not None and not unlocked:
             last.remedy.append("the same command")
@@ -335,7 +337,7 @@ def run_with_faults(run: Run, args, rng, report: Report, orphans: Orphans,
 def _fault(proc, rng, args, n: int, t0: float, sig: str, report: Report) -> Fault:
     """Strike, then wait for Snakemake to exit (a finding if it does not within --hang)."""
     fault = Fault(n, round(time.monotonic() - t0, 1), sig, "")
-    strike(proc, rng, fault)
+    strike(proc, rng, fault, args.targets)
     t_sig = time.monotonic()
     rc = wait_exit(proc, args.hang)
     if rc is None:
@@ -505,6 +507,9 @@ def parse_args(argv=None):
     p.add_argument("--reference-seconds", type=float, default=150.0,
                    help="wall time of an uninterrupted run with a warm cache, used to spread "
                    "the instants when --reference is given (default 150)")
+    p.add_argument("--targets", nargs="+", choices=TARGETS, default=list(TARGETS),
+                   help="what may be signalled (default all; snakemake when no job runs)")
+    p.add_argument("--signals", nargs="+", choices=sorted(SIGNALS), default=sorted(SIGNALS))
     p.add_argument("--cores", type=int, default=2)
     p.add_argument("--grace", type=float, default=180.0, help="seconds a process of an "
                    "interrupted run may outlive its Snakemake (default 180)")
