@@ -85,8 +85,8 @@ class Fault:
     signal: str
     target: str                   # snakemake | job | run
     process: str = ""             # the command line of the signalled process
-    snakemake_rc: int | None = None
-    exit_s: float | None = None   # seconds from the signal to Snakemake's exit
+    snakemake_rc: int | None = None   # the exit status of the attempt's Snakemake
+    exit_s: float | None = None   # seconds from the signal to that Snakemake's exit
     remedy: list = field(default_factory=list)
 
 
@@ -283,38 +283,28 @@ def _instant(rng, args, n_fault: int, left: float, ref_seconds: float) -> tuple[
 
 def run_with_faults(run: Run, args, rng, report: Report, orphans: Orphans,
                     total: int, ref_seconds: float) -> None:
-    """Attempts of the same command, one fault each until ``args.faults``, then to the end;
+    """Attempts of the same command, with faults until ``args.faults``, then to the end;
     each attempt after a fault or a failure is the README's remedy."""
-    res = run.work / "results" / RUN
     unlocked = False
     while run.n < args.max_attempts:
         orphans.check()
-        n_fault = len(report.faults)
-        faulting = n_fault < args.faults
-        left = 1.0 - len(output_files(res)) / max(total, 1)
-        delay, from_warmup = _instant(rng, args, n_fault, left, ref_seconds)
-        sig = rng.choice(args.signals)
         last = report.faults[-1] if report.faults else None
         if last is not None and not unlocked:
             last.remedy.append("the same command")
-        t0 = time.monotonic()
         proc = run.start()
         report.attempts += 1
-        rc = _wait_for_instant(proc, t0, delay, from_warmup) if faulting else None
-        if faulting and rc is None:
-            report.faults.append(_fault(proc, rng, args, n_fault + 1, t0, sig, report))
-            orphans.add(proc.pid)
-            unlocked = False
-            continue
-        if rc is None:
-            rc = wait_exit(proc, 10 * args.hang)
+        n_before = len(report.faults)
+        rc = _attempt(proc, run, args, rng, report, total, ref_seconds)
         orphans.add(proc.pid)
         text = run.log_text()
         _cache_damage(text, f"attempt {run.n}", report)
+        if len(report.faults) > n_before:          # faulted: the remedy is the next attempt
+            unlocked = False
+            continue
         if rc == 0:
-            if faulting:     # the run ended before this instant: no room for more faults
-                report.findings.append(
-                    f"the run completed after {n_fault} of {args.faults} faults")
+            if len(report.faults) < args.faults:   # ended before the next instant
+                report.findings.append(f"the run completed after {len(report.faults)} of "
+                                       f"{args.faults} faults")
             return
         if LOCKED in text and not unlocked:
             if last is not None:
@@ -334,22 +324,47 @@ def run_with_faults(run: Run, args, rng, report: Report, orphans: Orphans,
     report.findings.append(f"not complete after {run.n} attempts")
 
 
-def _fault(proc, rng, args, n: int, t0: float, sig: str, report: Report) -> Fault:
-    """Strike, then wait for Snakemake to exit (a finding if it does not within --hang)."""
-    fault = Fault(n, round(time.monotonic() - t0, 1), sig, "")
-    strike(proc, rng, fault, args.targets)
-    t_sig = time.monotonic()
-    rc = wait_exit(proc, args.hang)
+def _attempt(proc, run: Run, args, rng, report: Report, total: int,
+             ref_seconds: float) -> int:
+    """Faults into one running Snakemake until it ends; its exit status. A fault to Snakemake
+    or the whole run ends it (a finding if not within --hang); after one to a job,
+    Snakemake goes on (finishes the running jobs, or the run after a warm-up fault) and the
+    next fault may strike it again."""
+    res = run.work / "results" / RUN
+    t0, first = time.monotonic(), len(report.faults)
+    while len(report.faults) < args.faults:
+        n = len(report.faults)
+        left = 1.0 - len(output_files(res)) / max(total, 1)
+        delay, from_warmup = _instant(rng, args, n, left, ref_seconds)
+        sig = rng.choice(args.signals)
+        rc = _wait_for_instant(proc, time.monotonic(), delay, from_warmup and n == first)
+        if rc is not None:
+            break
+        fault = Fault(n + 1, round(time.monotonic() - t0, 1), sig, "")
+        strike(proc, rng, fault, args.targets)
+        report.faults.append(fault)
+        _say(f"fault {fault.n}/{args.faults}: {sig} to {fault.target} at {fault.at_s} s of "
+             f"attempt {run.n} ({fault.process[:100]})")
+        if fault.target != "job":
+            rc = wait_exit(proc, args.hang)
+            if rc is None:
+                report.findings.append(
+                    f"fault {fault.n}: Snakemake still running {args.hang:.0f} s after "
+                    f"{sig} to {fault.target}; killed")
+                os.killpg(proc.pid, signal.SIGKILL)
+            break
+    rc = wait_exit(proc, 10 * args.hang)
     if rc is None:
-        report.findings.append(
-            f"fault {n}: Snakemake still running {args.hang:.0f} s after {fault.signal} to "
-            f"{fault.target} ({fault.process}); killed")
+        report.findings.append(f"attempt {run.n}: Snakemake still running after "
+                               f"{10 * args.hang:.0f} s; killed")
         os.killpg(proc.pid, signal.SIGKILL)
         rc = proc.wait()
-    fault.snakemake_rc, fault.exit_s = rc, round(time.monotonic() - t_sig, 1)
-    _say(f"fault {n}/{args.faults}: {sig} to {fault.target} at {fault.at_s} s "
-         f"({fault.process[:100]}); Snakemake exit {rc} after {fault.exit_s} s")
-    return fault
+    t_end = round(time.monotonic() - t0, 1)
+    for fault in report.faults[first:]:
+        fault.snakemake_rc, fault.exit_s = rc, round(t_end - fault.at_s, 1)
+    if len(report.faults) > first:
+        _say(f"attempt {run.n}: Snakemake exit {rc} at {t_end} s")
+    return rc
 
 
 def _wait_for_instant(proc, t0: float, delay: float, from_warmup: bool) -> int | None:
