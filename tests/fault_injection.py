@@ -204,11 +204,12 @@ def copy_workflow(dst: Path) -> None:
 
 
 def output_files(res: Path) -> set[str]:
-    """Datasets and figures of a results folder (not logs, not benchmarks)."""
+    """Datasets and figures of a results folder (not logs, benchmarks or temporary files)."""
     if not res.is_dir():
         return set()
     return {str(p.relative_to(res)) for p in res.rglob("*")
             if p.is_file() and p.suffix in (".nc", ".pdf", ".png")
+            and not p.name.startswith(".")                # temporary files of writes
             and p.relative_to(res).parts[0] not in ("logs", "benchmarks")}
 
 
@@ -415,10 +416,13 @@ def check_cache(src: Path, report: Report) -> None:
 
 
 def _tracebacks(text: str, where: str, report: Report) -> None:
-    if "Traceback" in text:
-        lines = text.splitlines()
-        last = next((ln for ln in reversed(lines) if ln and not ln.startswith(" ")), "")
-        report.notes.append(f"{where}: a traceback ({last.strip()[:160]})")
+    """A note per traceback in ``text``, naming its exception (the first line after it that
+    is not indented)."""
+    lines = text.splitlines()
+    for i, line in enumerate(lines):
+        if line.startswith("Traceback"):
+            err = next((ln for ln in lines[i + 1:] if ln and not ln[0].isspace()), "?")
+            report.notes.append(f"{where}: a traceback ({err.strip()[:200]})")
 
 
 # ------------------------------------------------------------------ comparison
