@@ -99,6 +99,7 @@ class Report:
     notes: list = field(default_factory=list)       # seen, not failures
     attempts: int = 0
     unlocks: int = 0
+    sigterm_hangs: int = 0     # Snakemake deadlocked by SIGTERM (README), killed
     wall_s: float = 0.0
     datasets: int = 0
     datasets_identical: int = 0
@@ -328,7 +329,7 @@ def run_with_faults(run: Run, args, rng, report: Report, orphans: Orphans,
 def _attempt(proc, run: Run, args, rng, report: Report, total: int,
              ref_seconds: float) -> int:
     """Faults into one running Snakemake until it ends; its exit status. A fault to Snakemake
-    or the whole run ends it (a finding if not within --hang); after one to a job,
+    or the whole run ends it (else `kill -9` after --hang); after one to a job,
     Snakemake goes on (finishes the running jobs, or the run after a warm-up fault) and the
     next fault may strike it again."""
     res = run.work / "results" / RUN
@@ -347,12 +348,8 @@ def _attempt(proc, run: Run, args, rng, report: Report, total: int,
         _say(f"fault {fault.n}/{args.faults}: {sig} to {fault.target} at {fault.at_s} s of "
              f"attempt {run.n} ({fault.process[:100]})")
         if fault.target != "job":
-            rc = wait_exit(proc, args.hang)
-            if rc is None:
-                report.findings.append(
-                    f"fault {fault.n}: Snakemake still running {args.hang:.0f} s after "
-                    f"{sig} to {fault.target}; killed")
-                os.killpg(proc.pid, signal.SIGKILL)
+            if wait_exit(proc, args.hang) is None:
+                _hung(proc, fault, args.hang, report)
             break
     rc = wait_exit(proc, 10 * args.hang)
     if rc is None:
@@ -366,6 +363,22 @@ def _attempt(proc, run: Run, args, rng, report: Report, total: int,
     if len(report.faults) > first:
         _say(f"attempt {run.n}: Snakemake exit {rc} at {t_end} s")
     return rc
+
+
+def _hung(proc, fault: Fault, hang: float, report: Report) -> None:
+    """Snakemake still runs ``hang`` s after a signal to it: the README's remedy ("Snakemake
+    does not exit after `kill`": `kill -9`, then the same command). After SIGTERM that is
+    Snakemake's known deadlock (its handler waits for the lock of an interrupted job
+    selection), a note; after SIGKILL it cannot be, a finding."""
+    msg = (f"fault {fault.n}: Snakemake still running {hang:.0f} s after {fault.signal} to "
+           f"{fault.target}; kill -9")
+    if fault.signal == "SIGTERM":
+        report.notes.append(msg + " (Snakemake's SIGTERM deadlock, README)")
+        report.sigterm_hangs += 1
+    else:
+        report.findings.append(msg)
+    fault.remedy.append("kill -9")
+    os.kill(proc.pid, signal.SIGKILL)
 
 
 def _wait_for_instant(proc, t0: float, delay: float, from_warmup: bool) -> int | None:
@@ -532,8 +545,8 @@ def parse_args(argv=None):
     p.add_argument("--cores", type=int, default=2)
     p.add_argument("--grace", type=float, default=180.0, help="seconds a process of an "
                    "interrupted run may outlive its Snakemake (default 180)")
-    p.add_argument("--hang", type=float, default=300.0, help="seconds Snakemake may take to "
-                   "exit after a fault (default 300)")
+    p.add_argument("--hang", type=float, default=180.0, help="seconds Snakemake may take to "
+                   "exit after a signal to it (default 180)")
     p.add_argument("--min-window", type=float, default=3.0)
     p.add_argument("--max-window", type=float, default=90.0)
     p.add_argument("--max-attempts", type=int, default=0, help="default: 3 x faults + 10")
@@ -620,7 +633,8 @@ def _summary(report: Report, args) -> None:
         print("  finding:", line)
     print(f"fault injection (seed {report.seed}): {len(report.faults)} faults "
           f"({', '.join(f'{v} {k}' for k, v in sorted(kinds.items()))}), "
-          f"{report.attempts} attempts, {report.unlocks} unlocks; "
+          f"{report.attempts} attempts, {report.unlocks} unlocks, "
+          f"{report.sigterm_hangs} SIGTERM deadlocks; "
           f"{report.datasets} datasets, {report.datasets_identical} identical; "
           f"{report.figures} figures, {report.figures_identical} identical; "
           f"{len(report.findings)} findings; {report.wall_s:.0f} s "
