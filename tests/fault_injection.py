@@ -305,8 +305,8 @@ def run_with_faults(run: Run, args, rng, report: Report, orphans: Orphans,
             continue
         if rc == 0:
             if len(report.faults) < args.faults:   # ended before the next instant
-                report.findings.append(f"the run completed after {len(report.faults)} of "
-                                       f"{args.faults} faults")
+                report.notes.append(f"the run completed before the next instant: "
+                                    f"{len(report.faults)} of {args.faults} faults")
             return
         if LOCKED in text and not unlocked:
             if last is not None:
