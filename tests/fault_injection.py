@@ -4,40 +4,18 @@ each, and at the end every dataset compared with an uninterrupted run's.
 
     python tests/fault_injection.py --seed 1 --faults 3 [--reference results/smoke]
 
-The run happens in a private copy of the workflow (Snakefile, workflow/, config/, profiles/,
-src/ without its numba cache) under --run-dir, so the checkout's results/ and cache are
-never touched. With a cold cache the onstart warm-up compiles, and the first
---warmup-faults faults strike while it runs. Each fault:
+The run happens in a copy of the workflow (src/ without its numba cache, so the onstart
+warm-up compiles) under --run-dir; the checkout's results/ and cache are never touched.
+Each fault draws from the seed an instant, a target among what runs then (Snakemake, one
+job process, the whole run) and a signal. Remedy, exactly the README's: the same command;
+`snakemake --unlock --configfile config/smoke.yaml` first if it answers that the directory
+cannot be locked; `kill -9` first if Snakemake has not exited after a signal to it.
 
-* an instant drawn from the seed (uniform over a window that shrinks with the run's
-  remaining work, so that all faults land before the run ends);
-* a target drawn from the seed among what runs at that instant: Snakemake itself, one job
-  process (a workflow script, the warm-up or one of its pool workers), or the whole run
-  (every process of its session: a closed terminal);
-* a signal drawn from the seed: SIGKILL or SIGTERM.
-
-Remedy, exactly the README's ("A run was killed"): the same command again; if Snakemake
-answers that the directory cannot be locked, `snakemake --unlock --configfile
-config/smoke.yaml`, then the same command again. After the faults the same command runs
-until it succeeds (each failure of an uninterrupted run is a finding), then a dry-run must
-have nothing left to do.
-
-Checks (each failure a finding, printed; exit status 1 if any, 0 if none, 2 for bad
-arguments or a setup that failed):
-
-* no process of an interrupted run is left: every process of the run's session must have
-  ended `--grace` seconds after its Snakemake did (a job orphaned by a killed Snakemake
-  finishes its work, a hung one is reported with its command line and memory, then killed);
-* no numba cache damage (a traceback naming the cache loader in any log);
-* every dataset (*.nc) of the reference run exists in the faulted run and the other way
-  round, with the same variables, dimensions, dtypes, values (bitwise; NaN equals NaN) and
-  attributes, except the wall-clock timings of the work_precision/ and convergence/ datasets
-  (TIMING) and the provenance attribute `git_commit` (the copy is no git checkout);
-* every figure (PDF, PNG) byte-identical, except those drawn from the timings above.
-
-The reference is an uninterrupted `all` smoke run made with the same code (`--reference
-results/smoke` after `snakemake -c2 all --configfile config/smoke.yaml`); without it, one is
-made first in the run folder. Needs /proc (Linux) to find the processes; elsewhere the script
+Findings (printed; exit status 1 if any, 0 if none, 2 for bad arguments): a process of an
+interrupted run still running --grace s after its Snakemake; a damaged numba cache file; a
+failed attempt without a fault; a final dry-run with jobs left; a dataset or figure that
+differs from the reference's (timings and `git_commit` excepted). Details and a long run:
+docs/pipeline.md, "Faults". Needs /proc (Linux) to find the processes; elsewhere the script
 says so and exits 0 without running (pytest skips).
 """
 from __future__ import annotations
@@ -170,12 +148,22 @@ class Run:
                     "--configfile", CONFIGFILE]
         self.env = dict(os.environ, PYTHONPATH=str(work / "src"))
         self.n = 0
+        self.sessions: list[int] = []         # one per attempt (its Snakemake's pid)
 
     def start(self) -> subprocess.Popen:
         self.n += 1
         with open(self.logs / f"attempt_{self.n:02d}.log", "w") as log:
-            return subprocess.Popen(self.cmd, cwd=self.work, env=self.env, stdout=log,
+            proc = subprocess.Popen(self.cmd, cwd=self.work, env=self.env, stdout=log,
                                     stderr=subprocess.STDOUT, start_new_session=True)
+        self.sessions.append(proc.pid)
+        return proc
+
+    def kill_all(self) -> None:
+        """SIGKILL every process still left of any attempt (the script itself stopped)."""
+        for sid in self.sessions:
+            for pid in session_pids(sid):
+                with contextlib.suppress(ProcessLookupError):
+                    os.kill(pid, signal.SIGKILL)
 
     def log_text(self) -> str:
         return (self.logs / f"attempt_{self.n:02d}.log").read_text(errors="replace")
@@ -579,6 +567,8 @@ def main(argv=None) -> int:
     base.mkdir(parents=True, exist_ok=True)
     report = Report(args.seed, args.faults, load_before=_load())
     t_start = time.monotonic()
+    run = None
+    signal.signal(signal.SIGTERM, lambda *_: sys.exit(143))   # the finally below runs
     try:
         if args.reference is not None:
             ref, ref_seconds = args.reference.resolve(), args.reference_seconds
@@ -614,6 +604,8 @@ def main(argv=None) -> int:
                                 f"results/: {', '.join(partial[:5])}")
         compare_results(ref, work / "results" / RUN, report)
     finally:
+        if run is not None:
+            run.kill_all()
         report.wall_s = round(time.monotonic() - t_start, 1)
         report.load_after = _load()
         if tmp is not None and not args.keep:
