@@ -504,12 +504,17 @@ def make_reference(dst: Path, cores: int) -> tuple[Path, float]:
     copy_workflow(dst)
     _say(f"reference run in {dst}")
     t0 = time.monotonic()
-    r = subprocess.run([shutil.which("snakemake") or "snakemake", f"-c{cores}", "all",
-                        "--configfile", CONFIGFILE], cwd=dst, capture_output=True, text=True,
-                       env=dict(os.environ, PYTHONPATH=str(dst / "src")))
-    if r.returncode != 0:
-        raise SystemExit(f"fault injection: the reference run failed:\n{r.stdout[-3000:]}"
-                         f"{r.stderr[-3000:]}")
+    proc = subprocess.Popen([shutil.which("snakemake") or "snakemake", f"-c{cores}", "all",
+                             "--configfile", CONFIGFILE], cwd=dst, stdout=subprocess.PIPE,
+                            stderr=subprocess.STDOUT, text=True, start_new_session=True,
+                            env=dict(os.environ, PYTHONPATH=str(dst / "src")))
+    try:
+        out, _ = proc.communicate()
+    except BaseException:                  # stopped: end the reference run with it
+        os.killpg(proc.pid, signal.SIGKILL)
+        raise
+    if proc.returncode != 0:
+        raise SystemExit(f"fault injection: the reference run failed:\n{out[-3000:]}")
     return dst / "results" / RUN, time.monotonic() - t0
 
 
@@ -568,7 +573,7 @@ def main(argv=None) -> int:
     report = Report(args.seed, args.faults, load_before=_load())
     t_start = time.monotonic()
     run = None
-    signal.signal(signal.SIGTERM, lambda *_: sys.exit(143))   # the finally below runs
+    on_term = signal.signal(signal.SIGTERM, lambda *_: sys.exit(143))  # finally: runs
     try:
         if args.reference is not None:
             ref, ref_seconds = args.reference.resolve(), args.reference_seconds
@@ -604,6 +609,7 @@ def main(argv=None) -> int:
                                 f"results/: {', '.join(partial[:5])}")
         compare_results(ref, work / "results" / RUN, report)
     finally:
+        signal.signal(signal.SIGTERM, on_term)
         if run is not None:
             run.kill_all()
         report.wall_s = round(time.monotonic() - t_start, 1)
