@@ -573,7 +573,7 @@ def main(argv=None) -> int:
     report = Report(args.seed, args.faults, load_before=_load())
     t_start = time.monotonic()
     run = None
-    on_term = signal.signal(signal.SIGTERM, lambda *_: sys.exit(143))  # finally: runs
+    on_term = signal.signal(signal.SIGTERM, lambda *_: sys.exit(143))  # to the finally
     try:
         if args.reference is not None:
             ref, ref_seconds = args.reference.resolve(), args.reference_seconds
