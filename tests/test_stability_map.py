@@ -1,18 +1,22 @@
-"""Compiled stability map: same bits as the Python orbit solvers, any thread count; the
-compiled pieces (seeds, residual of the asymmetric scan, dgeev) against their references."""
+"""Compiled stability map: same bits as the Python orbit solvers (given the same dgeev), any
+thread count; the compiled pieces (seeds, residual of the asymmetric scan, dgeev) against
+their references."""
 import math
 
 import numpy as np
 import pytest
+import scipy.linalg
+from scipy.optimize import linear_sum_assignment
 
 import vines
 from vines.core.exact import oscillators
 from vines.core.flow import I_NRES, I_W, flow, flow_zv, make_osc, s_factors
 from vines.core.params import ModelParams
+from vines.core.walls import WALL_L, WALL_R
 from vines.orbits import periodic as P
 from vines.orbits._lapack import eigvals, lambda_max_4
 from vines.orbits.affine import _chain, _lr_chain, affine_chain, chain_workspace
-from vines.orbits.maps import model_array, pack_model
+from vines.orbits.maps import map_jacobian, model_array, pack_model
 from vines.orbits.stability_map import stability_map, stability_map_python
 
 KEYS = ("lambda_max", "cls", "dw_L", "symmetric")
@@ -24,8 +28,17 @@ def _equal(a, b):
     return all(np.array_equal(a[k], b[k], equal_nan=True) for k in KEYS)
 
 
+@pytest.fixture
+def same_dgeev(monkeypatch):
+    """The Python orbit solvers' eigenvalues (numpy's ``eigvals``) by the compiled kernels'
+    dgeev (scipy's LAPACK), so that a reference and a kernel run the same routine: numpy
+    and scipy may ship different LAPACK builds, whose eigenvalues differ in the last bits
+    (``test_compiled_dgeev_is_numpys`` bounds by how much)."""
+    monkeypatch.setattr(np.linalg, "eigvals", eigvals)
+
+
 @pytest.mark.parametrize("F", [0.3077, 0.4])
-def test_compiled_map_equals_python_reference(F):
+def test_compiled_map_equals_python_reference(F, same_dgeev):
     fast = stability_map(ETA, OMEGA, F, n_threads=1)
     ref = stability_map_python(ETA, OMEGA, F)
     assert _equal(fast, ref)
@@ -86,7 +99,7 @@ def _symmetric_seeds_numpy(mdl):
 
 
 @pytest.mark.parametrize("eta, w, F", _points(25))
-def test_seed_kernel_rows_equal_seed_orbits(eta, w, F):
+def test_seed_kernel_rows_equal_seed_orbits(eta, w, F, same_dgeev):
     p = ModelParams(eta, w, F)
     mdl = model_array(p)
     orbits = P.seed_orbits(p, mdl, simulation=False)
@@ -144,13 +157,53 @@ def test_flow_zv_is_flow_bitwise(d, w):
         assert flow_zv(osc, start, s, s_factors(osc, s)) == (z, v)
 
 
+def _eigen_bounds(M):
+    """Eigenvalues of M and, for each, how far two backward-stable solvers (dgeev of two
+    LAPACK builds) may put it apart, to first order: kappa (n^2 eps ||B||_F) for each
+    solver, B the balanced matrix dgeev reduces (D^-1 M D), n^2 eps the normwise backward
+    error of its Householder reductions, kappa = 1 / |y^H x| for unit left and right
+    eigenvectors of B (the eigenvalue's condition number)."""
+    B = scipy.linalg.matrix_balance(M)[0]
+    lam, vl, vr = scipy.linalg.eig(B, left=True, right=True)
+    kappa = 1.0 / np.abs(np.sum(vl.conj() * vr, axis=0))
+    n = M.shape[0]
+    return lam, 2.0 * n * n * np.finfo(float).eps * np.linalg.norm(B) * kappa
+
+
+def _paired(lam, z):
+    """z reordered so that z[i] is the one closest to lam[i] (a one-to-one assignment)."""
+    return z[linear_sum_assignment(np.abs(lam[:, None] - z[None, :]))[1]]
+
+
+def _monodromies(n_points=12):
+    """J_P2 J_P1 of the admissible seed orbits at a few random parameter points."""
+    out = []
+    for eta, w, F in _points(n_points, seed=5):
+        p = ModelParams(eta, w, F)
+        for o in P.seed_orbits(p, simulation=False):
+            if o.admissible:
+                J1 = map_jacobian(p, o.x_L, WALL_L, WALL_R, o.x_L[3] + o.flight_times[0])
+                J2 = map_jacobian(p, o.x_R, WALL_R, WALL_L, o.x_R[3] + o.flight_times[1])
+                out.append(J2 @ J1)
+    return out
+
+
 def test_compiled_dgeev_is_numpys():
+    """The compiled dgeev's eigenvalues and lambda_max are numpy's to within the bound of
+    ``_eigen_bounds`` (bit for bit where numpy and scipy share a LAPACK build), on random
+    matrices and on the monodromy matrices of 1:1 orbits."""
     rng = np.random.default_rng(2)
     a, wr, wi, work = np.empty(16), np.empty(4), np.empty(4), np.empty(64)
-    for _ in range(500):
-        M = rng.normal(size=(4, 4)) * rng.uniform(0.01, 10.0)
-        ev = np.linalg.eigvals(M)
-        assert np.array_equal(eigvals(M), ev)
-        assert lambda_max_4(M, a, wr, wi, work) == np.hypot(ev.real, ev.imag).max()
+    mats = [rng.normal(size=(4, 4)) * rng.uniform(0.01, 10.0) for _ in range(500)]
+    orbits = _monodromies()
+    assert len(orbits) > 10
+    for M in mats + orbits:
+        lam, bound = _eigen_bounds(M)
+        ev, got = np.linalg.eigvals(M), eigvals(M)
+        assert np.all(np.abs(_paired(lam, got) - _paired(lam, ev)) <= bound)
+        # max |z| moves by at most the largest move of an eigenvalue
+        assert abs(lambda_max_4(M, a, wr, wi, work) - np.abs(ev).max()) <= bound.max()
+        assert np.hypot(got.real, got.imag).max() == lambda_max_4(M, a, wr, wi, work)
+    M = mats[-1].copy()
     M[1, 2] = math.inf
     assert math.isnan(lambda_max_4(M, a, wr, wi, work))

@@ -3,9 +3,11 @@
 ``np.linalg.eigvals`` inside numba refuses real matrices with complex eigenvalues (no
 "domain change"), and a complex copy would go through ``zgeev`` (other round-off than
 numpy). ``dgeev`` here is scipy's (``scipy.linalg.cython_lapack``), the routine numpy's
-``eigvals`` calls on real input, so the eigenvalues are those of numpy. The symbol is
-registered with llvmlite under a fixed name at import and the compiled code refers to that
-name (no embedded address), so the callers can be cached (``cache=True``).
+``eigvals`` calls on real input, so the eigenvalues are those of numpy where numpy and
+scipy ship the same LAPACK build, and within their condition numbers times the round-off
+otherwise (tests/test_stability_map.py). The symbol is registered with llvmlite under a
+fixed name at import and the compiled code refers to that name (no embedded address), so
+the callers can be cached (``cache=True``).
 """
 from __future__ import annotations
 
@@ -77,7 +79,8 @@ def lambda_max_4(M, a, wr, wi, work):
 
 
 def eigvals(M: np.ndarray) -> np.ndarray:
-    """Eigenvalues of a real square matrix by the compiled dgeev (numpy's eigvals; tests)."""
+    """Eigenvalues of a real square matrix by the compiled dgeev, as ``np.linalg.eigvals``
+    returns them (real when all are real; tests run numpy's callers with this one)."""
     M = np.asarray(M, dtype=float)
     n = M.shape[0]
     a = M.ravel(order="F").copy()
@@ -85,7 +88,7 @@ def eigvals(M: np.ndarray) -> np.ndarray:
     info = _dgeev_py(a, wr, wi, work)
     if info != 0:
         raise np.linalg.LinAlgError(f"dgeev info {info}")
-    return wr + 1j * wi
+    return wr.copy() if not wi.any() else wr + 1j * wi
 
 
 @njit(cache=True, nogil=True)
