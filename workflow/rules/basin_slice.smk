@@ -11,6 +11,9 @@ rule basin_slice:
     conda:
         "../../environment.yml"
     threads: config["threads"]
+    resources:
+        mem_mb=per_attempt(800),
+        runtime=per_attempt(30),
     params:
         spec=lambda w: BASIN_SLICES[w.name],
         model=MODEL,
