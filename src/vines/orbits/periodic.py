@@ -22,8 +22,8 @@ Seeds (every seed is polished by that Newton iteration on the true maps, then de
 One solver serves both interfaces: ``orbit_solve``/``orbit_classify``/``seed_kernel`` (end
 of the module) work nogil on float rows, for threaded per-point drivers
 (``stability_map``); ``solve_orbit``/``seed_orbits`` wrap the same compiled Newton and seeds
-into ``PeriodicOrbit`` objects (eigenvalues by numpy, which the compiled dgeev of
-``_lapack`` reproduces).
+into ``PeriodicOrbit`` objects (eigenvalues by numpy; the compiled ones by scipy's dgeev,
+``_lapack``: the same bits where numpy and scipy share a LAPACK build).
 """
 from __future__ import annotations
 
@@ -270,7 +270,7 @@ def orbits_1to1(p: ModelParams, *, seeds: list | None = None,
 # nogil versions of solve_orbit / seed_orbits(simulation=False) for per-point drivers that
 # run on threads (``stability_map``). An orbit is a row of floats (ROW_* columns); the
 # arithmetic is that of the Python functions above, so the rows equal their PeriodicOrbits
-# (lambda_max of admissible orbits: the same dgeev; see ``_lapack``).
+# (lambda_max of admissible orbits: scipy's dgeev, numpy's to round-off; see ``_lapack``).
 
 ROW_X, ROW_FL, ROW_ADM, ROW_LAM, ROW_SYM, ROW_DWL = 0, 4, 6, 7, 8, 9
 N_ROW = 10                  # callers may append their own columns after these
