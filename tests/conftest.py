@@ -28,8 +28,8 @@ def run_on_terminal(*args, timeout=600, interrupt_on: str | None = None):
     """``python -m vines *args`` with stderr on a pseudo-terminal (100 columns) and stdout
     on a pipe: (exit status, stdout, everything the terminal received). With
     ``interrupt_on``, SIGINT (Ctrl-C) is sent once the terminal has received that text
-    (e.g. a progress bar's ``%|``: the command's loop has started). The process is killed
-    if it has not ended after ``timeout`` seconds."""
+    (e.g. a progress bar's description: the command's loop has started). The process is
+    killed if it has not ended after ``timeout`` seconds."""
     env = dict(os.environ, PYTHONPATH=os.pathsep.join(
         [str(SRC), os.environ.get("PYTHONPATH", "")]).rstrip(os.pathsep))
     master, slave = pty.openpty()
@@ -55,8 +55,10 @@ def run_on_terminal(*args, timeout=600, interrupt_on: str | None = None):
                     marker = None
             elif proc.poll() is not None:
                 break
+        if time.monotonic() >= deadline:
+            proc.kill()
         out = proc.stdout.read().decode()
-        proc.wait(timeout=max(1.0, deadline - time.monotonic()))
+        proc.wait(timeout=60)
     finally:
         os.close(master)
         if proc.poll() is None:
