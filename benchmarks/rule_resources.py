@@ -14,8 +14,9 @@ import math
 from collections import defaultdict
 from pathlib import Path
 
-#: memory margin: up to 4x the threads of the measured jobs (each holds a block in flight),
-#: other library versions
+#: memory margin: more threads than the measured jobs' two (each holds one block of points
+#: in flight, small against the ~200 MB of interpreter, libraries and compiled kernels every
+#: job holds), other library versions
 MEM_MARGIN = 2.0
 #: time margin: one thread instead of the measured two, on a node 1.5x slower
 TIME_MARGIN = 3.0

@@ -12,8 +12,8 @@ rule basin_slice:
         "../../environment.yml"
     threads: config["threads"]
     resources:
-        mem_mb=per_attempt(800),
-        runtime=per_attempt(30),
+        mem_mb=per_attempt(600),
+        runtime=per_attempt(5),
     params:
         spec=lambda w: BASIN_SLICES[w.name],
         model=MODEL,

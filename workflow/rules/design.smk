@@ -13,8 +13,8 @@ rule design:
         "../../environment.yml"
     threads: config["threads"]
     resources:
-        mem_mb=per_attempt(800),
-        runtime=per_attempt(30),
+        mem_mb=per_attempt(500),
+        runtime=per_attempt(5),
     params:
         spec=lambda w: DESIGNS[w.name],
         model=MODEL,

@@ -13,8 +13,8 @@ rule lyapunov:
         "../../environment.yml"
     threads: config["threads"]
     resources:
-        mem_mb=per_attempt(800),
-        runtime=per_attempt(30),
+        mem_mb=per_attempt(600),
+        runtime=per_attempt(5),
     params:
         spec=lambda w: LYAPUNOV_SWEEPS[w.name],
         sweep=lambda w: SWEEPS[LYAPUNOV_SWEEPS[w.name]["sweep"]],

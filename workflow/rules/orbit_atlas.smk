@@ -13,8 +13,8 @@ rule orbit_atlas:
         "../../environment.yml"
     threads: config["threads"]
     resources:
-        mem_mb=per_attempt(800),
-        runtime=per_attempt(30),
+        mem_mb=per_attempt(500),
+        runtime=per_attempt(8),
     params:
         grid=lambda w: atlas_grid(config, w.name),
         sim_t_end=lambda w: ORBIT_ATLASES[w.name]["sim_t_end"],
