@@ -15,8 +15,8 @@ from collections import defaultdict
 from pathlib import Path
 
 #: memory margin: more threads than the measured jobs' two (each holds one block of points
-#: in flight, small against the ~200 MB of interpreter, libraries and compiled kernels every
-#: job holds), other library versions
+#: in flight, small against the 160-220 MB of interpreter, libraries and compiled kernels
+#: every job holds), other library versions
 MEM_MARGIN = 2.0
 #: time margin: one thread instead of the measured two, on a node 1.5x slower
 TIME_MARGIN = 3.0
