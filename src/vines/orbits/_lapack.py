@@ -80,8 +80,11 @@ def lambda_max_4(M, a, wr, wi, work):
 
 def eigvals(M: np.ndarray) -> np.ndarray:
     """Eigenvalues of a real square matrix by the compiled dgeev, as ``np.linalg.eigvals``
-    returns them (real when all are real; tests run numpy's callers with this one)."""
+    returns them (real when all are real; LinAlgError for a matrix with inf or nan): tests
+    run numpy's callers with this one."""
     M = np.asarray(M, dtype=float)
+    if not np.all(np.isfinite(M)):
+        raise np.linalg.LinAlgError("Array must not contain infs or NaNs")
     n = M.shape[0]
     a = M.ravel(order="F").copy()
     wr, wi, work = np.empty(n), np.empty(n), np.empty(max(64, 4 * n))
