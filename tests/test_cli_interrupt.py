@@ -17,6 +17,17 @@ from conftest import ROOT, SRC, run_on_terminal, run_vines
 POINT = ["--eta", "0.13", "--omega", "1", "--F", "0.1"]
 
 
+@pytest.fixture(autouse=True)
+def _sigint_reaches_children():
+    """The commands started here get Ctrl-C's default handling even when pytest itself runs
+    with SIGINT ignored (a background job of a script), which they would inherit."""
+    old = signal.getsignal(signal.SIGINT)
+    if old == signal.SIG_IGN:
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, old)
+
+
 def test_integer_forms_give_the_same_census():
     outs = []
     for n, seed in (("4", "1000"), ("4.0", "1e3"), ("4e0", "1_000")):

@@ -14,7 +14,7 @@ from vines.core.flow import I_NRES, I_W, flow, flow_zv, make_osc, s_factors
 from vines.core.params import ModelParams
 from vines.core.walls import WALL_L, WALL_R
 from vines.orbits import periodic as P
-from vines.orbits._lapack import eigvals, lambda_max_4
+from vines.orbits._lapack import eigvals, lambda_max_4, monodromy_eigvals
 from vines.orbits.affine import _chain, _lr_chain, affine_chain, chain_workspace
 from vines.orbits.maps import map_jacobian, model_array, pack_model
 from vines.orbits.stability_map import stability_map, stability_map_python
@@ -30,11 +30,12 @@ def _equal(a, b):
 
 @pytest.fixture
 def same_dgeev(monkeypatch):
-    """The Python orbit solvers' eigenvalues (numpy's ``eigvals``) by the compiled kernels'
-    dgeev (scipy's LAPACK), so that a reference and a kernel run the same routine: numpy
-    and scipy may ship different LAPACK builds, whose eigenvalues differ in the last bits
-    (``test_compiled_dgeev_is_numpys`` bounds by how much)."""
-    monkeypatch.setattr(np.linalg, "eigvals", eigvals)
+    """The Python orbit solvers' monodromy eigenvalues (numpy's product and ``eigvals``) as
+    the compiled kernels compute them (numba's np.dot, scipy's dgeev), so that a reference
+    and a kernel run the same routines: numpy and scipy may ship different BLAS/LAPACK
+    builds, whose results differ in the last bits (``test_compiled_dgeev_is_numpys``
+    bounds by how much)."""
+    monkeypatch.setattr(P, "monodromy_eigenvalues", monodromy_eigvals)
 
 
 @pytest.mark.parametrize("F", [0.3077, 0.4])
@@ -157,17 +158,21 @@ def test_flow_zv_is_flow_bitwise(d, w):
         assert flow_zv(osc, start, s, s_factors(osc, s)) == (z, v)
 
 
-def _eigen_bounds(M):
+def _eigen_bounds(M, E=None):
     """Eigenvalues of M and, for each, how far two backward-stable solvers (dgeev of two
-    LAPACK builds) may put it apart, to first order: kappa (n^2 eps ||B||_F) for each
-    solver, B the balanced matrix dgeev reduces (D^-1 M D), n^2 eps the normwise backward
-    error of its Householder reductions, kappa = 1 / |y^H x| for unit left and right
-    eigenvectors of B (the eigenvalue's condition number)."""
-    B = scipy.linalg.matrix_balance(M)[0]
+    LAPACK builds) may put it apart, to first order: kappa (2 n^2 eps ||B||_F + ||E_B||_F),
+    B the balanced matrix dgeev reduces (T^-1 M T, T a scaled permutation), n^2 eps ||B||
+    the normwise backward error of its Householder reductions (once per solver), kappa =
+    1 / |y^H x| for unit left and right eigenvectors of B (the eigenvalue's condition
+    number), E_B = T^-1 E T for an elementwise bound E on how far the two inputs M differ."""
+    B, T = scipy.linalg.matrix_balance(M)
     lam, vl, vr = scipy.linalg.eig(B, left=True, right=True)
     kappa = 1.0 / np.abs(np.sum(vl.conj() * vr, axis=0))
     n = M.shape[0]
-    return lam, 2.0 * n * n * np.finfo(float).eps * np.linalg.norm(B) * kappa
+    err = 2.0 * n * n * np.finfo(float).eps * np.linalg.norm(B)
+    if E is not None:
+        err += np.linalg.norm(np.linalg.solve(T, E) @ T)
+    return lam, err * kappa
 
 
 def _paired(lam, z):
@@ -175,16 +180,15 @@ def _paired(lam, z):
     return z[linear_sum_assignment(np.abs(lam[:, None] - z[None, :]))[1]]
 
 
-def _monodromies(n_points=12):
-    """J_P2 J_P1 of the admissible seed orbits at a few random parameter points."""
+def _jacobians(n_points=12):
+    """(J_P1, J_P2) of the admissible seed orbits at a few random parameter points."""
     out = []
     for eta, w, F in _points(n_points, seed=5):
         p = ModelParams(eta, w, F)
         for o in P.seed_orbits(p, simulation=False):
             if o.admissible:
-                J1 = map_jacobian(p, o.x_L, WALL_L, WALL_R, o.x_L[3] + o.flight_times[0])
-                J2 = map_jacobian(p, o.x_R, WALL_R, WALL_L, o.x_R[3] + o.flight_times[1])
-                out.append(J2 @ J1)
+                out.append((map_jacobian(p, o.x_L, WALL_L, WALL_R, o.x_L[3] + o.flight_times[0]),
+                            map_jacobian(p, o.x_R, WALL_R, WALL_L, o.x_R[3] + o.flight_times[1])))
     return out
 
 
@@ -195,7 +199,7 @@ def test_compiled_dgeev_is_numpys():
     rng = np.random.default_rng(2)
     a, wr, wi, work = np.empty(16), np.empty(4), np.empty(4), np.empty(64)
     mats = [rng.normal(size=(4, 4)) * rng.uniform(0.01, 10.0) for _ in range(500)]
-    orbits = _monodromies()
+    orbits = [J2 @ J1 for J1, J2 in _jacobians()]
     assert len(orbits) > 10
     for M in mats + orbits:
         lam, bound = _eigen_bounds(M)
@@ -207,3 +211,15 @@ def test_compiled_dgeev_is_numpys():
     M = mats[-1].copy()
     M[1, 2] = math.inf
     assert math.isnan(lambda_max_4(M, a, wr, wi, work))
+
+
+def test_compiled_monodromy_eigenvalues_are_numpys():
+    """The monodromy eigenvalues of 1:1 orbits as the kernels compute them (numba's np.dot,
+    scipy's dgeev) and as the Python solvers do (numpy): within ``_eigen_bounds`` with the
+    two products' difference bounded by 2 n eps |J2| |J1| (the product's error bound)."""
+    eps = np.finfo(float).eps
+    for J1, J2 in _jacobians():
+        M = J2 @ J1
+        lam, bound = _eigen_bounds(M, 2 * 4 * eps * (np.abs(J2) @ np.abs(J1)))
+        got, ev = monodromy_eigvals(J1, J2), P.monodromy_eigenvalues(J1, J2)
+        assert np.all(np.abs(_paired(lam, got) - _paired(lam, ev)) <= bound)

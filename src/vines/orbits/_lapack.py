@@ -97,3 +97,16 @@ def eigvals(M: np.ndarray) -> np.ndarray:
 @njit(cache=True, nogil=True)
 def _dgeev_py(a, wr, wi, work):
     return _dgeev_nn(a, wr, wi, work)
+
+
+def monodromy_eigvals(J1: np.ndarray, J2: np.ndarray) -> np.ndarray:
+    """``periodic.monodromy_eigenvalues`` as the compiled ``orbit_classify`` computes it:
+    J2 J1 by numba's np.dot, eigenvalues by the compiled dgeev (tests)."""
+    M = np.empty((4, 4))
+    _dot(np.ascontiguousarray(J2, dtype=float), np.ascontiguousarray(J1, dtype=float), M)
+    return eigvals(M)
+
+
+@njit(cache=True, nogil=True)
+def _dot(A, B, out):
+    np.dot(A, B, out)

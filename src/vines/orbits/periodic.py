@@ -136,6 +136,13 @@ def solve_orbit(p: ModelParams, x0: ArrayLike, s1: float = -1.0, s2: float = -1.
     return _orbit(p, mdl, xs[0], xs[1], (Js[0], Js[1]), fl, res)
 
 
+def monodromy_eigenvalues(J1: np.ndarray, J2: np.ndarray) -> np.ndarray:
+    """Eigenvalues of the monodromy matrix J2 J1 by numpy (product and ``eigvals``); the
+    compiled ``orbit_classify`` forms it with numba's np.dot and scipy's dgeev (the same
+    numbers to round-off; ``_lapack.monodromy_eigvals`` is that path for tests)."""
+    return np.linalg.eigvals(J2 @ J1)
+
+
 def _orbit(p: ModelParams, mdl: np.ndarray, x: np.ndarray, xR: np.ndarray, jacobians: tuple,
            fl: np.ndarray, res: float) -> PeriodicOrbit:
     """The PeriodicOrbit with pre-impact states x (at L), xR (at R), map Jacobians
@@ -143,7 +150,7 @@ def _orbit(p: ModelParams, mdl: np.ndarray, x: np.ndarray, xR: np.ndarray, jacob
     J1, J2 = jacobians
     adm = bool(admissible_kernel(mdl, x, (WALL_L, WALL_R), fl[0])
                and admissible_kernel(mdl, xR, (WALL_R, WALL_L), fl[1]))
-    ev = np.linalg.eigvals(J2 @ J1)
+    ev = monodromy_eigenvalues(J1, J2)
     ev = ev[np.argsort(-np.abs(ev))]
     lam = float(np.hypot(ev.real, ev.imag).max())      # as ``_lapack.lambda_max_4``
     two_pi = 2.0 * math.pi
