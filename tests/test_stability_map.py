@@ -1,6 +1,6 @@
-"""Compiled stability map: same bits as the Python orbit solvers (given the same dgeev), any
-thread count; the compiled pieces (seeds, residual of the asymmetric scan, dgeev) against
-their references."""
+"""Compiled stability map: same bits as the Python orbit solvers (given the same BLAS/LAPACK
+routines), any thread count; the compiled pieces (seeds, residual of the asymmetric scan,
+dgeev) against their references."""
 import math
 
 import numpy as np
