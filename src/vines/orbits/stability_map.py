@@ -18,9 +18,9 @@ came from). The kernel repeats the arithmetic of the Python solvers (``seed_orbi
 ``solve_orbit``), so it returns the same bits as ``stability_map_python``, the Python
 version kept as the reference (tests), given the same monodromy product and eigenvalues:
 the kernel takes numba's np.dot and scipy's dgeev, the Python solvers numpy's (the two agree
-to round-off, bit for bit where numpy and scipy ship the same BLAS/LAPACK). Admissibility and eigenvalues are
-only computed for orbits that survive deduplication, and eigenvalues only for admissible
-ones (the only ones the map uses).
+to round-off, bit for bit where numpy and scipy ship the same BLAS/LAPACK). Admissibility
+and eigenvalues are only computed for orbits that survive deduplication, and eigenvalues
+only for admissible ones (the only ones the map uses).
 """
 from __future__ import annotations
 
