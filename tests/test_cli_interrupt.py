@@ -4,6 +4,7 @@ of a long census, boundary scan, continuation or design."""
 import json
 import os
 import queue
+import re
 import signal
 import subprocess
 import sys
@@ -11,9 +12,20 @@ import threading
 import time
 
 import pytest
-from conftest import ROOT, SRC, run_vines
+from conftest import ROOT, SRC, run_on_terminal, run_vines
 
 POINT = ["--eta", "0.13", "--omega", "1", "--F", "0.1"]
+
+
+@pytest.fixture(autouse=True)
+def _sigint_reaches_children():
+    """The commands started here get Ctrl-C's default handling even when pytest itself runs
+    with SIGINT ignored (a background job of a script), which they would inherit."""
+    old = signal.getsignal(signal.SIGINT)
+    if old == signal.SIG_IGN:
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, old)
 
 
 def test_integer_forms_give_the_same_census():
@@ -36,18 +48,18 @@ def test_non_integers_are_refused_in_one_line(flag, value):
 
 
 def test_ctrl_c_on_continue():
-    env = dict(os.environ, PYTHONPATH=str(SRC))
-    proc = subprocess.Popen([sys.executable, "-m", "vines", "continue", "--param", "F",
-                             "--start", "0.3", "--stop", "0.01", "--eta", "0.2", "--omega", "1",
-                             "--step", "1e-5", "--max-points", "1e6", "--json"],
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env,
-                            cwd=ROOT)
-    time.sleep(8)                       # imports done, inside the continuation
-    proc.send_signal(signal.SIGINT)
-    out, err = proc.communicate(timeout=120)
-    assert proc.returncode == 130, err
-    assert out == "" and "Traceback" not in err
-    assert err.splitlines() == ["vines continue: interrupted (Ctrl-C); no output written"]
+    """Ctrl-C on a terminal once the continuation's bar shows (its loop has started; a
+    fixed wait raced with the run's end): the bar is cleared and one line stays."""
+    code, out, term = run_on_terminal(
+        "continue", "--param", "F", "--start", "0.3", "--stop", "0.01", "--eta", "0.2",
+        "--omega", "1", "--step", "1e-5", "--max-points", "1e6", "--json", timeout=120,
+        interrupt_on="branch in F: ")
+    assert code == 130, term
+    assert out == "" and "Traceback" not in term
+    # what stays on the terminal: every line but the bar's frames ("... [00:01, ...]")
+    shown = [ln for ln in re.split(r"[\r\n]+", term) if ln.strip()
+             and not re.search(r"\[\d\d:\d\d", ln)]
+    assert shown == ["vines continue: interrupted (Ctrl-C); no output written"], term
 
 
 INTERRUPTED = "interrupted (Ctrl-C); no output written"

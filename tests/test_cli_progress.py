@@ -1,57 +1,13 @@
 """Issue 27 item 1: a progress bar on a terminal's stderr for a 256-state census, none when
 stderr is not a terminal or with --quiet; stdout stays the answer alone (with --json one
 JSON object, the same as without a terminal); -v logs progress lines instead."""
-import fcntl
 import json
-import os
-import pty
 import re
-import select
-import struct
-import subprocess
-import sys
-import termios
 
-from conftest import ROOT, SRC, run_vines
+from conftest import run_on_terminal, run_vines
 
 CENSUS = ["attractors", "--eta", "0.13", "--omega", "1", "--F", "0.1", "--n", "256",
           "--t-end", "1000", "--t-transient", "500", "--threads", "2"]
-
-
-def _env() -> dict:
-    return dict(os.environ, PYTHONPATH=os.pathsep.join(
-        [str(SRC), os.environ.get("PYTHONPATH", "")]).rstrip(os.pathsep))
-
-
-def run_on_terminal(*args, timeout=600) -> tuple[int, str, str]:
-    """``python -m vines *args`` with stderr on a pseudo-terminal (100 columns) and stdout
-    on a pipe: (exit status, stdout, everything the terminal received)."""
-    master, slave = pty.openpty()
-    fcntl.ioctl(slave, termios.TIOCSWINSZ, struct.pack("HHHH", 24, 100, 0, 0))
-    proc = subprocess.Popen([sys.executable, "-m", "vines", *args], stdout=subprocess.PIPE,
-                            stderr=slave, stdin=subprocess.DEVNULL, env=_env(), cwd=ROOT)
-    os.close(slave)
-    received = b""
-    try:
-        while True:
-            ready, _, _ = select.select([master], [], [], 0.2)
-            if ready:
-                try:
-                    data = os.read(master, 65536)
-                except OSError:           # the terminal closed: the process has ended
-                    break
-                if not data:
-                    break
-                received += data
-            elif proc.poll() is not None:
-                break
-        out = proc.stdout.read().decode()
-        proc.wait(timeout=timeout)
-    finally:
-        os.close(master)
-        if proc.poll() is None:
-            proc.kill()
-    return proc.returncode, out, received.decode(errors="replace")
 
 
 def test_census_shows_a_bar_on_a_terminal():

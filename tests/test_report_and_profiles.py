@@ -39,22 +39,54 @@ def _copy_with_profiles(dst):
     shutil.copytree(ROOT / "profiles", dst / "profiles", dirs_exist_ok=True)
 
 
-def _rules_with_threads() -> set:
-    """Rules of workflow/rules/*.smk that declare ``threads:`` (multi-threaded rules)."""
-    found = set()
+def _rule_blocks() -> dict[str, str]:
+    """{rule: its text} of the rules of workflow/rules/*.smk."""
+    blocks = {}
     for smk in (ROOT / "workflow" / "rules").glob("*.smk"):
         for block in re.split(r"\n(?=rule )", smk.read_text()):
-            m = re.match(r"rule (\w+):", block)
-            if m and re.search(r"^    threads:", block, re.M):
-                found.add(m.group(1))
-    return found
+            if m := re.match(r"rule (\w+):", block):
+                blocks[m.group(1)] = block
+    return blocks
+
+
+def _rules_with(directive: str) -> set:
+    """Rules that have ``directive:`` (e.g. ``threads``: the multi-threaded rules)."""
+    return {r for r, b in _rule_blocks().items() if re.search(rf"^    {directive}:", b, re.M)}
+
+
+def _declared(rule: str) -> dict:
+    """{resource: value} of a rule's ``resources:`` (``name=per_attempt(value)``)."""
+    found = re.findall(r"^        (\w+)=per_attempt\((\d+)\),", _rule_blocks()[rule], re.M)
+    return {k: int(v) for k, v in found}
+
+
+def _resources(out: str, rule: str) -> set:
+    """(mem_mb, runtime) a dry-run prints for the jobs of `rule`."""
+    blocks = re.findall(rf"\nrule {rule}:\n(.*?)(?:\n\n|\Z)", out, re.S)
+    assert blocks, out
+    return {tuple(int(re.search(rf"\b{k}=(\d+)", b).group(1)) for k in ("mem_mb", "runtime"))
+            for b in blocks}
 
 
 def test_slurm_profile_sets_threads_of_every_multithreaded_rule():
     profile = yaml.safe_load((ROOT / "profiles" / "slurm" / "config.yaml").read_text())
-    rules = _rules_with_threads()
+    rules = _rules_with("threads")
     assert {"simulate_grid", "robust_map", "basin_slice", "convergence"} <= rules
     assert set(profile["set-threads"]) == rules
+
+
+def test_every_compute_rule_declares_memory_and_time():
+    """Every rule that computes (a ``benchmark:`` file: every stage, the multi-threaded ones
+    among them) declares mem_mb and runtime; the SLURM profile repeats no per-rule value
+    and sets no mem_mb_per_cpu (the plugin would pass that instead of the rules' mem_mb)."""
+    compute = _rules_with("benchmark")
+    assert _rules_with("threads") <= compute and len(compute) >= 14
+    for rule in compute:
+        got = _declared(rule)
+        assert set(got) == {"mem_mb", "runtime"} and min(got.values()) > 0, (rule, got)
+    profile = yaml.safe_load((ROOT / "profiles" / "slurm" / "config.yaml").read_text())
+    assert "mem_mb_per_cpu" not in profile["default-resources"]
+    assert "set-resources" not in profile
 
 
 @needs_snakemake
@@ -102,6 +134,9 @@ def test_profile_dry_run_without_cores(tmp_path):
     assert _threads(r.stdout, "work_precision") == {8}            # profile set-threads
     for rule in ("simulate_grid", "robust_map", "basin_slice", "convergence"):
         assert _threads(r.stdout, rule) == {8}, rule
+    for rule in ("simulate_grid", "robust_map", "stability_map", "work_precision"):
+        d = _declared(rule)                     # the rule's own resources reach its jobs
+        assert _resources(r.stdout, rule) == {(d["mem_mb"], d["runtime"])}, rule
 
 
 @needs_snakemake

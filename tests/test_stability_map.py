@@ -1,18 +1,22 @@
-"""Compiled stability map: same bits as the Python orbit solvers, any thread count; the
-compiled pieces (seeds, residual of the asymmetric scan, dgeev) against their references."""
+"""Compiled stability map: same bits as the Python orbit solvers (given the same BLAS/LAPACK
+routines), any thread count; the compiled pieces (seeds, residual of the asymmetric scan,
+dgeev) against their references."""
 import math
 
 import numpy as np
 import pytest
+import scipy.linalg
+from scipy.optimize import linear_sum_assignment
 
 import vines
 from vines.core.exact import oscillators
 from vines.core.flow import I_NRES, I_W, flow, flow_zv, make_osc, s_factors
 from vines.core.params import ModelParams
+from vines.core.walls import WALL_L, WALL_R
 from vines.orbits import periodic as P
-from vines.orbits._lapack import eigvals, lambda_max_4
+from vines.orbits._lapack import eigvals, lambda_max_4, monodromy_eigvals
 from vines.orbits.affine import _chain, _lr_chain, affine_chain, chain_workspace
-from vines.orbits.maps import model_array, pack_model
+from vines.orbits.maps import map_jacobian, model_array, pack_model
 from vines.orbits.stability_map import stability_map, stability_map_python
 
 KEYS = ("lambda_max", "cls", "dw_L", "symmetric")
@@ -24,8 +28,18 @@ def _equal(a, b):
     return all(np.array_equal(a[k], b[k], equal_nan=True) for k in KEYS)
 
 
+@pytest.fixture
+def same_dgeev(monkeypatch):
+    """The Python orbit solvers' monodromy eigenvalues (numpy's product and ``eigvals``) as
+    the compiled kernels compute them (numba's np.dot, scipy's dgeev), so that a reference
+    and a kernel run the same routines: numpy and scipy may ship different BLAS/LAPACK
+    builds, whose results differ in the last bits (``test_compiled_dgeev_is_numpys``
+    bounds by how much)."""
+    monkeypatch.setattr(P, "monodromy_eigenvalues", monodromy_eigvals)
+
+
 @pytest.mark.parametrize("F", [0.3077, 0.4])
-def test_compiled_map_equals_python_reference(F):
+def test_compiled_map_equals_python_reference(F, same_dgeev):
     fast = stability_map(ETA, OMEGA, F, n_threads=1)
     ref = stability_map_python(ETA, OMEGA, F)
     assert _equal(fast, ref)
@@ -63,7 +77,11 @@ def _points(n, seed=0):
 
 def _symmetric_seeds_numpy(mdl):
     """The closed-form symmetric 1:1 seeds by numpy's svd and lstsq (the reference of the
-    compiled ``affine.closed_form_kernel``)."""
+    compiled ``affine.closed_form_kernel``), each with a bound on how far another LAPACK
+    build may move it (first order): the min-norm solution p and the null vector q of the
+    4 x 5 system A u = -b within kappa = sv_max / sv_min times 2 n^2 eps (two solvers),
+    the root lam of |p + lam q|_(3,4) = 1 within the change of that quadratic's
+    coefficients over its slope sqrt(disc), u = p + lam q within the sum."""
     T = 2.0 * math.pi / mdl[I_W]
     A, b = np.empty((4, 5)), np.empty(4)
     affine_chain(mdl, (P.LR, np.array([0.5 * T]), (-1, False)), A, b, chain_workspace(1))
@@ -78,15 +96,34 @@ def _symmetric_seeds_numpy(mdl):
     disc = a1 * a1 - 4.0 * a2 * a0
     if a2 == 0.0 or disc < 0.0:
         return []
+    rel = 2.0 * 25 * np.finfo(float).eps * sv[0] / sv[-1]
+    dp, dq = rel * max(1.0, np.abs(p).max()), rel
+    p34, q34 = np.hypot(p[3], p[4]), np.hypot(q[3], q[4])
     out = []
     for lam in ((-a1 - math.sqrt(disc)) / (2.0 * a2), (-a1 + math.sqrt(disc)) / (2.0 * a2)):
         u = p + lam * q
-        out.append((u[0], u[1], u[2], math.atan2(u[3], u[4])))
+        da = (2 * q34 * dq * lam * lam + 2 * (p34 * dq + q34 * dp) * abs(lam)
+              + 2 * p34 * dp)
+        du = dp + abs(lam) * dq + da / math.sqrt(disc)
+        out.append(((u[0], u[1], u[2], math.atan2(u[3], u[4])), du))
     return out
 
 
+def _seeds_agree(got, ref):
+    """The compiled seeds are the reference's to within each one's bound (the phase too,
+    modulo 2 pi: (u3, u4) is a unit vector, its angle moves by at most its change)."""
+    if len(got) != len(ref):
+        return False
+    for g, (r, du) in zip(got, ref, strict=True):
+        d = np.array(g) - np.array(r)
+        d[3] = (d[3] + math.pi) % (2.0 * math.pi) - math.pi
+        if not np.all(np.abs(d) <= du):
+            return False
+    return True
+
+
 @pytest.mark.parametrize("eta, w, F", _points(25))
-def test_seed_kernel_rows_equal_seed_orbits(eta, w, F):
+def test_seed_kernel_rows_equal_seed_orbits(eta, w, F, same_dgeev):
     p = ModelParams(eta, w, F)
     mdl = model_array(p)
     orbits = P.seed_orbits(p, mdl, simulation=False)
@@ -100,7 +137,7 @@ def test_seed_kernel_rows_equal_seed_orbits(eta, w, F):
         assert row[P.ROW_DWL] == o.dw_L
         if o.admissible:
             assert row[P.ROW_LAM] == o.lambda_max
-    assert P.symmetric_seeds(mdl) == _symmetric_seeds_numpy(mdl)
+    assert _seeds_agree(P.symmetric_seeds(mdl), _symmetric_seeds_numpy(mdl))
 
 
 @pytest.mark.parametrize("d, w", [(0.011998, 0.9), (0.0, 1.0), (0.0, 0.8), (0.0, 0.9999),
@@ -144,13 +181,68 @@ def test_flow_zv_is_flow_bitwise(d, w):
         assert flow_zv(osc, start, s, s_factors(osc, s)) == (z, v)
 
 
+def _eigen_bounds(M, E=None):
+    """Eigenvalues of M and, for each, how far two backward-stable solvers (dgeev of two
+    LAPACK builds) may put it apart, to first order: kappa (2 n^2 eps ||B||_F + ||E_B||_F),
+    B the balanced matrix dgeev reduces (T^-1 M T, T a scaled permutation), n^2 eps ||B||
+    the normwise backward error of its Householder reductions (once per solver), kappa =
+    1 / |y^H x| for unit left and right eigenvectors of B (the eigenvalue's condition
+    number), E_B = T^-1 E T for an elementwise bound E on how far the two inputs M differ."""
+    B, T = scipy.linalg.matrix_balance(M)
+    lam, vl, vr = scipy.linalg.eig(B, left=True, right=True)
+    kappa = 1.0 / np.abs(np.sum(vl.conj() * vr, axis=0))
+    n = M.shape[0]
+    err = 2.0 * n * n * np.finfo(float).eps * np.linalg.norm(B)
+    if E is not None:
+        err += np.linalg.norm(np.linalg.solve(T, E) @ T)
+    return lam, err * kappa
+
+
+def _paired(lam, z):
+    """z reordered so that z[i] is the one closest to lam[i] (a one-to-one assignment)."""
+    return z[linear_sum_assignment(np.abs(lam[:, None] - z[None, :]))[1]]
+
+
+def _jacobians(n_points=12):
+    """(J_P1, J_P2) of the admissible seed orbits at a few random parameter points."""
+    out = []
+    for eta, w, F in _points(n_points, seed=5):
+        p = ModelParams(eta, w, F)
+        for o in P.seed_orbits(p, simulation=False):
+            if o.admissible:
+                out.append((map_jacobian(p, o.x_L, WALL_L, WALL_R, o.x_L[3] + o.flight_times[0]),
+                            map_jacobian(p, o.x_R, WALL_R, WALL_L, o.x_R[3] + o.flight_times[1])))
+    return out
+
+
 def test_compiled_dgeev_is_numpys():
+    """The compiled dgeev's eigenvalues and lambda_max are numpy's to within the bound of
+    ``_eigen_bounds`` (bit for bit where numpy and scipy share a LAPACK build), on random
+    matrices and on the monodromy matrices of 1:1 orbits."""
     rng = np.random.default_rng(2)
     a, wr, wi, work = np.empty(16), np.empty(4), np.empty(4), np.empty(64)
-    for _ in range(500):
-        M = rng.normal(size=(4, 4)) * rng.uniform(0.01, 10.0)
-        ev = np.linalg.eigvals(M)
-        assert np.array_equal(eigvals(M), ev)
-        assert lambda_max_4(M, a, wr, wi, work) == np.hypot(ev.real, ev.imag).max()
+    mats = [rng.normal(size=(4, 4)) * rng.uniform(0.01, 10.0) for _ in range(500)]
+    orbits = [J2 @ J1 for J1, J2 in _jacobians()]
+    assert len(orbits) > 10
+    for M in mats + orbits:
+        lam, bound = _eigen_bounds(M)
+        ev, got = np.linalg.eigvals(M), eigvals(M)
+        assert np.all(np.abs(_paired(lam, got) - _paired(lam, ev)) <= bound)
+        # max |z| moves by at most the largest move of an eigenvalue
+        assert abs(lambda_max_4(M, a, wr, wi, work) - np.abs(ev).max()) <= bound.max()
+        assert np.hypot(got.real, got.imag).max() == lambda_max_4(M, a, wr, wi, work)
+    M = mats[-1].copy()
     M[1, 2] = math.inf
     assert math.isnan(lambda_max_4(M, a, wr, wi, work))
+
+
+def test_compiled_monodromy_eigenvalues_are_numpys():
+    """The monodromy eigenvalues of 1:1 orbits as the kernels compute them (numba's np.dot,
+    scipy's dgeev) and as the Python solvers do (numpy): within ``_eigen_bounds`` with the
+    two products' difference bounded by 2 n eps |J2| |J1| (the product's error bound)."""
+    eps = np.finfo(float).eps
+    for J1, J2 in _jacobians():
+        M = J2 @ J1
+        lam, bound = _eigen_bounds(M, 2 * 4 * eps * (np.abs(J2) @ np.abs(J1)))
+        got, ev = monodromy_eigvals(J1, J2), P.monodromy_eigenvalues(J1, J2)
+        assert np.all(np.abs(_paired(lam, got) - _paired(lam, ev)) <= bound)

@@ -11,6 +11,9 @@ rule basin_slice:
     conda:
         "../../environment.yml"
     threads: config["threads"]
+    resources:
+        mem_mb=per_attempt(600),
+        runtime=per_attempt(5),
     params:
         spec=lambda w: BASIN_SLICES[w.name],
         model=MODEL,

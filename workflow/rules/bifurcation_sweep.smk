@@ -13,6 +13,9 @@ rule bifurcation_sweep:
     conda:
         "../../environment.yml"
     threads: config["threads"]
+    resources:
+        mem_mb=per_attempt(600),
+        runtime=per_attempt(5),
     params:
         spec=lambda w: SWEEPS[w.name],
         model=MODEL,

@@ -13,6 +13,9 @@ rule boundaries:
         job_benchmark("boundaries")
     conda:
         "../../environment.yml"
+    resources:
+        mem_mb=per_attempt(600),
+        runtime=per_attempt(5),
     params:
         spec=lambda w: BOUNDARIES[w.name],
         model=MODEL,

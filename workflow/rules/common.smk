@@ -119,6 +119,15 @@ def job_benchmark(stage, name="{name}"):
     return f"{RES}/benchmarks/{stage}/{name}.tsv"
 
 
+# Resources of a compute job (`resources: mem_mb=..., runtime=...` in each stage rule, the
+# one place they are set): memory in MB and wall time in minutes, the full study's peaks
+# (the jobs' benchmark files) with a margin, remade by benchmarks/rule_resources.py
+# (docs/performance.md). Each retry of a job gets them once more (a job a cluster killed
+# for running over its memory or time would fail the same way again).
+def per_attempt(value):
+    return lambda wildcards, attempt: value * attempt
+
+
 def chunk_files(wildcards):
     return [
         dataset("simulate_grid", f"{wildcards.name}/chunk_{k}")

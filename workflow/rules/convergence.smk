@@ -15,6 +15,9 @@ rule convergence:
     conda:
         "../../environment.yml"
     threads: config["threads"]
+    resources:
+        mem_mb=per_attempt(600),
+        runtime=per_attempt(5),
     params:
         spec=lambda w: CONVERGENCE[w.name],
         model=MODEL,

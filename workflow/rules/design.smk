@@ -12,6 +12,9 @@ rule design:
     conda:
         "../../environment.yml"
     threads: config["threads"]
+    resources:
+        mem_mb=per_attempt(500),
+        runtime=per_attempt(5),
     params:
         spec=lambda w: DESIGNS[w.name],
         model=MODEL,

@@ -13,6 +13,9 @@ rule extract_measures:
         job_benchmark("extract_measures")
     conda:
         "../../environment.yml"
+    resources:
+        mem_mb=per_attempt(400),
+        runtime=per_attempt(5),
     params:
         axes=lambda w: {d: v.tolist() for d, v in AXES[w.name].items()},
         sections=lambda w: GRIDS[w.name]["sections"],

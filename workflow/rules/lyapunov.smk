@@ -12,6 +12,9 @@ rule lyapunov:
     conda:
         "../../environment.yml"
     threads: config["threads"]
+    resources:
+        mem_mb=per_attempt(600),
+        runtime=per_attempt(5),
     params:
         spec=lambda w: LYAPUNOV_SWEEPS[w.name],
         sweep=lambda w: SWEEPS[LYAPUNOV_SWEEPS[w.name]["sweep"]],

@@ -10,6 +10,9 @@ rule map_solve:
         job_benchmark("map_solve")
     conda:
         "../../environment.yml"
+    resources:
+        mem_mb=per_attempt(600),
+        runtime=per_attempt(5),
     params:
         spec=lambda w: BRANCHES[w.name],
         model=MODEL,

@@ -12,6 +12,9 @@ rule orbit_atlas:
     conda:
         "../../environment.yml"
     threads: config["threads"]
+    resources:
+        mem_mb=per_attempt(500),
+        runtime=per_attempt(8),
     params:
         grid=lambda w: atlas_grid(config, w.name),
         sim_t_end=lambda w: ORBIT_ATLASES[w.name]["sim_t_end"],

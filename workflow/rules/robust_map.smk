@@ -12,6 +12,9 @@ rule robust_map:
     conda:
         "../../environment.yml"
     threads: config["threads"]
+    resources:
+        mem_mb=per_attempt(800),
+        runtime=per_attempt(31),
     params:
         spec=lambda w: ROBUST_MAPS[w.name],
         model=MODEL,

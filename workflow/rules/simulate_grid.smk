@@ -14,6 +14,9 @@ rule simulate_grid:
     conda:
         "../../environment.yml"
     threads: config["threads"]
+    resources:
+        mem_mb=per_attempt(600),
+        runtime=per_attempt(5),
     params:
         points=lambda w: CHUNKS[w.grid][w.key],
         model=MODEL,

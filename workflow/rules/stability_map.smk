@@ -11,6 +11,9 @@ rule stability_map:
     conda:
         "../../environment.yml"
     threads: config["threads"]
+    resources:
+        mem_mb=per_attempt(500),
+        runtime=per_attempt(5),
     params:
         spec=lambda w: STABILITY_MAPS[w.name],
         model=MODEL,

@@ -11,6 +11,9 @@ rule timehistory:
         job_benchmark("timehistory")
     conda:
         "../../environment.yml"
+    resources:
+        mem_mb=per_attempt(600),
+        runtime=per_attempt(5),
     params:
         spec=lambda w: TIMEHISTORIES[w.name],
         model=MODEL,

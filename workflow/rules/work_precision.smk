@@ -18,6 +18,9 @@ rule work_precision:
     conda:
         "../../environment.yml"
     threads: lambda wildcards: workflow.resource_settings.cores or 1
+    resources:
+        mem_mb=per_attempt(700),
+        runtime=per_attempt(5),
     params:
         case=lambda w: WORK_PRECISION["cases"][w.name],
         settings=WORK_PRECISION_SETTINGS,

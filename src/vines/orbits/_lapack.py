@@ -3,9 +3,11 @@
 ``np.linalg.eigvals`` inside numba refuses real matrices with complex eigenvalues (no
 "domain change"), and a complex copy would go through ``zgeev`` (other round-off than
 numpy). ``dgeev`` here is scipy's (``scipy.linalg.cython_lapack``), the routine numpy's
-``eigvals`` calls on real input, so the eigenvalues are those of numpy. The symbol is
-registered with llvmlite under a fixed name at import and the compiled code refers to that
-name (no embedded address), so the callers can be cached (``cache=True``).
+``eigvals`` calls on real input, so the eigenvalues are those of numpy where numpy and
+scipy ship the same LAPACK build, and within their condition numbers times the round-off
+otherwise (tests/test_stability_map.py). The symbol is registered with llvmlite under a
+fixed name at import and the compiled code refers to that name (no embedded address), so
+the callers can be cached (``cache=True``).
 """
 from __future__ import annotations
 
@@ -77,17 +79,34 @@ def lambda_max_4(M, a, wr, wi, work):
 
 
 def eigvals(M: np.ndarray) -> np.ndarray:
-    """Eigenvalues of a real square matrix by the compiled dgeev (numpy's eigvals; tests)."""
+    """Eigenvalues of a real square matrix by the compiled dgeev, as ``np.linalg.eigvals``
+    returns them (real when all are real; LinAlgError for a matrix with inf or nan): tests
+    run numpy's callers with this one."""
     M = np.asarray(M, dtype=float)
+    if not np.all(np.isfinite(M)):
+        raise np.linalg.LinAlgError("Array must not contain infs or NaNs")
     n = M.shape[0]
     a = M.ravel(order="F").copy()
     wr, wi, work = np.empty(n), np.empty(n), np.empty(max(64, 4 * n))
     info = _dgeev_py(a, wr, wi, work)
     if info != 0:
         raise np.linalg.LinAlgError(f"dgeev info {info}")
-    return wr + 1j * wi
+    return wr.copy() if not wi.any() else wr + 1j * wi
 
 
 @njit(cache=True, nogil=True)
 def _dgeev_py(a, wr, wi, work):
     return _dgeev_nn(a, wr, wi, work)
+
+
+def monodromy_eigvals(J1: np.ndarray, J2: np.ndarray) -> np.ndarray:
+    """``periodic.monodromy_eigenvalues`` as the compiled ``orbit_classify`` computes it:
+    J2 J1 by numba's np.dot, eigenvalues by the compiled dgeev (tests)."""
+    M = np.empty((4, 4))
+    _dot(np.ascontiguousarray(J2, dtype=float), np.ascontiguousarray(J1, dtype=float), M)
+    return eigvals(M)
+
+
+@njit(cache=True, nogil=True)
+def _dot(A, B, out):
+    np.dot(A, B, out)

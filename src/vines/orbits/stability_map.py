@@ -15,8 +15,10 @@ the columns run truly in parallel on the threads of a ThreadPoolExecutor (inside
 Snakemake job: ``n_threads`` = the job's threads). Orbits are rows of a float array
 (``periodic.ROW_*`` columns, then this module's ``ROW_SRC*``: the orbit a continued one
 came from). The kernel repeats the arithmetic of the Python solvers (``seed_orbits``,
-``solve_orbit``, numpy's dgeev for the eigenvalues), so it returns the same bits as
-``stability_map_python``, the Python version kept as the reference (tests). Admissibility
+``solve_orbit``), so it returns the same bits as ``stability_map_python``, the Python
+version kept as the reference (tests), given the same monodromy product and eigenvalues:
+the kernel takes numba's np.dot and scipy's dgeev, the Python solvers numpy's (the two agree
+to round-off, bit for bit where numpy and scipy ship the same BLAS/LAPACK). Admissibility
 and eigenvalues are only computed for orbits that survive deduplication, and eigenvalues
 only for admissible ones (the only ones the map uses).
 """
