@@ -13,7 +13,6 @@ import sys
 
 import numba
 import pytest
-
 from conftest import ROOT, SRC
 
 SIMULATE = ["-m", "vines", "simulate", "--eta", "0.05", "--omega", "1", "--F", "0.05",
@@ -78,16 +77,27 @@ DAMAGE = {"truncated .nbc": ("*.nbc", _truncate, "pickle data was truncated"),
           "garbage .nbi": ("kernel.*.nbi", _garbage, "")}
 
 
-def _assert_one_line_naming(stderr, damaged, why):
+def _damage(core, pattern, damage):
+    """Damage the files ``pattern`` of ``core``; the names that may be removed: those and the
+    data files of a damaged index."""
+    damaged = sorted(core.glob(pattern))
+    assert damaged
+    removable = {p.name for p in damaged}
+    removable |= {q.name for p in damaged if p.suffix == ".nbi" for q in core.glob(f"{p.stem}.*")}
+    for path in damaged:
+        damage(path)
+    return removable
+
+
+def _assert_one_line_naming(stderr, removable, why):
     lines = stderr.splitlines()
     assert len(lines) == 1, stderr
     m = HEALED.match(lines[0])
     assert m, lines[0]
     assert why in m.group(2)
     names = [n.split(" and ")[0] for n in m.group(4).split(", ")]
-    assert names and set(names) <= {p.name for p in damaged} | {
-        q.name for p in damaged if p.suffix == ".nbi" for q in p.parent.glob(p.stem + ".*.nbc")}
-    assert int(m.group(1)) >= len(names)
+    assert names and set(names) <= removable
+    assert len(names) <= int(m.group(1)) <= len(removable)
 
 
 @pytest.mark.parametrize("kind", DAMAGE)
@@ -97,30 +107,25 @@ def test_damaged_cache_is_removed_and_recompiled(warm, tmp_path, kind):
     the next run loads the rebuilt cache silently."""
     pattern, damage, why = DAMAGE[kind]
     cache, core = _copy(warm, tmp_path)
-    damaged = sorted(core.glob(pattern))
-    assert damaged
-    for path in damaged:
-        damage(path)
+    removable = _damage(core, pattern, damage)
     r = _run(SIMULATE, cache)
     assert r.returncode == 0, r.stderr
     assert r.stdout == warm[1]
-    _assert_one_line_naming(r.stderr, damaged, why)
+    _assert_one_line_naming(r.stderr, removable, why)
     again = _run(SIMULATE, cache)
     assert (again.returncode, again.stdout, again.stderr) == (0, warm[1], "")
 
 
 def test_damaged_cache_through_the_api(warm, tmp_path):
     cache, core = _copy(warm, tmp_path)
-    damaged = sorted(core.glob("flow.*.nbc"))
-    for path in damaged:
-        _truncate(path)
+    removable = _damage(core, "flow.*.nbc", _truncate)
     code = ("import vines; r = vines.simulate(eta=0.05, omega=1.0, F=0.05, t_end=200.0, "
             "t_transient=100.0); print(repr(r.ke_ratio), r.n_impacts)")
     r = _run(["-c", code], cache)
     assert r.returncode == 0, r.stderr
     expected = json.loads(warm[1])
     assert r.stdout.split() == [repr(expected["ke_ratio"]), str(expected["n_impacts"])]
-    _assert_one_line_naming(r.stderr, damaged, "truncated")
+    _assert_one_line_naming(r.stderr, removable, "truncated")
 
 
 def test_index_of_another_numba_version_is_replaced_silently(warm, tmp_path):
@@ -145,14 +150,12 @@ def test_warmup_heals_a_damaged_cache(warm, tmp_path):
     """The pipeline's warm-up (onstart hook of every run) on a damaged cache: its usual two
     lines and one naming the removed files; its workers then compile the stages' kernels."""
     cache, core = _copy(warm, tmp_path)
-    damaged = sorted(core.glob("*.nbc"))
-    for path in damaged:
-        _truncate(path)
+    removable = _damage(core, "*.nbc", _truncate)
     r = _warmup(cache, tmp_path / "stamp")
     assert r.returncode == 0, r.stderr
     assert "Traceback" not in r.stderr
     healed = [ln for ln in r.stderr.splitlines() if "damaged" in ln]
-    _assert_one_line_naming("\n".join(healed), damaged, "truncated")
+    _assert_one_line_naming("\n".join(healed), removable, "truncated")
     assert len(r.stderr.splitlines()) == 3, r.stderr     # compiling ..., removed ..., compiled
     assert (tmp_path / "stamp").exists()
     again = _run(SIMULATE, cache)

@@ -114,7 +114,8 @@ def heal(cache_path: str) -> bool:
         return False
     where = "; ".join(_names(folder, [p.name for p in removed if p.parent == folder])
                       for folder in dict.fromkeys(p.parent for p in removed))
-    text = f"removed {len(removed)} damaged numba cache file(s) ({'; '.join(reasons)}) {where}"
+    why = "; ".join(list(reasons)[:2]) + ("; ..." if len(reasons) > 2 else "")
+    text = f"removed {len(removed)} damaged numba cache file(s) ({why}) {where}"
     if kept:
         text += f"; could not remove {', '.join(map(str, kept))}"
     _say(f"heal {sorted(map(str, removed + kept))}", f"{text}; their kernels are compiled again")
