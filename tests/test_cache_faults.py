@@ -182,3 +182,76 @@ def test_no_writable_cache_folder_compiles_in_memory(warm, tmp_path):
     assert r.stderr.startswith("vines: no writable folder for numba's cache")
     assert "NUMBA_CACHE_DIR" in r.stderr
     assert not [p for p in tmp_path.rglob("*") if p.suffix in (".nbi", ".nbc")]
+
+
+# ------------------------------------------------------------------ a cache that cannot be written
+
+def _unloadable(cache) -> list[str]:
+    """Cache files numba could not load, and temporary files left behind."""
+    from vines._jit import damaged
+    return [str(p) for p in cache.rglob("*") if p.is_file()
+            and (".tmp." in p.name or p.suffix in (".nbi", ".nbc") and damaged(p))]
+
+
+SAVE_FAILED = re.compile(r"^vines: could not write numba's cache in (\S+) \((.+)\); the compiled "
+                         r"kernels are kept in memory for this run$")
+
+
+@pytest.mark.skipif(sys.platform == "win32", reason="POSIX resource limits")
+def test_cache_write_failing_midway_keeps_the_kernels_in_memory(warm, tmp_path):
+    """The cache's files grow past what the file system takes (here the file-size limit,
+    RLIMIT_FSIZE: writes past 4 kB fail with EFBIG, as on a full disk with ENOSPC): the
+    command answers as before, one line, and no file is left half-written."""
+    import resource
+    cache, core = _copy(warm, tmp_path)
+    for path in core.glob("kernel.*"):            # the event kernel must be compiled and saved
+        path.unlink()
+
+    def limit():
+        resource.setrlimit(resource.RLIMIT_FSIZE, (4096, 4096))
+
+    env = {**os.environ, "PYTHONPATH": str(SRC), "NUMBA_CACHE_DIR": str(cache)}
+    r = subprocess.run([sys.executable, *SIMULATE], capture_output=True, text=True, env=env,
+                       cwd=ROOT, timeout=600, preexec_fn=limit)
+    assert r.returncode == 0, r.stderr
+    assert r.stdout == warm[1]
+    (line,) = r.stderr.splitlines()
+    m = SAVE_FAILED.match(line)
+    assert m and m.group(1) == str(core) and m.group(2) == "File too large", line
+    assert not _unloadable(cache)
+    again = _run(SIMULATE, cache)                   # room again: compiled and cached once more
+    assert (again.returncode, again.stdout, again.stderr) == (0, warm[1], "")
+
+
+def _can_mount_tmpfs(folder) -> bool:
+    if shutil.which("unshare") is None:
+        return False
+    r = subprocess.run(["unshare", "-rm", "sh", "-c", f"mount -t tmpfs -o size=64k tmpfs {folder}"],
+                       capture_output=True)
+    return r.returncode == 0
+
+
+def test_full_disk_while_numba_writes_its_cache(warm, tmp_path):
+    """A real full disk (a 64 kB tmpfs in a user and mount namespace: no root needed where
+    unprivileged namespaces are allowed) as the cache folder, from an empty cache: the command
+    answers as before, one line naming ENOSPC, nothing half-written; run twice."""
+    disk = tmp_path / "disk"
+    disk.mkdir()
+    if not _can_mount_tmpfs(disk):
+        pytest.skip("no tmpfs in a user namespace here")
+    check = ("import pathlib, sys; sys.path.insert(0, 'tests'); from test_cache_faults import "
+             f"_unloadable; print('unloadable', _unloadable(pathlib.Path('{disk}')))")
+    simulate = " ".join([sys.executable, *SIMULATE])
+    script = (f"mount -t tmpfs -o size=64k tmpfs {disk} && {simulate} && {simulate} && "
+              f"{sys.executable} -c \"{check}\"")
+    env = {**os.environ, "PYTHONPATH": str(SRC), "NUMBA_CACHE_DIR": str(disk)}
+    r = subprocess.run(["unshare", "-rm", "sh", "-c", script], capture_output=True, text=True,
+                       env=env, cwd=ROOT, timeout=900)
+    assert r.returncode == 0, r.stderr
+    answers = r.stdout.splitlines()
+    assert answers == [warm[1].strip(), warm[1].strip(), "unloadable []"]
+    lines = r.stderr.splitlines()
+    assert len(lines) == 2, r.stderr                # one line for each of the two commands
+    for line in lines:
+        m = SAVE_FAILED.match(line)
+        assert m and m.group(2) == "No space left on device", line
