@@ -118,7 +118,7 @@ def test_damaged_cache_is_removed_and_recompiled(warm, tmp_path, kind):
 
 def test_damaged_cache_through_the_api(warm, tmp_path):
     cache, core = _copy(warm, tmp_path)
-    removable = _damage(core, "flow.*.nbc", _truncate)
+    removable = _damage(core, "kernel.*.nbc", _truncate)
     code = ("import vines; r = vines.simulate(eta=0.05, omega=1.0, F=0.05, t_end=200.0, "
             "t_transient=100.0); print(repr(r.ke_ratio), r.n_impacts)")
     r = _run(["-c", code], cache)
