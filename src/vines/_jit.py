@@ -146,7 +146,7 @@ class HealingCache(caching.FunctionCache):
 
 
 def _enable_cache(dispatcher) -> None:
-    """What ``numba.njit(cache=True)`` does, with a ``HealingCache``."""
+    """What numba's ``enable_caching`` does, with a ``HealingCache``."""
     try:
         dispatcher._cache = HealingCache(dispatcher.py_func)
     except RuntimeError:                          # numba found no writable folder
