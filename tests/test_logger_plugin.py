@@ -222,3 +222,31 @@ def test_snakemake_dry_run_of_the_smoke_config_explains_itself(tmp_path):
     assert ("benchmark files of results/smoke (1 jobs from their own last run, 3 at the "
             "mean of their rule there)") in line
     assert line.startswith("Cost estimate: about ") and " min on 2 cores" in line
+
+
+def test_lock_error_is_one_line_with_what_to_do(monkeypatch, tmp_path):
+    """Snakemake's paragraph for a locked directory becomes one line: wait for the run that
+    works there, or the command that lifts a killed run's lock (the user's command with
+    ``--unlock``, then the command again); both when it cannot be known."""
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setattr(plugin.sys, "argv", ["/env/bin/snakemake", "-c2", "all",
+                                             "--configfile", "my config.yaml"])
+    cmd = "snakemake -c2 all --configfile 'my config.yaml'"
+    for running, expected in (
+            ([41], f"vines pipeline: another Snakemake run is working in {tmp_path} (pid 41); "
+                   f"wait for it to end, then run the same command again: {cmd}"),
+            ([], f"vines pipeline: {tmp_path} is locked by a run that was stopped (killed or "
+                 f"lost); unlock it and run the same command again: {cmd} --unlock && {cmd}"),
+            (None, f"vines pipeline: {tmp_path} is locked by another Snakemake run; if one is "
+                   "still working there, wait for it to end; if not (it was killed): "
+                   f"{cmd} --unlock && {cmd}")):
+        monkeypatch.setattr(plugin, "other_runs", lambda directory, r=running: r)
+        h = _handler(quiet={"all"})
+        h.handle(_record("LockException:\nError: Directory cannot be locked. ...",
+                         level=logging.ERROR, event=LogEvent.ERROR, exception="LockException"))
+        assert h.stream.getvalue().splitlines() == [expected]
+
+
+def test_other_runs_finds_no_snakemake_in_a_fresh_folder(tmp_path):
+    assert plugin.other_runs(str(tmp_path)) in ([], None)
+    assert plugin.rerun_command(["/x/snakemake/__main__.py", "-n"]) == "python -m snakemake -n"

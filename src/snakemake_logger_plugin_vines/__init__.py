@@ -9,6 +9,9 @@ and for a failed job the rule, its wildcards, its log file and the last lines of
 Snakemake's other messages (the plan, warnings, errors, "Nothing to be done") pass
 unchanged; its scheduling chatter ("Select jobs to execute...", "Execute 2 jobs...") is
 left out. ``--quiet progress`` drops the job lines, ``--quiet all`` keeps errors only.
+A run refused because another holds the directory's lock gets one line instead of
+Snakemake's paragraph (``lock_message``): wait for the other run if one is working there,
+else the ``--unlock`` command to type.
 Snakemake finds the plugin by its module name (``snakemake_logger_plugin_<name>``) on
 ``sys.path`` when it parses the command line: it is installed with vines (``pip install
 -e .``; ``src/`` on ``PYTHONPATH`` works too). Without it, ``--logger vines`` is refused:
@@ -22,6 +25,8 @@ files of the run, else the costs shipped in ``measured``).
 from __future__ import annotations
 
 import logging
+import os
+import shlex
 import sys
 import textwrap
 import time
@@ -77,6 +82,51 @@ def reasons_block(planned) -> str:
         lines += textwrap.wrap(", ".join(f"{r} ({n})" for r, n in sorted(rules.items())),
                                width=92, initial_indent=" " * 8, subsequent_indent=" " * 8)
     return "\n".join(lines)
+
+
+def rerun_command(argv: list[str]) -> str:
+    """The command line of this Snakemake run, to be typed again."""
+    prog = "python -m snakemake" if Path(argv[0]).name == "__main__.py" else "snakemake"
+    return " ".join([prog, *map(shlex.quote, argv[1:])])
+
+
+def other_runs(directory: str) -> list[int] | None:
+    """Pids of the other Snakemake processes working in ``directory`` (from /proc); None if
+    that cannot be known (no /proc, a Snakemake process whose folder cannot be read)."""
+    proc = Path("/proc")
+    if not (proc / "self" / "cwd").exists():
+        return None
+    found = []
+    for entry in proc.iterdir():
+        if not entry.name.isdigit() or int(entry.name) == os.getpid():
+            continue
+        try:
+            argv = (entry / "cmdline").read_bytes().split(b"\0")[:3]
+            if not any(Path(a.decode(errors="replace")).name == "snakemake" for a in argv):
+                continue
+            cwd = os.readlink(entry / "cwd")
+        except FileNotFoundError:          # ended meanwhile, or a zombie
+            continue
+        except OSError:                    # another user's Snakemake
+            return None
+        if cwd == directory:
+            found.append(int(entry.name))
+    return found
+
+
+def lock_message(directory: str, argv: list[str], running: list[int] | None) -> str:
+    """One line for a run refused by the directory's lock, with what to do."""
+    cmd = rerun_command(argv)
+    unlock = f"{cmd} --unlock && {cmd}"
+    if running:
+        return (f"vines pipeline: another Snakemake run is working in {directory} (pid "
+                f"{', '.join(map(str, running))}); wait for it to end, then run the same "
+                f"command again: {cmd}")
+    if running is not None:
+        return (f"vines pipeline: {directory} is locked by a run that was stopped (killed or "
+                f"lost); unlock it and run the same command again: {unlock}")
+    return (f"vines pipeline: {directory} is locked by another Snakemake run; if one is still "
+            f"working there, wait for it to end; if not (it was killed): {unlock}")
 
 
 def log_tail(paths, n: int = LOG_TAIL) -> list[str]:
@@ -156,6 +206,8 @@ class LogHandler(LogHandlerBase):
                 self._info(record.getMessage())
         elif event is None:
             self._message(record)
+        elif event == LogEvent.ERROR and getattr(record, "exception", None) == "LockException":
+            self._print(lock_message(os.getcwd(), sys.argv, other_runs(os.getcwd())))
         elif record.levelno >= logging.WARNING:     # e.g. an exception (event ERROR)
             self._print(record.getMessage())
 

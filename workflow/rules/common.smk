@@ -22,7 +22,7 @@ os.environ.update(
 )
 
 from vines.core.params import D_DEFAULT
-from vines.data.netcdf import unreadable_datasets
+from vines.data.netcdf import unreadable_datasets, unwritable_folder
 from vines.pipeline.axes import chunk_map, grid_axes
 from vines.pipeline.codeversion import (
     ATTRACTORS,
@@ -86,6 +86,15 @@ WORK_PRECISION_SETTINGS = {k: v for k, v in WORK_PRECISION.items() if k != "case
 CONVERGENCE = config["convergence"]
 DESIGNS = config["designs"]
 ORBIT_ATLASES = config["orbit_atlases"]
+
+# A results folder that cannot be written (permissions, a read-only disk, a file in the
+# way) would fail every job: stop before any job, in one line.
+_UNWRITABLE = unwritable_folder(RES)
+if _UNWRITABLE:
+    sys.exit(
+        f"vines pipeline: cannot write the results folder {RES}: {_UNWRITABLE}; make it "
+        "writable (or move what is in the way), then run the same command again"
+    )
 
 # A damaged dataset (a truncated chunk, a disk error) would look finished to Snakemake:
 # stop before any job, naming the file and the command that recomputes it.

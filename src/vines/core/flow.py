@@ -36,8 +36,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
+from .._jit import njit
 from .params import RESONANCE_SNAP
 
 # Indices into the packed oscillator array.

@@ -68,8 +68,8 @@ import math
 from collections import namedtuple
 
 import numpy as np
-from numba import njit
 
+from .._jit import njit
 from .flow import (
     I_D,
     I_NRES,

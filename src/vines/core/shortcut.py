@@ -36,8 +36,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
+from .._jit import njit
 from .flow import I_D, I_NRES, I_OM, I_PAMP, I_RES, flow, v2_integral
 from .kernel import (
     A_XMAX_ALL,

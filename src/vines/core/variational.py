@@ -32,9 +32,9 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
 from .. import progress
+from .._jit import njit
 from .flow import I_D, I_F, I_W, fundamentals
 
 #: slots of the tangent pass's state ``tp``: active frame columns (4, or 2 while stuck),

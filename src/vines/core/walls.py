@@ -4,8 +4,7 @@ w = z_m - z_b is the ball's position relative to the cavity; wall L is w = +1, w
 w = -1. An impact changes the velocities by Newton's law with restitution r (paper Eq. 10),
 conserving momentum v_m + eta v_b.
 """
-from numba import njit
-
+from .._jit import njit
 from .conventions import WALL_L, WALL_NAMES, WALL_R  # noqa: F401  (the wall codes)
 
 

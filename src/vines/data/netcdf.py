@@ -181,3 +181,20 @@ def unreadable_datasets(paths) -> list[tuple[str, str]]:
             if reason is not None:
                 bad.append((str(p), f"({reason})"))
     return bad
+
+
+def unwritable_folder(path) -> str | None:
+    """Why datasets cannot be written under the folder ``path`` (created when missing), or
+    None: its nearest existing ancestor, and every folder already in it, must be a writable
+    folder. Cheap (``os.access``, no file written): run by every parse of the workflow."""
+    path = Path(path).absolute()
+    existing = path
+    while not existing.exists() and existing != existing.parent:
+        existing = existing.parent
+    if not existing.is_dir():
+        return f"{existing} is a file, not a folder"
+    folders = [Path(d) for d, _, _ in os.walk(path)] if existing == path else [existing]
+    for folder in folders:
+        if not os.access(folder, os.W_OK | os.X_OK):
+            return f"{folder} is not writable"
+    return None

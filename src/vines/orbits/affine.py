@@ -20,8 +20,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
+from .._jit import njit
 from ..core.flow import I_NRES, I_W, flow, flow_zv, s_factors
 from ..core.walls import impact_velocities
 from .maps import M_ETA, M_R

@@ -23,9 +23,9 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 from numpy.typing import ArrayLike
 
+from .._jit import njit
 from ..core.exact import oscillators
 from ..core.flow import I_RATE, I_W, N_OSC, flow
 from ..core.kernel import first_contact

@@ -32,9 +32,9 @@ from collections.abc import Iterable
 from dataclasses import dataclass, field
 
 import numpy as np
-from numba import njit
 from numpy.typing import ArrayLike
 
+from .._jit import njit
 from ..core.flow import I_F, I_W
 from ..core.params import (
     D_DEFAULT,

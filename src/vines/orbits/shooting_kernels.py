@@ -20,8 +20,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
+from .._jit import njit
 from ..core.walls import WALL_L, WALL_R
 
 NL = 8                       # local variables of one flight

@@ -30,9 +30,9 @@ from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
-from numba import njit
 from numpy.typing import ArrayLike
 
+from .._jit import njit
 from ..core.exact import oscillators
 from ..core.flow import I_W, make_osc
 from ..core.params import (

@@ -19,12 +19,16 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import ctypes
 import json
 import os
+import signal
 import sys
 import tempfile
+import threading
 import time
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+from concurrent.futures.process import BrokenProcessPool
 from pathlib import Path
 
 PKG_DIR = Path(__file__).resolve().parents[1]
@@ -50,6 +54,10 @@ TINY = {
     "orbit_atlas": {"eta": [0.3077], "omega": [0.9, 1.1], "F": 0.3077, "sim_t_end": 600.0},
 }
 _LABEL = {"code": "warm-up", "title": "warm-up"}
+#: Linux prctl option: the signal a process gets when its parent dies
+PR_SET_PDEATHSIG = 1
+#: how often a worker checks that the warm-up is still there [s]
+POLL_S = 0.2
 
 
 def warm_stamp() -> str:
@@ -163,8 +171,39 @@ TASKS = {
 }
 
 
-def _quiet() -> None:
-    """Worker start: the stages' progress lines (meant for job logs) are not shown."""
+def _exit_with_parent(parent: int) -> None:
+    """End this process as soon as its parent is gone (else a killed warm-up leaves workers
+    waiting for tasks forever): Linux's parent-death signal, and on every system a thread
+    that polls the parent's pid every ``POLL_S``; ``parent``: the warm-up's pid."""
+    start_parent = os.getppid()
+    if sys.platform.startswith("linux"):
+        with contextlib.suppress(OSError, AttributeError):
+            ctypes.CDLL(None).prctl(PR_SET_PDEATHSIG, signal.SIGKILL)
+    if start_parent != parent and not _alive(parent):   # died before the signal was set
+        os._exit(1)
+
+    def watch():
+        while os.getppid() == start_parent:
+            time.sleep(POLL_S)
+        os._exit(1)
+
+    threading.Thread(target=watch, daemon=True, name="vines-exit-with-parent").start()
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except OSError:
+        pass
+    return True
+
+
+def _worker_start(parent: int) -> None:
+    """Worker start: ends with the warm-up; the stages' progress lines (meant for job logs)
+    are not shown."""
+    _exit_with_parent(parent)
     sys.stdout = sys.stderr = open(os.devnull, "w")  # noqa: SIM115 (the worker's life)
 
 
@@ -180,7 +219,8 @@ def _run_tasks(model: dict, simulation: dict, n_workers: int) -> None:
     done: set[str] = set()
     todo = dict(TASKS)
     running = {}
-    with ProcessPoolExecutor(n_workers, initializer=_quiet) as pool:
+    with ProcessPoolExecutor(n_workers, initializer=_worker_start,
+                             initargs=(os.getpid(),)) as pool:
         while todo or running:
             for name in [n for n, (_, after) in todo.items() if done.issuperset(after)]:
                 if len(running) >= n_workers:
@@ -194,7 +234,9 @@ def _run_tasks(model: dict, simulation: dict, n_workers: int) -> None:
 
 def warm(model: dict, simulation: dict, n_workers: int = 2) -> float:
     """Compile the kernels (``TASKS`` on ``n_workers`` processes), write the stamp; seconds."""
+    from .._jit import check_cache
     t0 = time.perf_counter()
+    check_cache()      # damaged cache files: removed here, in one line (workers are quiet)
     _run_tasks(model, simulation, max(1, n_workers))
     STAMP.parent.mkdir(exist_ok=True)
     fd, tmp = tempfile.mkstemp(dir=STAMP.parent, prefix=f".{STAMP.name}.")
@@ -215,7 +257,16 @@ def main(argv=None) -> int:
         return 0
     print("vines: compiling the numba kernels once for this install (about 40 s on "
           "2 cores; later runs reuse them)...", file=sys.stderr, flush=True)
-    seconds = warm(json.loads(args.model), json.loads(args.simulation), max(1, args.jobs))
+    try:
+        seconds = warm(json.loads(args.model), json.loads(args.simulation), max(1, args.jobs))
+    except BrokenProcessPool:
+        print("vines: warm-up stopped: one of its worker processes died (killed, or out of "
+              "memory); the jobs compile the kernels they need", file=sys.stderr, flush=True)
+        return 1
+    except KeyboardInterrupt:
+        print("vines: warm-up interrupted; the jobs compile the kernels they need",
+              file=sys.stderr, flush=True)
+        return 130
     print(f"vines: kernels compiled in {seconds:.0f} s", file=sys.stderr, flush=True)
     return 0
 
