@@ -8,8 +8,9 @@ The run happens in a copy of the workflow (src/ without its numba cache, so the 
 warm-up compiles) under --run-dir; the checkout's results/ and cache are never touched.
 Each fault draws from the seed an instant, a target among what runs then (Snakemake, one
 job process, the whole run) and a signal. Remedy, exactly the README's: the same command;
-`snakemake --unlock --configfile config/smoke.yaml` first if it answers that the directory
-cannot be locked; `kill -9` first if Snakemake has not exited after a signal to it.
+the unlock the refused run prints first if it says that the directory is locked (`<command>
+--unlock`; Snakemake's own `Directory cannot be locked`: `snakemake --unlock --configfile
+config/smoke.yaml`); `kill -9` first if Snakemake has not exited after a signal to it.
 
 Findings (printed; exit status 1 if any, 0 if none, 2 for bad arguments): a process of an
 interrupted run still running --grace s after its Snakemake; a damaged numba cache file; a
@@ -25,6 +26,7 @@ import contextlib
 import json
 import os
 import random
+import shlex
 import shutil
 import signal
 import subprocess
@@ -45,7 +47,11 @@ TIMED = {"work_precision", "convergence"}        # folders of the datasets holdi
 TIMED_FIGURES = ("workprecision", "convergence")  # figures drawn from TIMING
 #: provenance attributes that differ between a checkout and its copy
 PROVENANCE = {"git_commit"}
-LOCKED = "cannot be locked"
+#: what a run refused by a lock left by a killed run says: the logger plugin's line (the
+#: remedy it prints: `<command> --unlock && <command>`), or Snakemake's own paragraph
+LOCKED = ("is locked by a run that was stopped", "is locked by another Snakemake run",
+          "cannot be locked")
+REMEDY = "run the same command again: "          # the plugin's line, before its remedy
 #: what a damaged numba cache answers (issue: truncated .nbc, empty .nbi)
 CACHE_DAMAGE = ("UnpicklingError", "pickle data was truncated", "EOFError: Ran out of input")
 WARMUP = "vines.pipeline.warmup"                # the onstart warm-up's module
@@ -168,11 +174,16 @@ class Run:
     def log_text(self) -> str:
         return (self.logs / f"attempt_{self.n:02d}.log").read_text(errors="replace")
 
-    def unlock(self) -> int:
-        """The README's `snakemake --unlock` (with the same --configfile)."""
+    def unlock(self, text: str) -> int:
+        """The README's unlock: the first half of the remedy the refused run printed
+        (`<command> --unlock && <command>`; the second half is the next attempt), else
+        `snakemake --unlock` with the same --configfile."""
+        cmd = ["snakemake", "--unlock", "--configfile", CONFIGFILE]
+        for line in text.splitlines():
+            if REMEDY in line and " && " in line:
+                cmd = shlex.split(line.split(REMEDY, 1)[1].split(" && ")[0])
         with open(self.logs / f"unlock_{self.n:02d}.log", "w") as log:
-            return subprocess.run(["snakemake", "--unlock", "--configfile", CONFIGFILE],
-                                  cwd=self.work, env=self.env, stdout=log,
+            return subprocess.run(cmd, cwd=self.work, env=self.env, stdout=log,
                                   stderr=subprocess.STDOUT, timeout=600).returncode
 
     def dry_run(self) -> str:
@@ -271,6 +282,11 @@ def _instant(rng, args, n_fault: int, left: float, ref_seconds: float) -> tuple[
     return rng.uniform(0.5, min(args.max_window, max(args.min_window, window))), False
 
 
+def _locked(text: str) -> bool:
+    """Did the run stop on the directory's lock?"""
+    return any(m in text for m in LOCKED)
+
+
 def run_with_faults(run: Run, args, rng, report: Report, orphans: Orphans,
                     total: int, ref_seconds: float) -> None:
     """Attempts of the same command, with faults until ``args.faults``, then to the end;
@@ -296,18 +312,18 @@ def run_with_faults(run: Run, args, rng, report: Report, orphans: Orphans,
                 report.notes.append(f"the run completed before the next instant: "
                                     f"{len(report.faults)} of {args.faults} faults")
             return
-        if LOCKED in text and not unlocked:
+        if _locked(text) and not unlocked:
             if last is not None:
                 last.remedy += ["locked", "snakemake --unlock", "the same command"]
             report.unlocks += 1
-            if run.unlock() != 0:
+            if run.unlock(text) != 0:
                 report.findings.append(f"attempt {run.n}: `snakemake --unlock` failed")
             unlocked = True
             continue
         unlocked = False
         tail = " | ".join(text.strip().splitlines()[-6:])
         report.findings.append(f"attempt {run.n} (no fault in it) failed with exit {rc}"
-                               f"{' (still locked after --unlock)' if LOCKED in text else ''}"
+                               f"{' (still locked after --unlock)' if _locked(text) else ''}"
                                f": {tail}")
         if last is not None:
             last.remedy.append(f"failed ({rc})")
