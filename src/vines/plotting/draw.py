@@ -92,12 +92,15 @@ def impact_handles() -> list:
 
 
 def _impact_markers(ax, x, y, direction, wall, **kw):
-    """Impacts at (x, y) marked by direction (marker, colour) and wall (filled / open)."""
+    """Impacts at (x, y) marked by direction (marker, colour) and wall (filled / open); not
+    clipped, so a marker on the panel's edge (phase 0 or 2 pi, the last sample's time, a
+    zero relative velocity) is drawn whole (the callers give only points inside)."""
     for code, (_, mk, col) in IMPACT_STYLES.items():
         for w, _, filled in WALL_STYLES:
             m = (direction == code) & (wall == w)
             if m.any():
-                ax.plot(x[m], y[m], mk, ls="", mec=col, mfc=col if filled else "none", **kw)
+                ax.plot(x[m], y[m], mk, ls="", mec=col, mfc=col if filled else "none",
+                        clip_on=False, **kw)
 
 
 def time_history(ax_t, ax_p, ds: xr.Dataset, i: int):
@@ -166,6 +169,22 @@ def bifurcation_dots(ax, x, y, **kw):
     """Small black dots (rasterized) of a bifurcation diagram."""
     kw = {"s": 0.6, "color": "black", "linewidths": 0, "rasterized": True, **kw}
     ax.scatter(x, y, **kw)
+
+
+def fit_y_to_window(ax, pad=0.05):
+    """y-limits of ``ax`` to what is drawn inside its x-limits (scatter points and line
+    vertices), widened by ``pad`` of the range each side: a line drawn over a wider eta
+    range than the panel's does not stretch the panel."""
+    lo, hi = ax.get_xlim()
+    xy = [np.asarray(c.get_offsets(), float).reshape(-1, 2) for c in ax.collections]
+    xy += [np.asarray(ln.get_xydata(), float).reshape(-1, 2) for ln in ax.lines]
+    xy = np.concatenate(xy or [np.empty((0, 2))])
+    y = xy[(xy[:, 0] >= lo) & (xy[:, 0] <= hi), 1]
+    y = y[np.isfinite(y)]
+    if y.size:
+        a, b = float(y.min()), float(y.max())
+        d = pad * (b - a) if b > a else 1.0
+        ax.set_ylim(a - d, b + d)
 
 
 def branch_lines(ax, br: xr.Dataset, label=True):
