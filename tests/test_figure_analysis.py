@@ -114,6 +114,34 @@ def test_stable_edge_is_interpolated_between_rows():
     assert not P.stable_at(m, [0.15], [0.49])[0, 0]                # outside the map's range
 
 
+def test_class_raster_follows_the_interpolated_edge():
+    """Fig 16: the row omega = 0.49 lies on the edge of a stable band (|lambda_max| 1 -+ 1e-4
+    alternating along eta, stable 0.95 above, unstable 1.2 below): drawn cell by cell every
+    other cell of the band's lower half-row is white (a notch). On the raster the band is
+    stable from just above 0.49 (edge at 0.49 + 1e-4 / 0.05 * 0.01 at most) in every column,
+    unstable below it, and each raster point keeps the class of a neighbouring map point:
+    the asymmetric stable cell (class 2) stays black, the map's own points keep theirs."""
+    eta = (0.1, 0.2, 0.3, 0.4)
+    lam = np.array([[1.2, 1 - 1e-4, 0.95, 1.5], [1.2, 1 + 1e-4, 0.95, 1.5],
+                    [1.2, 1 - 1e-4, 0.95, 1.5], [1.2, 1 + 1e-4, 0.95, 1.5]])
+    cls = np.where(lam < 1, 1, 3)
+    cls[3, 2] = 2
+    m = xr.Dataset({"lambda_max": (("eta", "omega"), lam), "cls": (("eta", "omega"), cls.astype("i1"))},
+                   coords={"eta": list(eta), "omega": [0.48, 0.49, 0.5, 0.51]})
+    er, wr, c = P.class_raster(m, per_eta=4, per_omega=8)
+    assert c.shape == (wr.size, er.size) == (32, 16)
+    # the band's upper edge: 0.95 at 0.5 -> 1.5 at 0.51 crosses 1 at 0.5 + 0.01 / 11
+    above = (wr > 0.49 + 0.0002) & (wr < 0.5 + 0.01 / 11)
+    below = (wr < 0.49) | (wr > 0.5 + 0.01 / 11)
+    assert above.sum() == 9 and np.all(np.isin(c[above], (1, 2))) and np.all(c[below] == 3)
+    assert np.all(c[above][:, er > 0.4] == 2) and np.all(c[above][:, er < 0.3] == 1)
+    # at the map's own points (raster points nearest them) the classes are the map's
+    at = c[np.argmin(np.abs(wr[:, None] - m["omega"].values), axis=0)][
+        :, np.argmin(np.abs(er[:, None] - np.array(eta)), axis=0)]
+    near = np.abs(wr[np.argmin(np.abs(wr[:, None] - m["omega"].values), axis=0)] - 0.49) > 1e-3
+    assert np.array_equal(at[near], cls.T[near])
+
+
 def test_points_without_an_orbit_are_not_stable():
     m = _map([0.5, 0.5, 0.5], [0.9, 1.0, 1.1], cls=[[1, 0, 1], [1, 0, 1]])
     assert P.stability_margin(m)[1].tolist() == [-1.0, -1.0]

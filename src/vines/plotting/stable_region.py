@@ -76,6 +76,43 @@ def stable_orbit_share(eta, omega, fraction, smap: xr.Dataset, per_cell: int = 1
     return er, wr, values, int(keep_whole.sum())
 
 
+def _bracket(v, x):
+    """Index of the grid interval of ``v`` holding each ``x`` (clipped to ``v``'s range)
+    and the position in it, 0 ... 1."""
+    x = np.clip(x, v.min(), v.max())
+    i = np.clip(np.searchsorted(v, x) - 1, 0, len(v) - 2)
+    return i, (x - v[i]) / (v[i + 1] - v[i])
+
+
+def class_raster(smap: xr.Dataset, per_eta: int = 4, per_omega: int = 8):
+    """The classes of the stability map ``smap`` (``cls``) on a raster of ``per_eta`` x
+    ``per_omega`` points per map cell, whose stable / not stable split follows the
+    |lambda_max| = 1 edge interpolated between map points (``stability_margin``, the edge
+    ``draw.stable_edge`` draws): each raster point takes the class of the nearest of its
+    four surrounding map points that is on its side of the edge. At the map points the
+    classes are the map's; a stability edge that runs almost along a grid row is not drawn
+    as a staircase of whole cells (white single-cell notches in a stable band) but where the
+    interpolated edge is. Returns (eta_r, omega_r, cls_r), cls_r (len(omega_r), len(eta_r))."""
+    eta, omega = smap["eta"].values, smap["omega"].values
+    er, wr = _subdivide(eta, per_eta), _subdivide(omega, per_omega)
+    margin = stability_margin(smap)
+    cls = np.asarray(smap["cls"].transpose("omega", "eta").values)
+    iw, tw = _bracket(omega, wr)
+    ie, te = _bracket(eta, er)
+    IW, IE = np.meshgrid(iw, ie, indexing="ij")
+    TW, TE = np.meshgrid(tw, te, indexing="ij")
+    corners = [(a, b) for a in (0, 1) for b in (0, 1)]
+    weight = [(TW if a else 1 - TW) * (TE if b else 1 - TE) for a, b in corners]
+    stable = sum(w * margin[IW + a, IE + b] for w, (a, b) in zip(weight, corners, strict=True)) > 0
+    best, out = np.full(TW.shape, np.inf), np.zeros(TW.shape, cls.dtype)
+    for a, b in corners:
+        dist = np.hypot(TW - a, TE - b)
+        take = ((margin[IW + a, IE + b] > 0) == stable) & (dist < best)
+        out = np.where(take, cls[IW + a, IE + b], out)
+        best = np.where(take, dist, best)
+    return er, wr, out
+
+
 def reaches_1to1(grid: xr.Dataset) -> np.ndarray:
     """True where the grid's from-rest run settles on a 1:1 orbit (regime '1:1'), over
     (omega, eta) with the fixed F squeezed."""
