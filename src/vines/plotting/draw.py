@@ -36,7 +36,7 @@ LABELS = {
     "abs_lambda": r"$|\lambda|$",
     "t": r"time $\tau$",
 }
-#: colours of the paper: LO / cavity ends blue, ball red, analytic (symmetric) branch red
+#: colours of the paper: LO / cavity ends blue, ball vermillion, analytic (symmetric) branch vermillion (the paper: red)
 C_LO, C_BALL, C_BRANCH = palette.C_LO, palette.C_BALL, palette.C_SYMMETRIC
 #: Fig 16 classes (label, colour) by value of ``cls`` in the stability datasets
 CLASSES = palette.CLASSES
@@ -104,7 +104,7 @@ def _impact_markers(ax, x, y, direction, wall, **kw):
 
 
 def time_history(ax_t, ax_p, ds: xr.Dataset, i: int):
-    """Cavity ends z_m +- 1 (blue) and ball z_b (red) over the last periods, impacts marked
+    """Cavity ends z_m +- 1 (blue) and ball z_b (vermillion) over the last periods, impacts marked
     by direction and wall (``IMPACT_STYLES``, ``WALL_STYLES``); beside it the phase portraits of the last periods (dark) over those of the
     whole measurement window (light, ``window_*`` samples, when the dataset has them)."""
     t, zm = ds["t"].values[i], ds["z_m"].values[i]
@@ -240,7 +240,7 @@ def class_handles(classes: dict, suffix=None) -> list:
 
 
 def twin_measures(ax, x, ke, xmax_m, xlabel):
-    """x_max (m, red circles, left axis) and KE ratio (blue stars, right axis); returns the
+    """x_max (m, vermillion circles, left axis) and KE ratio (blue stars, right axis); returns the
     right axis."""
     red, blue = palette.OKABE_ITO["vermillion"], palette.OKABE_ITO["blue"]
     ax.plot(x, xmax_m, "o", color=red, ms=3.5, mfc="none", label=r"$x_m^{\max}$")
