@@ -1,6 +1,7 @@
 """Figure helpers: input checks (``checks``), drawing (``draw``), multi-panel layouts
 (``layouts``), the one palette and the colour map (``palette``), impact directions
-(``impacts``), the stable 1:1 region of a stability map on other maps (``stable_region``),
+(``impacts``), the stable 1:1 region of a stability map on other maps and the map's classes
+on a raster that follows its interpolated edge (``stable_region``),
 the regime of each point of a bifurcation sweep (``sweep_regimes``).
 Figure scripts use ``import vines.plotting as P``.
 

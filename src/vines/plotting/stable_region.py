@@ -1,4 +1,5 @@
-"""The stable 1:1 region of a stability map (Fig 16) drawn over other maps (Fig 12 (d-f)).
+"""The stable 1:1 region of a stability map (Fig 16) drawn over other maps (Fig 12 (d-f)),
+and the map's own classes on a raster that follows it (Fig 16, ``class_raster``).
 
 The region's edges are placed where |lambda_max| crosses 1 by linear interpolation between
 grid points (``stability_margin``), not half-way between a stable and an unstable cell: a
