@@ -140,6 +140,14 @@ def test_class_raster_follows_the_interpolated_edge():
         :, np.argmin(np.abs(er[:, None] - np.array(eta)), axis=0)]
     near = np.abs(wr[np.argmin(np.abs(wr[:, None] - m["omega"].values), axis=0)] - 0.49) > 1e-3
     assert np.array_equal(at[near], cls.T[near])
+    # a stable point between strongly unstable ones (interpolated stable patch 1/1000 of a
+    # cell, narrower than a raster point) is not hidden: the points next to it keep its class
+    lone = _map([1.5, 0.999, 1.5], [0.4, 0.5, 0.6])
+    er, wr, c = P.class_raster(lone, per_eta=4, per_omega=8)
+    rows, cols = np.nonzero(c == 1)                     # 2 x 2 raster points per map point
+    assert rows.size == 2 * 2 * 2 and np.all(np.abs(wr[rows] - 0.5) < 0.01)
+    assert np.all(np.min(np.abs(er[cols, None] - np.array([0.1, 0.2])), axis=1) < 0.02)
+    assert np.all((c == 1) | (c == 3))
 
 
 def test_points_without_an_orbit_are_not_stable():

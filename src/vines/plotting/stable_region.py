@@ -90,10 +90,11 @@ def class_raster(smap: xr.Dataset, per_eta: int = 4, per_omega: int = 8):
     ``per_omega`` points per map cell, whose stable / not stable split follows the
     |lambda_max| = 1 edge interpolated between map points (``stability_margin``, the edge
     ``draw.stable_edge`` draws): each raster point takes the class of the nearest of its
-    four surrounding map points that is on its side of the edge. At the map points the
-    classes are the map's; a stability edge that runs almost along a grid row is not drawn
-    as a staircase of whole cells (white single-cell notches in a stable band) but where the
-    interpolated edge is. Returns (eta_r, omega_r, cls_r), cls_r (len(omega_r), len(eta_r))."""
+    four surrounding map points that is on its side of the edge; a map point whose class
+    would be on none of its cell's raster points keeps the points next to it (no map point
+    is hidden). A stability edge that runs almost along a grid row is then drawn where the
+    interpolated edge is, not as a staircase of whole cells (white single-cell notches in a
+    stable band). Returns (eta_r, omega_r, cls_r), cls_r (len(omega_r), len(eta_r))."""
     eta, omega = smap["eta"].values, smap["omega"].values
     er, wr = _subdivide(eta, per_eta), _subdivide(omega, per_omega)
     margin = stability_margin(smap)
@@ -111,7 +112,20 @@ def class_raster(smap: xr.Dataset, per_eta: int = 4, per_omega: int = 8):
         take = ((margin[IW + a, IE + b] > 0) == stable) & (dist < best)
         out = np.where(take, cls[IW + a, IE + b], out)
         best = np.where(take, dist, best)
-    return er, wr, out
+    return er, wr, _keep_every_class(out, cls, per_omega, per_eta)
+
+
+def _keep_every_class(raster, cls, per_omega: int, per_eta: int) -> np.ndarray:
+    """``raster`` with the raster points next to each map point set to its class where none
+    of the raster points of its cell has it (a stable point between unstable ones whose
+    interpolated stable patch is narrower than a raster point): no map point is hidden."""
+    blocks = raster.reshape(cls.shape[0], per_omega, cls.shape[1], per_eta).copy()
+    hidden = ~(blocks == cls[:, None, :, None]).any(axis=(1, 3))
+    mid_w = slice((per_omega - 1) // 2, per_omega // 2 + 1)
+    mid_e = slice((per_eta - 1) // 2, per_eta // 2 + 1)
+    centre = blocks[:, mid_w, :, mid_e]
+    blocks[:, mid_w, :, mid_e] = np.where(hidden[:, None, :, None], cls[:, None, :, None], centre)
+    return blocks.reshape(raster.shape)
 
 
 def reaches_1to1(grid: xr.Dataset) -> np.ndarray:
