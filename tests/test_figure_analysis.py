@@ -114,6 +114,42 @@ def test_stable_edge_is_interpolated_between_rows():
     assert not P.stable_at(m, [0.15], [0.49])[0, 0]                # outside the map's range
 
 
+def test_class_raster_follows_the_interpolated_edge():
+    """Fig 16: the row omega = 0.49 lies on the edge of a stable band (|lambda_max| 1 -+ 1e-4
+    alternating along eta, stable 0.95 above, unstable 1.2 below): drawn cell by cell every
+    other cell of the band's lower half-row is white (a notch). On the raster the band is
+    stable from just above 0.49 (edge at 0.49 + 1e-4 / 0.05 * 0.01 at most) in every column,
+    unstable below it, and each raster point keeps the class of a neighbouring map point:
+    the asymmetric stable cell (class 2) stays black, the map's own points keep theirs."""
+    eta = (0.1, 0.2, 0.3, 0.4)
+    lam = np.array([[1.2, 1 - 1e-4, 0.95, 1.5], [1.2, 1 + 1e-4, 0.95, 1.5],
+                    [1.2, 1 - 1e-4, 0.95, 1.5], [1.2, 1 + 1e-4, 0.95, 1.5]])
+    cls = np.where(lam < 1, 1, 3)
+    cls[3, 2] = 2
+    m = xr.Dataset({"lambda_max": (("eta", "omega"), lam), "cls": (("eta", "omega"), cls.astype("i1"))},
+                   coords={"eta": list(eta), "omega": [0.48, 0.49, 0.5, 0.51]})
+    er, wr, c = P.class_raster(m, per_eta=4, per_omega=8)
+    assert c.shape == (wr.size, er.size) == (32, 16)
+    # the band's upper edge: 0.95 at 0.5 -> 1.5 at 0.51 crosses 1 at 0.5 + 0.01 / 11
+    above = (wr > 0.49 + 0.0002) & (wr < 0.5 + 0.01 / 11)
+    below = (wr < 0.49) | (wr > 0.5 + 0.01 / 11)
+    assert above.sum() == 9 and np.all(np.isin(c[above], (1, 2))) and np.all(c[below] == 3)
+    assert np.all(c[above][:, er > 0.4] == 2) and np.all(c[above][:, er < 0.3] == 1)
+    # at the map's own points (raster points nearest them) the classes are the map's
+    at = c[np.argmin(np.abs(wr[:, None] - m["omega"].values), axis=0)][
+        :, np.argmin(np.abs(er[:, None] - np.array(eta)), axis=0)]
+    near = np.abs(wr[np.argmin(np.abs(wr[:, None] - m["omega"].values), axis=0)] - 0.49) > 1e-3
+    assert np.array_equal(at[near], cls.T[near])
+    # a stable point between strongly unstable ones (interpolated stable patch 1/1000 of a
+    # cell, narrower than a raster point) is not hidden: the points next to it keep its class
+    lone = _map([1.5, 0.999, 1.5], [0.4, 0.5, 0.6])
+    er, wr, c = P.class_raster(lone, per_eta=4, per_omega=8)
+    rows, cols = np.nonzero(c == 1)                     # 2 x 2 raster points per map point
+    assert rows.size == 2 * 2 * 2 and np.all(np.abs(wr[rows] - 0.5) < 0.01)
+    assert np.all(np.min(np.abs(er[cols, None] - np.array([0.1, 0.2])), axis=1) < 0.02)
+    assert np.all((c == 1) | (c == 3))
+
+
 def test_points_without_an_orbit_are_not_stable():
     m = _map([0.5, 0.5, 0.5], [0.9, 1.0, 1.1], cls=[[1, 0, 1], [1, 0, 1]])
     assert P.stability_margin(m)[1].tolist() == [-1.0, -1.0]
@@ -170,6 +206,44 @@ def test_impact_phase_panel_counts_the_window(tmp_path):
     # wall +1 is the left end (w = +1), -1 the right end; (impacts, of them the same way)
     assert P.impact_phase_panel(axes[0, 0], ds, 0) == {"right end": (1, 0), "left end": (2, 1)}
     assert P.impact_phase_panel(axes[0, 1], ds, 1) == {"right end": (1, 1), "left end": (1, 1)}
+
+
+def _pixels_of(fig, colour):
+    """Mask (rows from the top) of the pixels of ``fig`` drawn in ``colour`` (hex) over
+    white, at any opacity of at least 0.3."""
+    from matplotlib.colors import to_rgb
+    fig.canvas.draw()
+    img = np.asarray(fig.canvas.buffer_rgba())[..., :3] / 255.0
+    c = np.array(to_rgb(colour))
+    k = int(np.argmax(1.0 - c))                       # the channel that shows the colour best
+    t = (1.0 - img[..., k]) / (1.0 - c[k])            # opacity if the pixel is c over white
+    resid = np.abs(img - (t[..., None] * c + (1.0 - t[..., None])))
+    return (t >= 0.3) & np.all(resid <= 0.02, axis=-1)
+
+
+def test_impact_markers_on_the_panel_edge_are_drawn_whole():
+    """Fig 4: an impact at phase 2 pi (and |w'_i| = 0) sits on the panel's edge; its marker
+    is drawn whole, half of it outside the axes, not cut by them."""
+    import matplotlib.pyplot as plt
+    ds = xr.Dataset({"row_size": ("point", np.array([2], "i4")),
+                     "t": (("point", "sample"), [[0.5, 1.5, 2.5]]),
+                     "v_b": (("point", "sample"), [[0.5, 0.5, 0.5]]),
+                     "impact_t": ("impact", [1.0, 2.0]),
+                     "impact_dw": ("impact", [-1.0, 0.0]),
+                     "impact_phase": ("impact", [2 * np.pi - 1e-12, 2.0]),
+                     "impact_wall": ("impact", np.array([-1, -1], "i1"))},
+                    attrs={"solver_r": 0.65})
+    fig, axes = P.figure(1, 1, width=3.0, height=2.5)
+    ax = axes[0, 0]
+    P.impact_phase_panel(ax, ds, 0)
+    box = ax.get_window_extent()
+    # the first impact: moving towards each other (v_m = 0.5 - 1); the second the same way
+    _, cols = np.nonzero(_pixels_of(fig, P.palette.C_TOWARDS))
+    assert np.any(cols > box.x1 + 1), "marker at phase 2 pi cut at the right edge"
+    rows, _ = np.nonzero(_pixels_of(fig, P.palette.C_SAME_WAY))
+    y_up = fig.bbox.height - rows                       # pixel rows counted from below
+    assert np.any(y_up < box.y0 - 1), "marker at |w'_i| = 0 cut at the bottom edge"
+    plt.close(fig)
 
 
 def test_stable_orbit_share_is_drawn_only_where_the_orbit_is_stable():
@@ -232,3 +306,57 @@ def test_inset_covers_no_drawn_point():
         assert lo == -2.5 and (hi == 2.5) == (y_top == 0.0)
         assert len(B._drawn_points(ax)) == 8000           # every point still inside
         plt.close(fig)
+
+
+def _zoom_data():
+    """A branch dataset (row 0: symmetric branch over eta in [-1, 2], |w'| = 1 + eta^2,
+    stable on [0.3, 0.7]: zoom window [0.06, 0.94]; row 1: a small asymmetric branch on
+    [0.25, 0.3]) and a sweep whose impacts fill |w'| <= 2.5 outside [0.2, 0.75] and sit on
+    the branch inside it, like Fig 6 (a)."""
+    e0, e1 = np.linspace(-1.0, 2.0, 301), np.linspace(0.25, 0.3, 11)
+    eta = np.concatenate([e0, e1])
+    dw = np.concatenate([1 + e0 ** 2, 1.3 + 8 * (0.3 - e1)])
+    stable = np.concatenate([(e0 >= 0.3) & (e0 <= 0.7), e1 > 0.28])
+    n = eta.size
+    br = xr.Dataset({"dw_L": ("point", -dw), "dw_R": ("point", dw),
+                     "admissible": ("point", np.ones(n, bool)), "stable": ("point", stable),
+                     "lambda_max": ("point", np.where(stable, 0.5, 1.5)),
+                     "abs_eigenvalues": (("point", "k"), np.full((n, 4), 0.5)),
+                     "row_size": ("row", np.array([e0.size, e1.size], "i4"))},
+                    coords={"eta": ("point", eta), "F": ("point", np.full(n, 0.1)),
+                            "omega": ("point", np.ones(n))})
+    val = np.round(np.arange(0.0, 1.0001, 0.01), 10)
+    rows = [np.linspace(-2.5, 2.5, 20) if (v < 0.2 or v > 0.75) else
+            np.array([-1.0, 1.0]) * (1 + v ** 2) for v in val]
+    sw = xr.Dataset({"value": ("point", val), "outer_value": ("point", np.full(val.size, 0.1)),
+                     "row_size": ("point", np.array([r.size for r in rows], "i4")),
+                     "dw": ("impact", np.concatenate(rows))}, attrs={"outer_parameter": "F"})
+    return br, sw
+
+
+def test_zoom_panel_fits_its_data_and_the_inset_reads():
+    """Fig 6 (a): the y range is that of the impacts and branches inside the zoom window
+    (|w'| <= 2.5), not of the branch beyond it (up to 5) nor headroom for the inset; the
+    inset sits where nothing is drawn and its tick labels do not touch."""
+    import matplotlib.pyplot as plt
+
+    from vines.plotting import bifurcation as B
+    br, sw = _zoom_data()
+    fig = P.zoom_figure(sw, B.continued_branches([br]), outer_dim="F")
+    B.draw_switched(fig, [br], sw, "F")
+    ax = fig.axes[0]
+    lo, hi = ax.get_ylim()
+    assert -2.5 - 0.3 <= lo <= -2.5 and 2.5 <= hi <= 2.5 + 0.3, (lo, hi)
+    (ins,) = ax.child_axes
+    fig.canvas.draw()
+    box = ins.get_window_extent().transformed(ax.transAxes.inverted())
+    x, y = P.sweep_points(sw, 0.1)
+    fx, fy = (ax.transData + ax.transAxes.inverted()).transform(np.c_[x, y]).T
+    assert not np.any((fx >= box.x0) & (fx <= box.x1) & (fy >= box.y0) & (fy <= box.y1))
+    for labels in (ins.get_xticklabels(), ins.get_yticklabels()):
+        ext = sorted((t.get_window_extent() for t in labels if t.get_text()),
+                     key=lambda b: (b.x0, b.y0))
+        assert len(ext) >= 2
+        for a, b in zip(ext[:-1], ext[1:], strict=True):
+            assert not a.overlaps(b.expanded(1.1, 1.1)), "inset tick labels touch"
+    plt.close(fig)

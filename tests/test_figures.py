@@ -172,6 +172,36 @@ def test_time_history_script_draws_one_row_per_point(tmp_path):
     assert len(fig.axes) == 9 and fig.axes[0].get_title(loc="left").startswith("(a) $\\eta$")
 
 
+def _fig14_sweep(tmp_path, F):
+    """An eta sweep at two W: every point a symmetric 1:1 orbit (4 periods recorded, two
+    impacts each, half a period apart, alternate walls) but one without impacts."""
+    eta, W = np.tile([0.1, 0.2, 0.3], 2), np.repeat([0.9, 1.1], 3)
+    n = np.array([8, 8, 0, 8, 8, 8], "i4")
+    k = int(n.sum())
+    ds = xr.Dataset({"value": ("point", eta), "outer_value": ("point", W),
+                     "direction": ("point", np.ones(6, "i1")), "row_size": ("point", n),
+                     "dw": ("impact", np.tile([1.0, -1.0], k // 2)),
+                     "phase": ("impact", np.tile([1.0, 1.0 + np.pi], k // 2)),
+                     "wall": ("impact", np.tile(np.array([-1, 1], "i1"), k // 2))},
+                    attrs={"swept_parameter": "eta", "outer_parameter": "omega",
+                           "fixed": f"F={F}", "solver_n_record": 4})
+    path = tmp_path / f"fig14_F{F}.nc"
+    ds.to_netcdf(path)
+    return str(path)
+
+
+def test_fig14_legend_lists_the_regimes_drawn(tmp_path, monkeypatch):
+    """A scatter of impacts never shows a point without impacts: Fig 14's legend lists the
+    regimes it draws, not 'no impact'."""
+    saved = []
+    monkeypatch.setattr(P, "save", lambda fig, *a, **k: saved.append(fig))
+    _run_script("fig14", tmp_path, sweeps=[_fig14_sweep(tmp_path, 0.2), _fig14_sweep(tmp_path, 0.4)])
+    (fig,) = saved
+    (legend,) = fig.legends
+    assert [t.get_text() for t in legend.get_texts()] == ["1:1 symmetric"]
+    assert len(fig.axes) == 2
+
+
 def test_same_data_render_to_identical_bytes(tmp_path):
     # no creation date (or other run-dependent metadata) in the PDF and PNG files
     th = [str(_timehistories(tmp_path, n_points=2))]

@@ -1,6 +1,7 @@
 """Figure helpers: input checks (``checks``), drawing (``draw``), multi-panel layouts
 (``layouts``), the one palette and the colour map (``palette``), impact directions
-(``impacts``), the stable 1:1 region of a stability map on other maps (``stable_region``),
+(``impacts``), the stable 1:1 region of a stability map on other maps and the map's classes
+on a raster that follows its interpolated edge (``stable_region``),
 the regime of each point of a bifurcation sweep (``sweep_regimes``).
 Figure scripts use ``import vines.plotting as P``.
 
@@ -66,6 +67,7 @@ from .draw import (
 from .impacts import impact_direction, point_impacts, pre_impact_velocities
 from .layouts import ZOOM_PAD, time_history_figure, zoom_figure, zoom_legend, zoom_range
 from .stable_region import (
+    class_raster,
     reaches_1to1,
     region_counts,
     stability_margin,
@@ -101,7 +103,7 @@ __all__ = [
     # layouts
     "ZOOM_PAD", "time_history_figure", "zoom_figure", "zoom_legend", "zoom_range",
     # stable_region
-    "reaches_1to1", "region_counts", "stability_margin", "stable_at", "stable_orbit_share",
+    "class_raster", "reaches_1to1", "region_counts", "stability_margin", "stable_at", "stable_orbit_share",
     # sweep_regimes
     "REGIME_ASYM", "REGIME_CHAOTIC", "REGIME_QUASIPERIODIC", "REGIME_SYM", "REGIMES", "point_regime", "regime_grid", "sweep_regimes",
 ]

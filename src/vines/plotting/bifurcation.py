@@ -11,11 +11,12 @@ import numpy as np
 import xarray as xr
 from matplotlib import patheffects
 from matplotlib.lines import Line2D
+from matplotlib.ticker import MaxNLocator
 
 from ..data.builders import ragged_rows
 from . import palette
 from .checks import FigureInputError, load, require
-from .draw import LABELS
+from .draw import LABELS, fit_y_to_window
 
 #: colour of the asymmetric 1:1 branches (the symmetric one is C_BRANCH)
 C_ASYMMETRIC = palette.C_ASYMMETRIC
@@ -69,7 +70,8 @@ def _branch_curves(ax, sub: xr.Dataset, label: bool):
 def draw_switched(fig, branches, sweep=None, outer_dim=None):
     """Add the asymmetric branches of each branch dataset to a zoom figure (row i of
     ``fig``: bifurcation panel, |lambda| panel): impact velocities (solid stable, dotted
-    unstable) and lambda_max. Axis limits are kept. Where the asymmetric branches span less
+    unstable) and lambda_max. The x-limits are kept, the bifurcation panel's y range is
+    fitted to what it shows (``fit_y_to_window``). Where the asymmetric branches span less
     than ``INSET_BELOW`` of the panel's eta range, an inset zooms on them (with the swept
     points of ``sweep`` at the row's ``outer_dim`` value when given)."""
     axes = fig.axes
@@ -84,7 +86,7 @@ def draw_switched(fig, branches, sweep=None, outer_dim=None):
                      color=C_ASYMMETRIC, lw=1.2,
                      label=r"$|\lambda_{\max}|$ asymmetric" if j == 0 else None)
         ax.set_xlim(lims[0])
-        ax.set_ylim(lims[1])
+        fit_y_to_window(ax)
         axl.set_xlim(lims[2])
         axl.set_ylim(lims[3])
         if subs:
@@ -96,9 +98,11 @@ def draw_switched(fig, branches, sweep=None, outer_dim=None):
 INSET_BELOW = 0.15
 
 
-#: inset size (axes fraction: width, height) and the margins kept free around it: its tick
-#: labels below and left
+#: inset size (axes fraction: width, height), the smallest fraction of it an inset may be
+#: scaled down to where the full size finds no empty place, and the margins kept free
+#: around it: its tick labels below and left
 INSET_SIZE = (0.36, 0.34)
+INSET_MIN_SCALE = 0.6
 INSET_MARGIN = {"left": 0.07, "right": 0.02, "below": 0.08, "above": 0.02}
 
 
@@ -125,22 +129,44 @@ def _covered(frac, box) -> int:
                       & (frac[:, 1] <= box[1] + box[3] + m["above"])))
 
 
-def _inset_box(ax):
-    """An inset box (axes fraction) that covers no drawn point of ``ax``: the first empty
-    one on a grid of positions, upper right first; when there is none, the panel's y range
-    is extended upwards until a band at the top holds the inset (the data keep their
-    place, the panel gains headroom)."""
-    w, h = INSET_SIZE
+def _empty_box(frac, w, h):
+    """The first box of size (w, h) (axes fraction) on a grid of positions, upper right
+    first, that covers no point of ``frac`` with its margins; None if there is none."""
     m = INSET_MARGIN
-    xs = np.linspace(1 - m["right"] - w, m["left"], 13)
-    ys = np.linspace(1 - m["above"] - h, m["below"], 9)
-    frac = _drawn_points(ax)
-    for y0 in ys:
-        for x0 in xs:
+    for y0 in np.linspace(1 - m["above"] - h, m["below"], 25):
+        for x0 in np.linspace(1 - m["right"] - w, m["left"], 25):
             if _covered(frac, [x0, y0, w, h]) == 0:
                 return [float(x0), float(y0), w, h]
+    return None
+
+
+def _outline(ax, rect) -> np.ndarray:
+    """Points along the outline of ``rect`` = (x0, x1, y0, y1) (data) in axes fraction."""
+    x0, x1, y0, y1 = rect
+    t = np.linspace(0.0, 1.0, 50)
+    xy = np.concatenate([np.c_[x0 + t * (x1 - x0), np.full_like(t, y)] for y in (y0, y1)]
+                        + [np.c_[np.full_like(t, x), y0 + t * (y1 - y0)] for x in (x0, x1)])
+    return (ax.transData + ax.transAxes.inverted()).transform(xy)
+
+
+def _inset_box(ax, zoomed=None):
+    """An inset box (axes fraction) that covers no drawn point of ``ax`` nor the outline
+    of the ``zoomed`` rectangle (x0, x1, y0, y1; data) marked on the panel: the largest
+    empty one from ``INSET_SIZE`` down to ``INSET_MIN_SCALE`` of it; when there is none,
+    the panel's y range is extended upwards until a band at the top holds the inset (the
+    data keep their place, the panel gains headroom)."""
+    w, h = INSET_SIZE
+    m = INSET_MARGIN
+    frac = _drawn_points(ax)
+    avoid = frac if zoomed is None else np.concatenate([frac, _outline(ax, zoomed)])
+    for scale in np.linspace(1.0, INSET_MIN_SCALE, 9):
+        box = _empty_box(avoid, w * scale, h * scale)
+        if box is not None:
+            return box
     lo, hi = ax.get_ylim()
     top = lo + (hi - lo) * float(frac[:, 1].max()) if frac.size else lo
+    if zoomed is not None:
+        top = max(top, zoomed[3])
     band = h + m["above"] + m["below"] + 0.02        # + a gap between data and labels
     ax.set_ylim(lo, (top - band * lo) / (1 - band))
     return [float(1 - m["right"] - w), float(1 - m["above"] - h), w, h]
@@ -157,29 +183,32 @@ def _inset(ax, br, subs, sweep, outer_dim):
         return
     pad = max(0.5 * (b - a), 1e-3 * (hi - lo))
     a, b = a - pad, b + pad
-    ins = ax.inset_axes(_inset_box(ax))
-    ys = []
+    ys, dots = [], None
     if sweep is not None:
         from .checks import sweep_points
         x, y = sweep_points(sweep, float(br[outer_dim].values[0]))
         m = (x >= a) & (x <= b)
-        ins.scatter(x[m], y[m], s=2.0, color="black", linewidths=0, rasterized=True)
+        dots = x[m], y[m]
         ys.append(y[m])
     for sub in [br.isel(point=_rows(br)[0])] + subs:
         adm = sub["admissible"].values.astype(bool)
         m = adm & (sub["eta"].values >= a) & (sub["eta"].values <= b)
         ys += [sub[k].values[m] for k in ("dw_L", "dw_R")]
+    y = np.concatenate(ys) if ys else np.array([])
+    y = y[np.isfinite(y)]
+    top = 1.1 * float(np.max(np.abs(y))) if y.size else float(np.max(np.abs(ax.get_ylim())))
+    ins = ax.inset_axes(_inset_box(ax, zoomed=(a, b, -top, top)))
+    if dots is not None:
+        ins.scatter(*dots, s=2.0, color="black", linewidths=0, rasterized=True)
     from .draw import branch_lines
     branch_lines(ins, br.isel(point=_rows(br)[0]), label=False)
     for sub in subs:
         _branch_curves(ins, sub, label=False)
     ins.set_xlim(a, b)
-    y = np.concatenate(ys) if ys else np.array([])
-    y = y[np.isfinite(y)]
-    if y.size:
-        top = float(np.max(np.abs(y)))
-        ins.set_ylim(-1.1 * top, 1.1 * top)
-    ins.tick_params(labelsize=6)
+    ins.set_ylim(-top, top)
+    ins.tick_params(labelsize=6, pad=1.5)
+    ins.xaxis.set_major_locator(MaxNLocator(nbins=3, min_n_ticks=2))
+    ins.yaxis.set_major_locator(MaxNLocator(nbins=4, min_n_ticks=2))
     ax.indicate_inset_zoom(ins, edgecolor="0.3")
 
 

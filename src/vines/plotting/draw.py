@@ -36,7 +36,7 @@ LABELS = {
     "abs_lambda": r"$|\lambda|$",
     "t": r"time $\tau$",
 }
-#: colours of the paper: LO / cavity ends blue, ball red, analytic (symmetric) branch red
+#: colours of the paper: LO / cavity ends blue, ball vermillion, analytic (symmetric) branch vermillion (the paper: red)
 C_LO, C_BALL, C_BRANCH = palette.C_LO, palette.C_BALL, palette.C_SYMMETRIC
 #: Fig 16 classes (label, colour) by value of ``cls`` in the stability datasets
 CLASSES = palette.CLASSES
@@ -92,16 +92,19 @@ def impact_handles() -> list:
 
 
 def _impact_markers(ax, x, y, direction, wall, **kw):
-    """Impacts at (x, y) marked by direction (marker, colour) and wall (filled / open)."""
+    """Impacts at (x, y) marked by direction (marker, colour) and wall (filled / open); not
+    clipped, so a marker on the panel's edge (phase 0 or 2 pi, the last sample's time, a
+    zero relative velocity) is drawn whole (the callers give only points inside)."""
     for code, (_, mk, col) in IMPACT_STYLES.items():
         for w, _, filled in WALL_STYLES:
             m = (direction == code) & (wall == w)
             if m.any():
-                ax.plot(x[m], y[m], mk, ls="", mec=col, mfc=col if filled else "none", **kw)
+                ax.plot(x[m], y[m], mk, ls="", mec=col, mfc=col if filled else "none",
+                        clip_on=False, **kw)
 
 
 def time_history(ax_t, ax_p, ds: xr.Dataset, i: int):
-    """Cavity ends z_m +- 1 (blue) and ball z_b (red) over the last periods, impacts marked
+    """Cavity ends z_m +- 1 (blue) and ball z_b (vermillion) over the last periods, impacts marked
     by direction and wall (``IMPACT_STYLES``, ``WALL_STYLES``); beside it the phase portraits of the last periods (dark) over those of the
     whole measurement window (light, ``window_*`` samples, when the dataset has them)."""
     t, zm = ds["t"].values[i], ds["z_m"].values[i]
@@ -168,6 +171,22 @@ def bifurcation_dots(ax, x, y, **kw):
     ax.scatter(x, y, **kw)
 
 
+def fit_y_to_window(ax, pad=0.05):
+    """y-limits of ``ax`` to what is drawn inside its x-limits (scatter points and line
+    vertices), widened by ``pad`` of the range each side: a line drawn over a wider eta
+    range than the panel's does not stretch the panel."""
+    lo, hi = ax.get_xlim()
+    xy = [np.asarray(c.get_offsets(), float).reshape(-1, 2) for c in ax.collections]
+    xy += [np.asarray(ln.get_xydata(), float).reshape(-1, 2) for ln in ax.lines]
+    xy = np.concatenate(xy or [np.empty((0, 2))])
+    y = xy[(xy[:, 0] >= lo) & (xy[:, 0] <= hi), 1]
+    y = y[np.isfinite(y)]
+    if y.size:
+        a, b = float(y.min()), float(y.max())
+        d = pad * (b - a) if b > a else 1.0
+        ax.set_ylim(a - d, b + d)
+
+
 def branch_lines(ax, br: xr.Dataset, label=True):
     """Analytic 1:1 branch (admissible points): solid stable, dotted unstable, both walls."""
     eta = br["eta"].values
@@ -221,7 +240,7 @@ def class_handles(classes: dict, suffix=None) -> list:
 
 
 def twin_measures(ax, x, ke, xmax_m, xlabel):
-    """x_max (m, red circles, left axis) and KE ratio (blue stars, right axis); returns the
+    """x_max (m, vermillion circles, left axis) and KE ratio (blue stars, right axis); returns the
     right axis."""
     red, blue = palette.OKABE_ITO["vermillion"], palette.OKABE_ITO["blue"]
     ax.plot(x, xmax_m, "o", color=red, ms=3.5, mfc="none", label=r"$x_m^{\max}$")

@@ -12,6 +12,7 @@ from .draw import (
     branch_lines,
     eigenvalue_panel,
     figure,
+    fit_y_to_window,
     fmt,
     impact_handles,
     impact_phase_panel,
@@ -71,8 +72,9 @@ def zoom_range(br: xr.Dataset):
 
 
 def zoom_figure(sw: xr.Dataset, branches, outer_dim: str):
-    """Figs 6, 15: per branch a row of (zoomed bifurcation + analytic 1:1, |lambda|); the
-    legend below the figure (``zoom_legend``, once every curve is drawn)."""
+    """Figs 6, 15: per branch a row of (zoomed bifurcation + analytic 1:1, |lambda|), the
+    bifurcation panel's y range fitted to what it shows of the zoom window; the legend below
+    the figure (``zoom_legend``, once every curve is drawn)."""
     n = len(branches)
     fig, axes = figure(n, 2, width=10.0, height=3.2 * n + 0.8)
     for i, br in enumerate(branches):
@@ -84,6 +86,7 @@ def zoom_figure(sw: xr.Dataset, branches, outer_dim: str):
         bifurcation_dots(ax, x[sel], y[sel], s=1.5, label="numerical")
         branch_lines(ax, br)
         ax.set_xlim(lo, hi)
+        fit_y_to_window(ax)
         ax.set_xlabel(LABELS["eta"])
         ax.set_ylabel(LABELS["dw"])
         others = ", ".join(f"${SYMBOLS[k]}$ = {fmt(float(br[k].values[0]))}"

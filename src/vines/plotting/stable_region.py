@@ -1,4 +1,5 @@
-"""The stable 1:1 region of a stability map (Fig 16) drawn over other maps (Fig 12 (d-f)).
+"""The stable 1:1 region of a stability map (Fig 16) drawn over other maps (Fig 12 (d-f)),
+and the map's own classes on a raster that follows it (Fig 16, ``class_raster``).
 
 The region's edges are placed where |lambda_max| crosses 1 by linear interpolation between
 grid points (``stability_margin``), not half-way between a stable and an unstable cell: a
@@ -74,6 +75,57 @@ def stable_orbit_share(eta, omega, fraction, smap: xr.Dataset, per_cell: int = 1
     keep = np.repeat(np.repeat(keep_whole, m, axis=0), m, axis=1)
     values = np.where(inside & ~stable & ~keep, 0.0, by_cell)
     return er, wr, values, int(keep_whole.sum())
+
+
+def _bracket(v, x):
+    """Index of the grid interval of ``v`` holding each ``x`` (clipped to ``v``'s range)
+    and the position in it, 0 ... 1."""
+    x = np.clip(x, v.min(), v.max())
+    i = np.clip(np.searchsorted(v, x) - 1, 0, len(v) - 2)
+    return i, (x - v[i]) / (v[i + 1] - v[i])
+
+
+def class_raster(smap: xr.Dataset, per_eta: int = 4, per_omega: int = 8):
+    """The classes of the stability map ``smap`` (``cls``) on a raster of ``per_eta`` x
+    ``per_omega`` points per map cell, whose stable / not stable split follows the
+    |lambda_max| = 1 edge interpolated between map points (``stability_margin``, the edge
+    ``draw.stable_edge`` draws): each raster point takes the class of the nearest of its
+    four surrounding map points that is on its side of the edge; a map point whose class
+    would be on none of its cell's raster points keeps the points next to it (no map point
+    is hidden). A stability edge that runs almost along a grid row is then drawn where the
+    interpolated edge is, not as a staircase of whole cells (white single-cell notches in a
+    stable band). Returns (eta_r, omega_r, cls_r), cls_r (len(omega_r), len(eta_r))."""
+    eta, omega = smap["eta"].values, smap["omega"].values
+    er, wr = _subdivide(eta, per_eta), _subdivide(omega, per_omega)
+    margin = stability_margin(smap)
+    cls = np.asarray(smap["cls"].transpose("omega", "eta").values)
+    iw, tw = _bracket(omega, wr)
+    ie, te = _bracket(eta, er)
+    IW, IE = np.meshgrid(iw, ie, indexing="ij")
+    TW, TE = np.meshgrid(tw, te, indexing="ij")
+    corners = [(a, b) for a in (0, 1) for b in (0, 1)]
+    weight = [(TW if a else 1 - TW) * (TE if b else 1 - TE) for a, b in corners]
+    stable = sum(w * margin[IW + a, IE + b] for w, (a, b) in zip(weight, corners, strict=True)) > 0
+    best, out = np.full(TW.shape, np.inf), np.zeros(TW.shape, cls.dtype)
+    for a, b in corners:
+        dist = np.hypot(TW - a, TE - b)
+        take = ((margin[IW + a, IE + b] > 0) == stable) & (dist < best)
+        out = np.where(take, cls[IW + a, IE + b], out)
+        best = np.where(take, dist, best)
+    return er, wr, _keep_every_class(out, cls, per_omega, per_eta)
+
+
+def _keep_every_class(raster, cls, per_omega: int, per_eta: int) -> np.ndarray:
+    """``raster`` with the raster points next to each map point set to its class where none
+    of the raster points of its cell has it (a stable point between unstable ones whose
+    interpolated stable patch is narrower than a raster point): no map point is hidden."""
+    blocks = raster.reshape(cls.shape[0], per_omega, cls.shape[1], per_eta).copy()
+    hidden = ~(blocks == cls[:, None, :, None]).any(axis=(1, 3))
+    mid_w = slice((per_omega - 1) // 2, per_omega // 2 + 1)
+    mid_e = slice((per_eta - 1) // 2, per_eta // 2 + 1)
+    centre = blocks[:, mid_w, :, mid_e]
+    blocks[:, mid_w, :, mid_e] = np.where(hidden[:, None, :, None], cls[:, None, :, None], centre)
+    return blocks.reshape(raster.shape)
 
 
 def reaches_1to1(grid: xr.Dataset) -> np.ndarray:

@@ -1,7 +1,7 @@
-"""Fig 11: (a, b) x_max (m, log axis) vs W of the VINES (red, grid fig11_*) and of the stuck
+"""Fig 11: (a, b) x_max (m, log axis) vs W of the VINES (vermillion, grid fig11_*) and of the stuck
 linear system Eq. 28 (black, `vines.core.linear` on a fine omega grid, its exact peak
 (closed form, `stuck_peak`) marked and quoted), one panel per eta; (c-e) LO displacement of the
-VINES (red) and the steady state of Eq. 28 (black) at the points of timehistories.fig11."""
+VINES (vermillion) and the steady state of Eq. 28 (black) at the points of timehistories.fig11."""
 import matplotlib.pyplot as plt
 import numpy as np
 

@@ -1,5 +1,5 @@
 """Fig 13: sections of Fig 12 at the eta values marked in the grids (section_eta, config
-key grids.fig12_*.sections): KE ratio (blue stars) and x_max (m, red circles) vs W; rows F,
+key grids.fig12_*.sections): KE ratio (blue stars) and x_max (m, vermillion circles) vs W; rows F,
 columns eta."""
 import vines.plotting as P
 from vines.pipeline.jobs import run_job

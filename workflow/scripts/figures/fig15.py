@@ -1,5 +1,5 @@
 """Fig 15: zoomed bifurcation diagrams (black dots, sweep fig15) with the analytic 1:1
-branch (red, solid stable, dotted unstable) and |lambda| vs eta with the |lambda| = 1 line;
+branch (vermillion, solid stable, dotted unstable) and |lambda| vs eta with the |lambda| = 1 line;
 one row per branch fig15_* (F = 0.3077, W = 0.9 and 1.1), with the asymmetric branches born
 on it (blue lines, vines.plotting.bifurcation). Dots of swept points that sit on a stable
 asymmetric 1:1 orbit (vines.plotting.sweep_regimes) are drawn in blue and labelled."""

@@ -1,7 +1,8 @@
 """Fig 16: the 1:1 orbit over (eta, W), one column per F (stability maps fig16_*):
 symmetric stable (orange), asymmetric stable (black), unstable (white), no admissible 1:1
-(grey); the |lambda_max| = 1 edge of the stable region (interpolated between map points,
-the style of Figs 12 and robust_tet) and the boundary curves (boundaries fig16_*: colour by
+(grey), drawn finer than the map so that the stable / unstable split follows the
+|lambda_max| = 1 edge of the stable region (interpolated between map points, the style of
+Figs 12 and robust_tet; vines.plotting.class_raster) and the boundary curves (boundaries fig16_*: colour by
 type, line style by family). Top row the whole map; bottom row a zoom on the narrow stable
 symmetric tongue just below W = 0.5 (the lower edge of Fig 12, dashed) when the map
 extends below it."""
@@ -19,7 +20,7 @@ TONGUE_ZOOM = (0.45, 0.53)
 
 def class_panel(ax, m, boundaries):
     eta, W = m["eta"].values, m["omega"].values
-    P.class_map(ax, eta, W, m["cls"].values.T, P.CLASSES)
+    P.class_map(ax, *P.class_raster(m), P.CLASSES)
     P.stable_edge(ax, m)
     if W.min() < OMEGA_PAPER_MIN:
         ax.axhline(OMEGA_PAPER_MIN, color="black", ls="--", lw=0.9)

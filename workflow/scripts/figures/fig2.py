@@ -1,4 +1,4 @@
-"""Fig 2: x_max of the LO (m, red circles) and KE ratio (blue stars) vs eta at W = 1, one
+"""Fig 2: x_max of the LO (m, vermillion circles) and KE ratio (blue stars) vs eta at W = 1, one
 panel per F (grids fig2_*): the KE ratio peaks where x_max is smallest."""
 import numpy as np
 

@@ -1,4 +1,4 @@
-"""Fig 6: zoom of Fig 3 (numerical impacts, black dots) with the analytic 1:1 branch (red,
+"""Fig 6: zoom of Fig 3 (numerical impacts, black dots) with the analytic 1:1 branch (vermillion,
 solid stable, dotted unstable) and the asymmetric branches born on it (blue, an inset when
 they are small), and |lambda| of J_P2 J_P1 vs eta with the |lambda| = 1 line; one row per
 branch fig6_* (F = 0.05, 0.1 at W = 1), one legend below."""

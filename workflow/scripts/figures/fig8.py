@@ -1,5 +1,5 @@
 """Fig 8: sections of Fig 7 at the F values marked in the grids (section_F, config key
-grids.fig7_*.sections): KE ratio (blue stars) and x_max (m, red circles) vs eta; rows F,
+grids.fig7_*.sections): KE ratio (blue stars) and x_max (m, vermillion circles) vs eta; rows F,
 columns W."""
 import vines.plotting as P
 from vines.pipeline.jobs import run_job

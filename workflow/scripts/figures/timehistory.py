@@ -1,5 +1,5 @@
 """Figs 4, 5, 9, 10 (one script, one rule per figure): time histories of the cavity ends
-z_m +- 1 (blue) and the ball z_b (red), phase portraits beside them, one row per point of
+z_m +- 1 (blue) and the ball z_b (vermillion), phase portraits beside them, one row per point of
 the figure's time-history dataset (timehistories.figN)."""
 import vines.plotting as P
 from vines.pipeline.jobs import run_job
