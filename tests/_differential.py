@@ -29,6 +29,10 @@ from vines.reference.rk import run_rk
 
 EPS_PERT = 1e-9          # start-state perturbation of the sensitivity runs
 RK_RTOL = 1e-12          # the RK reference's tolerance (atol = rtol 1e-2, its default)
+MAX_IMPACTS = 2000       # per draw: beyond, an accumulation the references cannot follow
+#                           at a bounded cost (r near 1 resolves ~log(1e6)/(1 - r) impacts
+#                           per chatter sequence): "chatter"
+MP_MAX_IMPACTS = 200     # the 40-digit reference: its cost grows with the events
 TRUST = 1e-5             # beyond this predicted error the comparison stops: "sensitive"
 GAP_AMBIGUOUS = 1e-7     # a near miss closer than this to a wall (an impact for the other
 #                           solver) is a grazing contact
@@ -78,7 +82,7 @@ class Draw:
 
     def settings(self) -> SolverSettings:
         return SolverSettings(t_end=self.t_end, t_transient=0.5 * self.t_end,
-                              state0=self.state0)
+                              state0=self.state0, max_impacts=MAX_IMPACTS)
 
 
 @dataclass
@@ -313,9 +317,15 @@ def compare(dr: Draw, reference: str = "rk") -> Outcome:
     assert raw.status in ("ok", "max_impacts"), f"exact run {raw.status} at t = {raw.t_last}"
     if raw.status != "ok":                   # an accumulation of impacts without sticking
         return Outcome("chatter", f"exact run stopped: {raw.status}", detail=inv)
+    if reference == "mp" and raw.n_impacts > MP_MAX_IMPACTS:
+        return Outcome("chatter", f"{raw.n_impacts} impacts: beyond the 40-digit reference's "
+                       "budget", detail=inv)
     try:
         if reference == "rk":
             ref_imp = run_rk(p, st_, rtol=RK_RTOL)
+            if ref_imp.status == "max_impacts":
+                return Outcome("chatter", "the RK reference resolves more than "
+                               f"{MAX_IMPACTS} impacts", detail=inv)
             if ref_imp.status != "ok":
                 return Outcome("ref_failed", f"RK status {ref_imp.status}", detail=inv)
             ref, ref_raw = ref_imp.impacts, ref_imp
