@@ -212,3 +212,23 @@ def test_result_numbers_are_python_scalars(solver, t_end):
     assert {k: type(v) for k, v in numbers.items() if type(v) not in (float, int, bool)} == {}
     assert type(res.ke_ratio) is type(res.xmax_m) is float
     assert res.ke_ratio == res.K_b / (res.K_m + res.K_b)
+
+
+@pytest.mark.parametrize("state0,wall", [((0.0, 0.0, -1.0, -0.2), 1), ((1.0, 0.2, 0.0, 0.0), 1),
+                                         ((0.0, 0.0, 1.0, 0.2), -1),
+                                         ((0.7, -0.3, 1.7, 0.0), -1)])
+@pytest.mark.parametrize("d", [D_DEFAULT, 2.0])
+def test_start_on_a_wall_moving_into_it_is_an_impact_at_t0(state0, wall, d):
+    """A start state on a wall, approaching it, is an impact at t = 0 (as the RK reference
+    has it); the kernel used to find no step and report "stalled" at t = 0 (found by the
+    differential fuzz, tests/test_differential_fuzz.py)."""
+    kw = dict(d=d, t_end=2.0, t_transient=1.0, state0=state0, periodic_shortcut=False)
+    ex = vines.simulate(0.1, 1.0, 0.0, **kw)
+    assert ex.status == "ok" and ex.t_last == 2.0
+    imp = ex.impacts[0]
+    assert imp["t"] == 0.0 and imp["wall"] == wall
+    assert (imp["z_m"], imp["v_m"], imp["z_b"], imp["v_b"]) == state0
+    kw.pop("periodic_shortcut")
+    rk = vines.simulate(0.1, 1.0, 0.0, solver="rk", rtol=1e-12, **kw)
+    assert ex.n_impacts == rk.n_impacts
+    assert np.max(np.abs(ex.impacts["t"] - rk.impacts["t"])) < 1e-9

@@ -3,17 +3,18 @@
 Oracles that share no code with the tangent pass: the map Jacobian of ``orbits.maps``
 (implicit differentiation of the impact-to-impact maps), central differences of the exact
 flow map, the phase-volume contraction (damping between impacts, det = r^2 per impact), the
-linear oscillator without impacts, and a two-trajectory finite-difference estimate of
-lambda_1.
+linear oscillator without impacts, and finite-difference estimates of lambda_1 and lambda_2
+(Benettin's method on perturbed trajectories of the exact solver, ``_fd_lyapunov``).
 """
 import math
 
 import numpy as np
 import pytest
+from _fd_lyapunov import benettin, flow_map
 
 import vines
 from vines.attractors.lyapunov import spectrum
-from vines.core.exact import KernelRun, Span, kernel_params, oscillators
+from vines.core.exact import kernel_params, oscillators
 from vines.core.params import ModelParams, ParameterError, SolverSettings
 from vines.core.variational import (
     monodromy,
@@ -29,6 +30,8 @@ from vines.orbits.periodic import find_1to1
 CHAOTIC = ((0.2026, 0.917, 0.1345), (0.4387, 0.9858, 0.3917))
 #: stable 1:1 orbits: Fig 4(a) and the efficient orbit of the Fig 16 point
 ONE_TO_ONE = ((0.05, 1.0, 0.05), (0.5, 0.9, 0.3077))
+#: chaotic motion with chatter and sticks whose two leading exponents are positive
+HYPERCHAOTIC = (0.524, 1.101, 0.2)
 
 
 def _stable_1to1(eta, omega, F):
@@ -44,13 +47,6 @@ def _after_L_impact(p, orbit):
     return (zb + 1.0, vm_p, zb, vb_p), float(t_L)
 
 
-def _flow_map(p, oscs, x0, t0, t1):
-    run = KernelRun(p, SolverSettings(t_end=t1, t_transient=t0), oscs, np.asarray(x0, float),
-                    t0, Span(t1, t0, t0), 0)
-    run.run()
-    return run.cur[1:5].copy(), int(run.cnt[0])
-
-
 @pytest.mark.parametrize("point", ONE_TO_ONE)
 def test_monodromy_equals_map_jacobian_eigenvalues(point):
     """The product of state-transition and saltation matrices over one period of a 1:1
@@ -58,7 +54,7 @@ def test_monodromy_equals_map_jacobian_eigenvalues(point):
     p, orbit = _stable_1to1(*point)
     x0, t_L = _after_L_impact(p, orbit)
     s = 0.5 * orbit.flight_times[0]         # start mid-flight: one L and one R impact
-    x_mid, _ = _flow_map(p, oscillators(p), x0, t_L, t_L + s)
+    x_mid, _ = flow_map(p, oscillators(p), x0, t_L, t_L + s)
     M, tr = monodromy(p, SolverSettings(), oscillators(p), x_mid, t_L + s, p.period)
     assert tr.n_impacts == 2
     mu = np.sort_complex(np.linalg.eigvals(M))
@@ -71,7 +67,7 @@ def test_monodromy_equals_finite_differences_on_a_chaotic_trajectory():
     differences of the exact flow map (h = 1e-7: truncation ~ h^2 |x'''| << 1e-5)."""
     p = ModelParams(eta=CHAOTIC[0][0], omega=CHAOTIC[0][1], F=CHAOTIC[0][2])
     oscs = oscillators(p)
-    x, _ = _flow_map(p, oscs, (0.0, 0.0, 0.0, 0.0), 0.0, 500.0)
+    x, _ = flow_map(p, oscs, (0.0, 0.0, 0.0, 0.0), 0.0, 500.0)
     M, tr = monodromy(p, SolverSettings(), oscs, x, 500.0, 20.0)
     assert tr.n_impacts >= 5
     h = 1e-7
@@ -79,8 +75,8 @@ def test_monodromy_equals_finite_differences_on_a_chaotic_trajectory():
     for j in range(4):
         dx = np.zeros(4)
         dx[j] = h
-        (a, na), (b, nb) = (_flow_map(p, oscs, x + dx, 500.0, 520.0),
-                            _flow_map(p, oscs, x - dx, 500.0, 520.0))
+        (a, na), (b, nb) = (flow_map(p, oscs, x + dx, 500.0, 520.0),
+                            flow_map(p, oscs, x - dx, 500.0, 520.0))
         assert na == nb == tr.n_impacts        # no impact gained or lost by the perturbation
         J[:, j] = (a - b) / (2.0 * h)
     assert np.max(np.abs(M - J)) < 1e-5 * np.max(np.abs(J))
@@ -168,45 +164,62 @@ def test_chaotic_lambda1_positive_independent_of_state_and_window(point):
         assert abs(a.exponents[0] - est[0].exponents[0]) < half
 
 
-def _two_trajectory_lambda1(p, x0, t_start, t_stop, delta=1e-9, n_batches=10):
-    """Classical two-trajectory estimate: a neighbour at distance delta, renormalised every
-    forcing period; an interval in which the two cross a different number of walls is
-    extended (by T/8) until they agree. Returns (mean, 95 % batch-means half-width)."""
-    from scipy.stats import t as student_t
-    oscs = oscillators(p)
-    T = p.period
-    x, _ = _flow_map(p, oscs, x0, 0.0, t_start)
-    u = np.array([1.0, -0.5, 0.3, 0.7])
-    y = x + delta * u / np.linalg.norm(u)
-    t = t_start
-    edges = np.linspace(t_start, t_stop, n_batches + 1)
-    logs = np.zeros(n_batches)
-    while t < t_stop - 1e-9:
-        t1 = min(t + T, t_stop)
-        while True:
-            xa, na = _flow_map(p, oscs, x, t, t1)
-            ya, nb = _flow_map(p, oscs, y, t, t1)
-            if na == nb or t1 >= t_stop:
-                break
-            t1 = min(t1 + T / 8.0, t_stop)
-        dist = np.linalg.norm(ya - xa)
-        b = min(np.searchsorted(edges, t1, side="left") - 1, n_batches - 1)
-        logs[b] += math.log(dist / delta)
-        x, y, t = xa, xa + delta * (ya - xa) / dist, t1
-    batch = logs / np.diff(edges)
-    half = student_t.ppf(0.975, n_batches - 1) * batch.std(ddof=1) / math.sqrt(n_batches)
-    return batch.mean(), half
-
-
 def test_chaotic_lambda1_agrees_with_two_trajectory_estimate():
     eta, omega, F = CHAOTIC[0]
     p = ModelParams(eta=eta, omega=omega, F=F)
     x0 = (0.0, 0.0, 0.0, 0.0)
-    fd, fd_half = _two_trajectory_lambda1(p, x0, 4000.0, 10000.0)
+    (fd,), (fd_half,) = benettin(p, x0, 4000.0, 10000.0, k=1)
     res = vines.lyapunov(eta=eta, omega=omega, F=F, state0=x0, t_end=10000.0,
                          t_transient=4000.0)
     half = 0.5 * (res.ci[0][1] - res.ci[0][0])
     assert fd > 0.0 and abs(res.exponents[0] - fd) < fd_half + half
+
+
+def _agree_within_intervals(fd, fd_half, res):
+    """The two leading exponents of both estimates agree within their combined 95 %
+    intervals."""
+    half = 0.5 * (res.ci[:2, 1] - res.ci[:2, 0])
+    assert np.all(np.abs(fd - res.exponents[:2]) < fd_half + half), (fd, fd_half, res.ci[:2])
+
+
+@pytest.mark.parametrize("point", ONE_TO_ONE)
+def test_two_exponents_agree_with_finite_differences_on_stable_1to1(point):
+    """On a stable 1:1 orbit both estimates of lambda_1 and lambda_2 (negative) agree with
+    each other and with log |mu| / T of the map Jacobian's multipliers."""
+    p, orbit = _stable_1to1(*point)
+    x0, t_L = _after_L_impact(p, orbit)
+    start, stop = t_L + 300.0, t_L + 1300.0          # the frame aligned over 300 units
+    fd, fd_half = benettin(p, x0, start, stop, t0=t_L)
+    res = spectrum(p, SolverSettings(t_end=stop, t_transient=start), x0, t0=t_L,
+                   n_batches=10)
+    _agree_within_intervals(fd, fd_half, res)
+    ref = np.sort(np.log(np.abs(orbit.eigenvalues)) / p.period)[::-1][:2]
+    assert np.all(np.abs(fd - ref) < fd_half) and np.all(fd < 0.0)
+
+
+def _hyperchaos(state0, t_end):
+    p = ModelParams(*HYPERCHAOTIC)
+    fd, fd_half = benettin(p, state0, 4000.0, t_end, n_batches=16)
+    eta, omega, F = HYPERCHAOTIC
+    res = vines.lyapunov(eta=eta, omega=omega, F=F, state0=state0, t_end=t_end,
+                         t_transient=4000.0)
+    assert res.n_sticks > 0                  # lambda_3,4 = -inf: two directions survive
+    _agree_within_intervals(fd, fd_half, res)
+    assert fd[1] - fd_half[1] > 0.0 and res.ci[1][0] > 0.0     # two positive exponents
+
+
+def test_hyperchaos_two_positive_exponents_agree_with_finite_differences():
+    """(0.524, 1.101, 0.2) from rest over [4000, 20000]: lambda_1 and lambda_2 both > 0 by
+    saltation matrices and by finite differences (measured 0.131, 0.028 and
+    0.132 +- 0.005, 0.029 +- 0.003)."""
+    _hyperchaos((0.0, 0.0, 0.0, 0.0), 20000.0)
+
+
+@pytest.mark.parametrize("state0,t_end", [((0.0, 0.0, 0.0, 0.0), 50000.0),
+                                          ((0.5, -0.3, 0.2, 0.4), 20000.0),
+                                          ((-1.0, 0.8, -0.5, -0.2), 20000.0)])
+def test_hyperchaos_from_other_states_and_a_longer_window(state0, t_end):
+    _hyperchaos(state0, t_end)
 
 
 def test_bad_input_names_the_argument():

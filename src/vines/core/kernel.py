@@ -563,6 +563,11 @@ def _advance_segment(osc, sg, s_stop, root_tol, acc, step0, s_pause):
             h = _safe_step(gap, closing, B4)
         s_new, forced = _clamp_step(s, h, h_cap, s_stop)
         if s_new <= s:
+            if mode == MODE_FREE:   # no step at all: on a wall, approaching it (a start
+                wall, gap, closing = free_contact(  # state there): an impact right now
+                    osc, (s, z, v, a, j, b1), (sg.zb0 + sg.vb0 * s, sg.vb0), B2, root_tol)
+                if wall != 0:
+                    return EV_IMPACT, wall, (s, z, v, a, j, b1), gap, closing, steps
             break
         z1, v1, a1, j1, b11 = flow(osc, zm0, vm0, sth0, cth0, s_new)
         if in_window:
