@@ -128,9 +128,9 @@ def test_damaged_cache_through_the_api(warm, tmp_path):
     _assert_one_line_naming(r.stderr, removable, "truncated")
 
 
-def test_index_of_another_numba_version_is_replaced_silently(warm, tmp_path):
+def test_index_of_another_numba_version_is_replaced_in_one_line(warm, tmp_path):
     """numba itself ignores an index whose version is not its own and writes a new one: no
-    damage, no line, the same answer."""
+    damage, the same answer, one line saying so; the next run is silent."""
     cache, core = _copy(warm, tmp_path)
     for path in core.glob("*.nbi"):
         with open(path, "rb") as fh:
@@ -138,7 +138,13 @@ def test_index_of_another_numba_version_is_replaced_silently(warm, tmp_path):
             rest = fh.read()
         path.write_bytes(pickle.dumps("0.1.0") + rest)
     r = _run(SIMULATE, cache)
-    assert (r.returncode, r.stdout, r.stderr) == (0, warm[1], "")
+    assert (r.returncode, r.stdout) == (0, warm[1]), r.stderr
+    (line,) = r.stderr.splitlines()
+    assert re.fullmatch(rf"vines: numba cache in \S+ written by numba 0\.1\.0 \(this is "
+                        rf"{re.escape(numba.__version__)}\): ignored and replaced; the kernels "
+                        r"are compiled again", line), line
+    again = _run(SIMULATE, cache)
+    assert (again.returncode, again.stdout, again.stderr) == (0, warm[1], "")
     versions = set()
     for path in core.glob("*.nbi"):
         with open(path, "rb") as fh:

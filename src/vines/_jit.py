@@ -13,7 +13,8 @@ here gives the dispatcher a ``HealingCache`` in place of numba's ``FunctionCache
 - no writable folder at all (a read-only install without a writable ``~/.cache`` or
   ``NUMBA_CACHE_DIR``): one line; the kernels are compiled in memory at every start.
 
-An index written by another numba version is no damage: numba ignores it and replaces it. The
+An index written by another numba version is no damage: numba ignores it and replaces it;
+one line says so (read only when a kernel is not found in the cache, i.e. compiled anyway). The
 numba internals used here: the dispatcher's ``_cache`` slot (what ``enable_caching`` sets),
 ``caching.FunctionCache`` and ``caching._CacheLocator.get_suitable_cache_subpath``
 (tests/test_cache_faults.py fails if they change).
@@ -122,19 +123,42 @@ def heal(cache_path: str) -> bool:
     return True
 
 
+def index_version(path: Path) -> str | None:
+    """The numba version that wrote the index ``path`` (None: absent or unreadable)."""
+    try:
+        with open(path, "rb") as fh:
+            version = pickle.load(fh)
+    except Exception:                             # noqa: BLE001 (absent or damaged: heal's)
+        return None
+    return version if isinstance(version, str) else None
+
+
+def _say_other_version(index: Path) -> None:
+    """One line (once per process) if ``index`` was written by another numba version: numba
+    ignores such an index and writes its own over it."""
+    version = index_version(index)
+    if version is not None and version != numba.__version__:
+        _say("other version", f"numba cache in {index.parent} written by numba {version} "
+                              f"(this is {numba.__version__}): ignored and replaced; the "
+                              "kernels are compiled again")
+
+
 class HealingCache(caching.FunctionCache):
     """numba's per-function cache; a damaged file is removed and the kernel compiled again, a
     failed write leaves the kernel in memory (see the module's docstring)."""
 
     def load_overload(self, sig, target_context):
         try:
-            return super().load_overload(sig, target_context)
+            loaded = super().load_overload(sig, target_context)
         except Exception as exc:                  # noqa: BLE001 (then compiled: always safe)
             if not heal(self.cache_path):
                 _say(f"load {self.cache_path} {self._name}",
                      f"could not load {self._name} from numba's cache in {self.cache_path} "
                      f"({exc}); it is compiled again")
             return None
+        if loaded is None:                        # a miss: compiled now (say why if foreign)
+            _say_other_version(Path(self._cache_file._index_path))
+        return loaded
 
     def save_overload(self, sig, data):
         try:
