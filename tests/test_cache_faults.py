@@ -71,8 +71,10 @@ def _garbage(path):
     path.write_bytes(random.Random(path.name).randbytes(path.stat().st_size))
 
 
-DAMAGE = {"truncated .nbc": ("*.nbc", _truncate, "pickle data was truncated"),
-          "empty .nbi": ("*.nbi", _empty, "empty"),
+#: the files of the entry kernel (kernel.py) only: what is damaged is compiled again, and
+#: the kernel module's files are the ones the command loads first
+DAMAGE = {"truncated .nbc": ("kernel.*.nbc", _truncate, "pickle data was truncated"),
+          "empty .nbi": ("kernel.*.nbi", _empty, "empty"),
           "garbage .nbc": ("kernel.*.nbc", _garbage, ""),
           "garbage .nbi": ("kernel.*.nbi", _garbage, "")}
 
