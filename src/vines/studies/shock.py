@@ -248,3 +248,143 @@ def energy_curve(eta: float, r: float, d: float, v0s, periods: float) -> list[De
     """``vines_decay`` at each initial velocity of ``v0s`` (progress task TASK)."""
     return [vines_decay(eta, r, d, float(v), periods)
             for v in _progress.track(v0s, len(v0s), *TASK)]
+
+
+# ----------------------------------------------------------------- the study (SI inputs)
+
+#: largest initial velocity in units of L w0 (beyond it the run is all impacts)
+V0_MAX = 1e6
+#: most energies of one curve
+N_ENERGIES_MAX = 10_000
+#: JSON keys of one system's decay, in order
+KEYS = ("dissipated_fraction", "by_damping", "by_impacts", "by_absorber",
+        "remaining_fraction", "n_impacts", "t_10", "t_1", "status")
+
+
+def check_initial(velocity_m_s, energy_J, energy_range) -> str:
+    """Which initial condition is given: exactly one of 'velocity', 'energy', 'range'."""
+    from ..core.params import ParameterError
+    given = [k for k, v in (("velocity", velocity_m_s), ("energy", energy_J),
+                            ("energy_range", energy_range)) if v is not None]
+    if len(given) != 1:
+        name = given[1] if len(given) > 1 else "velocity"
+        raise ParameterError(name, None if not given else "given with " + given[0],
+                             "give exactly one of velocity, energy, energy_range")
+    return given[0]
+
+
+def check_energy_range(rng, M: float, v_unit: float) -> np.ndarray:
+    """Energies [J] of a curve: (A, B, N), 0 < A < B, 2 <= N <= N_ENERGIES_MAX,
+    geometric; each initial velocity <= V0_MAX L w0."""
+    from ..core.params import ParameterError, check_int, check_real
+    try:
+        a, b, n = rng
+    except (TypeError, ValueError):
+        raise ParameterError("energy_range", rng, "must be three values A B N") from None
+    hi = 0.5 * M * (V0_MAX * v_unit) ** 2
+    a = check_real("energy_range", a, lo=0.0, lo_open=True, hi=hi)
+    b = check_real("energy_range", b, lo=a, lo_open=True, hi=hi)
+    n = check_int("energy_range", n, lo=2, hi=N_ENERGIES_MAX)
+    return np.geomspace(a, b, n)
+
+
+def _initial_velocity(velocity_m_s, energy_J, M: float, v_unit: float) -> float:
+    """Initial LO velocity [m/s] from velocity or energy E = M V^2 / 2 (one is given)."""
+    from ..core.params import check_real
+    if velocity_m_s is not None:
+        return check_real("velocity", velocity_m_s, lo=0.0, lo_open=True,
+                          hi=V0_MAX * v_unit)
+    E = check_real("energy", energy_J, lo=0.0, lo_open=True,
+                   hi=0.5 * M * (V0_MAX * v_unit) ** 2)
+    return math.sqrt(2.0 * E / M)
+
+
+def _series(decays: list[Decay], key: str, time_unit: float) -> list:
+    return [dec.summary(time_unit)[key] for dec in decays]
+
+
+def shock(*, eta, clearance_m, velocity_m_s=None, energy_J=None, energy_range=None,
+          periods=N_PERIODS_DEFAULT, M_kg=None, k_N_per_m=None, c_Ns_per_m=None, d=None,
+          r=None, omega_band=None) -> dict:
+    """Free decay after an impulse: the VI NES (eta, clearance) by the exact solver, the
+    equal-mass TMD tuned for ``omega_band`` as ``vines.design`` tunes it, the LO alone.
+
+    Give one of velocity_m_s (LO's initial velocity), energy_J (E0 = M V0^2 / 2) or
+    energy_range (A, B, N: N energies from A to B J, geometric). Window: ``periods``
+    natural periods of the LO. Structure as ``vines.design`` (Table 1 by default). Returns
+    a JSON-ready dict (keys inputs, scales, activation, vines, tmd, lo_alone and, for one
+    shock, history; for a range, curve and optimal). ParameterError on bad input.
+    """
+    import time
+
+    from ..core.params import R_DEFAULT, check_param, check_real
+    from .design_checks import DEFAULT_BAND, check_band, check_eta, check_structure
+    from .tmd import optimal_tmd
+    t0 = time.perf_counter()
+    M, k, c, d = check_structure(M_kg, k_N_per_m, c_Ns_per_m, d)
+    r = check_param("r", R_DEFAULT if r is None else r)
+    eta = check_eta("eta", eta)
+    L = check_real("clearance", clearance_m, lo=0.0, lo_open=True, hi=1e6)
+    periods = check_real("periods", periods, lo=0.0, lo_open=True, hi=N_PERIODS_MAX)
+    band = check_band(DEFAULT_BAND if omega_band is None else omega_band)
+    mode = check_initial(velocity_m_s, energy_J, energy_range)
+    w0 = math.sqrt(k / M)
+    v_unit = L * w0
+    if mode == "energy_range":
+        energies = check_energy_range(energy_range, M, v_unit)
+        velocities = np.sqrt(2.0 * energies / M)
+    else:
+        velocities = np.array([_initial_velocity(velocity_m_s, energy_J, M, v_unit)])
+    tmd = optimal_tmd(eta, d, band)
+    lin = {"tmd": linear_decay(tmd_system(d, eta, tmd.frequency_ratio, tmd.damping_ratio),
+                               periods),
+           "lo_alone": linear_decay(lo_system(d), periods)}
+    decays = energy_curve(eta, r, d, velocities / v_unit, periods)
+    v_act = activation_velocity(d) * v_unit
+    out = {
+        "inputs": {"mode": mode, "eta": eta, "clearance_m": L, "M_kg": M, "k_N_per_m": k,
+                   "c_Ns_per_m": c, "d": d, "r": r, "periods": periods,
+                   "omega_band": list(band)},
+        "scales": {"w0_rad_s": w0, "natural_period_s": 2.0 * math.pi / w0,
+                   "window_s": 2.0 * math.pi * periods / w0, "velocity_unit_m_s": v_unit,
+                   "energy_unit_J": M * v_unit * v_unit},
+        "activation": {"velocity_m_s": v_act, "energy_J": 0.5 * M * v_act * v_act},
+        "tmd": {**lin["tmd"].summary(1.0 / w0), "design": tmd.to_dict()},
+        "lo_alone": lin["lo_alone"].summary(1.0 / w0),
+    }
+    if mode == "energy_range":
+        out["curve"] = _curve(decays, energies, velocities, lin, 1.0 / w0)
+        frac = np.array(out["curve"]["vines"]["dissipated_fraction"])
+        best = int(np.argmax(frac))
+        out["optimal"] = {"energy_J": float(energies[best]),
+                          "velocity_m_s": float(velocities[best]),
+                          "dissipated_fraction": float(frac[best])}
+        out["vines"] = {"n_sticks": [dec.n_sticks for dec in decays]}
+    else:
+        dec = decays[0]
+        out["inputs"].update(velocity_m_s=float(velocities[0]),
+                             energy_J=float(0.5 * M * velocities[0] ** 2))
+        out["vines"] = {**dec.summary(1.0 / w0), "n_sticks": dec.n_sticks}
+        out["history"] = _history(dec, lin, 1.0 / w0)
+    out["cost"] = {"wall_s": time.perf_counter() - t0, "n_runs": len(decays)}
+    return out
+
+
+def _curve(decays, energies, velocities, lin, time_unit) -> dict:
+    """The curve against initial energy: the VI NES per energy, the linear ones repeated
+    (their fractions do not depend on the energy)."""
+    n = len(decays)
+    return {"energy_J": energies.tolist(), "velocity_m_s": velocities.tolist(),
+            "vines": {key: _series(decays, key, time_unit) for key in KEYS},
+            **{name: {key: [dec.summary(time_unit)[key]] * n for key in KEYS}
+               for name, dec in lin.items()}}
+
+
+def _history(dec: Decay, lin: dict, time_unit: float) -> dict:
+    """The energies in time (fractions of E0) at the reported times [s]."""
+    def one(x: Decay) -> dict:
+        return {"remaining_fraction": x.remaining.tolist(),
+                "by_damping": x.by_damping.tolist(), "by_impacts": x.by_impacts.tolist(),
+                "by_absorber": x.by_absorber.tolist(), "n_impacts": x.n_impacts.tolist()}
+    return {"t_s": (dec.times * time_unit).tolist(), "vines": one(dec),
+            **{name: one(x) for name, x in lin.items()}}
