@@ -181,3 +181,16 @@ def test_cli_json_and_refusals():
         assert res.returncode == 2 and res.stdout == ""
         lines = res.stderr.strip().splitlines()
         assert len(lines) == 1 and flag in lines[0], res.stderr
+
+
+def test_decay_times_bracket_the_levels():
+    """t_10 and t_1 of the VI NES: the energy is above the level just before, at or below
+    it at the time (the energy never increases)."""
+    dec = sh.vines_decay(0.1, 0.65, D, 1.2, 10.0)
+    raw = run_exact(ModelParams(eta=0.1, omega=1.0, F=0.0, r=0.65, d=D),
+                    SolverSettings(t_end=dec.times[-1], t_transient=0.0,
+                                   state0=(0.0, 1.2, 0.0, 0.0)))
+    for t, level in zip(dec.t_levels, sh.LEVELS, strict=True):
+        (zm, vm, _, vb), (zm0, vm0, _, vb0) = raw.state_at([t, t * (1 - 1e-9)]).T
+        assert (vm * vm + zm * zm + 0.1 * vb * vb) / 1.44 <= level
+        assert (vm0 * vm0 + zm0 * zm0 + 0.1 * vb0 * vb0) / 1.44 > level

@@ -58,9 +58,11 @@ class Decay:
     n_sticks: int = 0
 
     def summary(self, time_unit: float = 1.0) -> dict:
-        """The JSON keys at the end of the window; times multiplied by ``time_unit``."""
+        """The JSON keys at the end of the window (``t_reached``: the window's end, or where a
+    run stopped early, see ``status``); times multiplied by ``time_unit``."""
         t10, t1 = (None if math.isnan(t) else t * time_unit for t in self.t_levels)
-        return {"dissipated_fraction": float(1.0 - self.remaining[-1]),
+        return {"t_reached": float(self.times[-1] * time_unit),
+                "dissipated_fraction": float(1.0 - self.remaining[-1]),
                 "by_damping": float(self.by_damping[-1]),
                 "by_impacts": float(self.by_impacts[-1]),
                 "by_absorber": float(self.by_absorber[-1]),
@@ -228,11 +230,16 @@ def linear_decay(system: tuple, periods: float) -> Decay:
     x0[1] = 1.0
     e0 = 0.5 * x0 @ P @ x0
     times = report_times(periods)
-    out = np.empty((3, times.size))
-    for i, t in enumerate(times):
-        phi, w_d = _gramian(A, Q_d, t)
-        x = phi @ x0
-        out[:, i] = (0.5 * x @ P @ x, x0 @ w_d @ x0, x0 @ _gramian(A, Q_a, t)[1] @ x0)
+    h = float(times[1] - times[0])
+    step, w_d = _gramian(A, Q_d, h)
+    w_a = _gramian(A, Q_a, h)[1]
+    out = np.zeros((3, times.size))
+    x = x0
+    for i in range(times.size):     # x(t + h) = expm(A h) x(t); the integrals add up
+        out[0, i] = 0.5 * x @ P @ x
+        if i + 1 < times.size:
+            out[1:, i + 1] = out[1:, i] + (x @ w_d @ x, x @ w_a @ x)
+            x = step @ x
     out /= e0
 
     def energy_at(t):
@@ -257,7 +264,7 @@ V0_MAX = 1e6
 #: most energies of one curve
 N_ENERGIES_MAX = 10_000
 #: JSON keys of one system's decay, in order
-KEYS = ("dissipated_fraction", "by_damping", "by_impacts", "by_absorber",
+KEYS = ("t_reached", "dissipated_fraction", "by_damping", "by_impacts", "by_absorber",
         "remaining_fraction", "n_impacts", "t_10", "t_1", "status")
 
 
