@@ -37,7 +37,7 @@ The contract of every command:
 * The JSON keys of `vines simulate` are listed in [usage.md](usage.md#the-simulate-command);
   those of the other commands in [bifurcation.md](bifurcation.md) (periodic, continue,
   boundaries), [attractors.md](attractors.md) (attractors, lyapunov) and
-  [design.md](design.md) (design).
+  [design.md](design.md) (design, shock).
 """
 
 

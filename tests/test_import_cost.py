@@ -8,7 +8,7 @@ import pytest
 NUMBA_FREE = ["vines", "vines.plotting", "vines.data.builders", "vines.data.netcdf",
               "vines.pipeline.config", "vines.pipeline.axes",
               "vines.pipeline.codeversion", "vines.pipeline.stages", "vines.pipeline.jobs",
-              "vines.studies.design_checks"]
+              "vines.studies.design_checks", "vines.studies.shock", "vines.cli.shock"]
 
 
 def _loaded_after(code: str) -> set[str]:

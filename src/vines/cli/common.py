@@ -13,7 +13,15 @@ import math
 import sys
 from typing import NoReturn
 
-from ..core.params import D_DEFAULT, PARAM_BOUNDS, R_DEFAULT, ModelParams
+from ..core.params import (
+    C_DAMP_NS_PER_M,
+    D_DEFAULT,
+    K_SPRING_N_PER_M,
+    M_LO_KG,
+    PARAM_BOUNDS,
+    R_DEFAULT,
+    ModelParams,
+)
 
 PROG = "vines"
 
@@ -92,6 +100,23 @@ def add_model_args(parser: VinesArgumentParser, *, phi: bool = False,
         parser.allowed_values["--phi"] = param_allowed("phi")
         opt.add_argument("--phi", metavar="P", default=0.0,
                          help=f"forcing phase at t = 0 in rad [{param_allowed('phi')}; default 0]")
+
+
+def add_structure_args(parser: VinesArgumentParser) -> None:
+    """The structure of ``vines design`` and ``vines shock``: the LO's --M, --k, --c or --d
+    and the restitution --r (strings, validated by ``studies.design_checks``)."""
+    lo = parser.add_argument_group("structure (Table 1 by default)")
+    lo.add_argument("--M", metavar="KG", default=None,
+                    help=f"LO mass in kg [> 0; default {M_LO_KG:g}]")
+    lo.add_argument("--k", metavar="N_PER_M", default=None,
+                    help=f"LO stiffness in N/m [> 0; default {K_SPRING_N_PER_M:g}]")
+    damp = lo.add_mutually_exclusive_group()
+    damp.add_argument("--c", metavar="NS_PER_M", default=None,
+                      help=f"LO damping in N s/m [>= 0; default {C_DAMP_NS_PER_M:g}]")
+    damp.add_argument("--d", metavar="D", default=None,
+                      help="dimensionless LO damping c/(M w0) instead of --c [>= 0]")
+    lo.add_argument("--r", metavar="R", default=R_DEFAULT,
+                    help=f"coefficient of restitution [0 <= r <= 1; default {R_DEFAULT:g}]")
 
 
 def add_json_flag(parser: VinesArgumentParser, keys: str):

@@ -7,14 +7,7 @@ from __future__ import annotations
 
 import argparse
 
-from ..core.params import (
-    C_DAMP_NS_PER_M,
-    K_SPRING_N_PER_M,
-    M_LO_KG,
-    R_DEFAULT,
-    T_END_DEFAULT,
-    T_TRANSIENT_DEFAULT,
-)
+from ..core.params import T_END_DEFAULT, T_TRANSIENT_DEFAULT
 from ..studies.design_checks import (
     CENSUS_N_DEFAULT,
     DEFAULT_AMPLITUDES_M,
@@ -24,7 +17,7 @@ from ..studies.design_checks import (
     N_ETA_DEFAULT,
     VIEW_NAMES,
 )
-from .common import VinesArgumentParser, emit, quiet_stdout
+from .common import VinesArgumentParser, add_structure_args, emit, quiet_stdout
 
 NAME = "design"
 
@@ -61,18 +54,7 @@ def add_parser(subparsers) -> VinesArgumentParser:
                       default=list(DEFAULT_AMPLITUDES_M),
                       help="base amplitudes in metres [numbers > 0; default "
                            + " ".join(f"{a:g}" for a in DEFAULT_AMPLITUDES_M) + "]")
-    lo = p.add_argument_group("structure (Table 1 by default)")
-    lo.add_argument("--M", metavar="KG", default=None,
-                    help=f"LO mass in kg [> 0; default {M_LO_KG:g}]")
-    lo.add_argument("--k", metavar="N_PER_M", default=None,
-                    help=f"LO stiffness in N/m [> 0; default {K_SPRING_N_PER_M:g}]")
-    damp = lo.add_mutually_exclusive_group()
-    damp.add_argument("--c", metavar="NS_PER_M", default=None,
-                      help=f"LO damping in N s/m [>= 0; default {C_DAMP_NS_PER_M:g}]")
-    damp.add_argument("--d", metavar="D", default=None,
-                      help="dimensionless LO damping c/(M w0) instead of --c [>= 0]")
-    lo.add_argument("--r", metavar="R", default=R_DEFAULT,
-                    help=f"coefficient of restitution [0 <= r <= 1; default {R_DEFAULT:g}]")
+    add_structure_args(p)
     des = p.add_argument_group("design: --eta with --clearance (evaluate) or --eta-max "
                                "(optimise)")
     des.add_argument("--eta", metavar="E", default=None, help="ball-to-LO mass ratio m/M")

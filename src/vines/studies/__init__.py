@@ -8,6 +8,8 @@
 * :mod:`vines.studies.design` (``vines.design``): a VI NES design for a frequency band and
   base amplitudes against the LO alone and the optimal TMD (:mod:`vines.studies.tmd`),
   inputs checked by :mod:`vines.studies.design_checks` (docs/design.md).
+* :mod:`vines.studies.shock`: free decay after a shock, the VI NES against the TMD and the
+  LO alone (``vines shock``, docs/design.md).
 
 The studies return plain results (numpy arrays in small dataclasses, with the settings that
 describe them); ``vines.data.builders`` builds their CF datasets. The names below are

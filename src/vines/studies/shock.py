@@ -1,0 +1,397 @@
+"""Shocks and free decay: the LO given an initial velocity, no forcing (F = 0).
+
+Dimensionless as the model (docs/model.md): time w0 t, lengths in units of the clearance L,
+velocities in L w0, energies in M (L w0)^2 with M = 1 for the LO. Start: z_m = 0,
+z_m' = v0, the ball (or the TMD's mass) at rest at the cavity centre (its rest position).
+
+Energy E = (z_m'^2 + z_m^2 + eta z_b'^2) / 2 (the TMD adds mu y'^2 / 2 and
+mu f^2 (y - x)^2 / 2). It leaves by
+
+* LO damping: d times the integral of z_m'^2 (Gauss-Legendre on the closed-form flow of
+  each recorded segment, pieces of at most ``PIECE``: exact to round-off);
+* impacts (VI NES): the jump of E at each event of the exact solver: (1 - r^2) eta/(1 + eta)
+  w'^2 / 2 at an impact, plus the loss to the common velocity when the ball sticks;
+* the TMD's damper (2 mu zeta f times the integral of (y' - x')^2), key ``by_absorber``;
+
+and remaining = E at the end. The linear systems (TMD, LO alone) in closed form: the state
+by the matrix exponential, the dissipated integrals by Van Loan's block exponential.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .. import progress as _progress
+
+#: default window: natural periods of the LO
+N_PERIODS_DEFAULT = 10.0
+N_PERIODS_MAX = 1e4
+#: reported times per natural period of the LO
+SAMPLES_PER_PERIOD = 32
+#: energy levels of the decay times t_10 and t_1 (fractions of the initial energy)
+LEVELS = (0.1, 0.01)
+#: Gauss-Legendre nodes per piece, and the longest piece (dimensionless time)
+GAUSS_NODES = 16
+PIECE = 0.5
+#: the progress task of ``energy_curve``
+TASK = ("shock", "energies")
+
+_X, _W = np.polynomial.legendre.leggauss(GAUSS_NODES)
+
+
+@dataclass(frozen=True)
+class Decay:
+    """A free decay sampled at ``times``: remaining energy and the cumulative energies
+    dissipated by LO damping, impacts and the absorber's damper (all / E0), impacts so far;
+    the decay times to each of LEVELS (NaN: not reached); solver status."""
+
+    times: np.ndarray
+    remaining: np.ndarray
+    by_damping: np.ndarray
+    by_impacts: np.ndarray
+    by_absorber: np.ndarray
+    n_impacts: np.ndarray
+    t_levels: tuple
+    status: str = "ok"
+    n_sticks: int = 0
+
+    def summary(self, time_unit: float = 1.0) -> dict:
+        """The JSON keys at the end of the window (``t_reached``: the window's end, or where a
+    run stopped early, see ``status``); times multiplied by ``time_unit``."""
+        t10, t1 = (None if math.isnan(t) else t * time_unit for t in self.t_levels)
+        return {"t_reached": float(self.times[-1] * time_unit),
+                "dissipated_fraction": float(1.0 - self.remaining[-1]),
+                "by_damping": float(self.by_damping[-1]),
+                "by_impacts": float(self.by_impacts[-1]),
+                "by_absorber": float(self.by_absorber[-1]),
+                "remaining_fraction": float(self.remaining[-1]),
+                "n_impacts": int(self.n_impacts[-1]), "t_10": t10, "t_1": t1,
+                "status": self.status}
+
+
+def report_times(periods: float) -> np.ndarray:
+    """Reported times: SAMPLES_PER_PERIOD per natural period 2 pi, 0 and the end included."""
+    n = max(2, int(math.ceil(periods * SAMPLES_PER_PERIOD)) + 1)
+    return np.linspace(0.0, 2.0 * math.pi * periods, n)
+
+
+def activation_velocity(d: float) -> float:
+    """Smallest v0 (units of L w0) at which the free LO's first peak reaches the wall
+    (|z_m| = 1, the ball at rest at the centre): below it the VI NES never impacts."""
+    a = 0.5 * d
+    if a < 1.0:
+        wd = math.sqrt(1.0 - a * a)
+        return math.exp(a * math.atan2(wd, a) / wd)
+    if a == 1.0:
+        return math.e
+    s1, s2 = -a + math.sqrt(a * a - 1.0), -a - math.sqrt(a * a - 1.0)
+    t = math.log(s2 / s1) / (s1 - s2)
+    return (s1 - s2) / (math.exp(s1 * t) - math.exp(s2 * t))
+
+
+def _first_below(times, energy_at, remaining, level) -> float:
+    """First time the (non-increasing) remaining energy is <= level: the sample bracket,
+    then bisection to round-off; NaN if not reached."""
+    hit = np.flatnonzero(remaining <= level)
+    if hit.size == 0:
+        return math.nan
+    k = int(hit[0])
+    if k == 0:
+        return float(times[0])
+    lo, hi = float(times[k - 1]), float(times[k])
+    for _ in range(200):
+        mid = 0.5 * (lo + hi)
+        if mid <= lo or mid >= hi:
+            break
+        if energy_at(mid) <= level:
+            hi = mid
+        else:
+            lo = mid
+    return hi
+
+
+# ----------------------------------------------------------------- VI NES (exact solver)
+
+def _segment_states(traj, idx, times) -> np.ndarray:
+    """States (4, n) at ``times`` on the closed form of segments ``idx``."""
+    from ..core import kernel as eng
+    out = np.empty((4, times.size))
+    eng.dense_states(traj.segments, np.ascontiguousarray(idx, dtype=np.int64),
+                     np.ascontiguousarray(times, dtype=float), traj._osc_f, traj._osc_s,
+                     traj.params.omega, traj.params.phi, out)
+    return out
+
+
+def _energy(states, eta) -> np.ndarray:
+    zm, vm, _, vb = states
+    return 0.5 * (vm * vm + zm * zm + eta * vb * vb)
+
+
+def _damping_integral(traj, cuts, d) -> np.ndarray:
+    """d * integral of z_m'^2 over each interval [cuts[i], cuts[i+1]] (cuts sorted, each
+    interval inside one segment): Gauss-Legendre on pieces of at most PIECE."""
+    lo, hi = cuts[:-1], cuts[1:]
+    seg_idx = np.searchsorted(traj.segments[:, 0], lo, side="right") - 1
+    n_pc = np.maximum(1, np.ceil((hi - lo) / PIECE).astype(np.int64))
+    owner = np.repeat(np.arange(lo.size), n_pc)
+    k = np.arange(owner.size) - np.repeat(np.cumsum(n_pc) - n_pc, n_pc)
+    h = (hi - lo)[owner] / n_pc[owner]
+    a = lo[owner] + k * h
+    t = (a[:, None] + 0.5 * h[:, None] * (_X[None, :] + 1.0)).ravel()
+    idx = np.repeat(seg_idx[owner], GAUSS_NODES)
+    v = _segment_states(traj, idx, t)[1].reshape(-1, GAUSS_NODES)
+    piece = 0.5 * h * ((v * v) @ _W)
+    return d * np.bincount(owner, weights=piece, minlength=lo.size)
+
+
+def vines_decay(eta: float, r: float, d: float, v0: float, periods: float,
+                max_impacts: int | None = None) -> Decay:
+    """Free decay of the VI NES from (z_m, z_m', z_b, z_b') = (0, v0, 0, 0) with F = 0 over
+    ``periods`` natural periods of the LO, by the exact solver (validated inputs)."""
+    from ..core.exact import run_exact
+    from ..core.params import MAX_IMPACTS_DEFAULT, ModelParams, SolverSettings
+    times = report_times(periods)
+    t_end = float(times[-1])
+    p = ModelParams(eta=eta, omega=1.0, F=0.0, r=r, d=d)   # omega is idle at F = 0
+    st = SolverSettings(t_end=t_end, t_transient=0.0, state0=(0.0, v0, 0.0, 0.0),
+                        max_impacts=max_impacts or MAX_IMPACTS_DEFAULT)
+    raw = run_exact(p, st)
+    traj = raw.state_at
+    seg = traj.segments
+    e0 = 0.5 * v0 * v0
+    t_last = raw.t_last
+    times = times[times <= t_last]
+    # energy jumps at events: end of segment i against start of segment i + 1
+    t_ev = seg[1:, 0]
+    before = _energy(_segment_states(traj, np.arange(t_ev.size), t_ev), eta)
+    after = _energy(seg[1:, 1:5].T, eta)
+    jump_cum = np.concatenate([[0.0], np.cumsum(before - after)]) / e0
+    by_impacts = jump_cum[np.searchsorted(t_ev, times, side="right")]
+    # damping: intervals between segment starts and reported times
+    cuts = np.union1d(np.concatenate([seg[:, 0], times]), [t_last])
+    damp_cum = np.concatenate([[0.0], np.cumsum(_damping_integral(traj, cuts, d))]) / e0
+    by_damping = damp_cum[np.searchsorted(cuts, times)]
+    remaining = _energy(traj(times), eta) / e0
+    n_imp = np.searchsorted(raw.impacts["t"], times, side="right")
+
+    def energy_at(t):
+        return float(_energy(traj(np.array([t])), eta)[0]) / e0
+
+    t_levels = tuple(_first_below(times, energy_at, remaining, lv) for lv in LEVELS)
+    return Decay(times, remaining, by_damping, by_impacts, np.zeros_like(times), n_imp,
+                 t_levels, raw.status, raw.n_sticks)
+
+
+# ----------------------------------------------------------------- linear systems
+
+def lo_system(d: float) -> tuple:
+    """(A, P, Q_damping, Q_absorber) of the LO alone, state (x, x'): x' = A x,
+    E = x^T P x / 2, dissipated powers x^T Q x."""
+    A = np.array([[0.0, 1.0], [-1.0, -d]])
+    Q = np.diag([0.0, d])
+    return A, np.eye(2), Q, np.zeros((2, 2))
+
+
+def tmd_system(d: float, mu: float, f: float, zeta: float) -> tuple:
+    """(A, P, Q_damping, Q_absorber) of the LO with a TMD (mass ratio mu, frequency ratio
+    f, damping ratio zeta), state (x, x', y, y') of absolute displacements, base at rest."""
+    k, c = mu * f * f, 2.0 * mu * zeta * f
+    A = np.array([[0.0, 1.0, 0.0, 0.0],
+                  [-1.0 - k, -d - c, k, c],
+                  [0.0, 0.0, 0.0, 1.0],
+                  [k / mu, c / mu, -k / mu, -c / mu]])
+    P = np.array([[1.0 + k, 0.0, -k, 0.0], [0.0, 1.0, 0.0, 0.0],
+                  [-k, 0.0, k, 0.0], [0.0, 0.0, 0.0, mu]])
+    Q_d = np.zeros((4, 4))
+    Q_d[1, 1] = d
+    u = np.array([0.0, -1.0, 0.0, 1.0])
+    return A, P, Q_d, c * np.outer(u, u)
+
+
+def _gramian(A, Q, t) -> tuple[np.ndarray, np.ndarray]:
+    """(expm(A t), integral_0^t expm(A s)^T Q expm(A s) ds) by Van Loan's block exponential."""
+    from scipy.linalg import expm
+    n = A.shape[0]
+    big = np.zeros((2 * n, 2 * n))
+    big[:n, :n], big[:n, n:], big[n:, n:] = -A.T, Q, A
+    e = expm(big * t)
+    phi = e[n:, n:]
+    return phi, phi.T @ e[:n, n:]
+
+
+def linear_decay(system: tuple, periods: float) -> Decay:
+    """Free decay of a linear system (``lo_system``, ``tmd_system``) from x = (0, 1, 0, ...)
+    in closed form; its fractions do not depend on the initial velocity."""
+    from scipy.linalg import expm
+    A, P, Q_d, Q_a = system
+    x0 = np.zeros(A.shape[0])
+    x0[1] = 1.0
+    e0 = 0.5 * x0 @ P @ x0
+    times = report_times(periods)
+    h = float(times[1] - times[0])
+    step, w_d = _gramian(A, Q_d, h)
+    w_a = _gramian(A, Q_a, h)[1]
+    out = np.zeros((3, times.size))
+    x = x0
+    for i in range(times.size):     # x(t + h) = expm(A h) x(t); the integrals add up
+        out[0, i] = 0.5 * x @ P @ x
+        if i + 1 < times.size:
+            out[1:, i + 1] = out[1:, i] + (x @ w_d @ x, x @ w_a @ x)
+            x = step @ x
+    out /= e0
+
+    def energy_at(t):
+        x = expm(A * t) @ x0
+        return 0.5 * x @ P @ x / e0
+
+    t_levels = tuple(_first_below(times, energy_at, out[0], lv) for lv in LEVELS)
+    zero = np.zeros(times.size)
+    return Decay(times, out[0], out[1], zero, out[2], zero.astype(np.int64), t_levels)
+
+
+def energy_curve(eta: float, r: float, d: float, v0s, periods: float) -> list[Decay]:
+    """``vines_decay`` at each initial velocity of ``v0s`` (progress task TASK)."""
+    return [vines_decay(eta, r, d, float(v), periods)
+            for v in _progress.track(v0s, len(v0s), *TASK)]
+
+
+# ----------------------------------------------------------------- the study (SI inputs)
+
+#: largest initial velocity in units of L w0 (beyond it the run is all impacts)
+V0_MAX = 1e6
+#: most energies of one curve
+N_ENERGIES_MAX = 10_000
+#: JSON keys of one system's decay, in order
+KEYS = ("t_reached", "dissipated_fraction", "by_damping", "by_impacts", "by_absorber",
+        "remaining_fraction", "n_impacts", "t_10", "t_1", "status")
+
+
+def check_initial(velocity_m_s, energy_J, energy_range) -> str:
+    """Which initial condition is given: exactly one of 'velocity', 'energy', 'range'."""
+    from ..core.params import ParameterError
+    given = [k for k, v in (("velocity", velocity_m_s), ("energy", energy_J),
+                            ("energy_range", energy_range)) if v is not None]
+    if len(given) != 1:
+        name = given[1] if len(given) > 1 else "velocity"
+        raise ParameterError(name, None if not given else "given with " + given[0],
+                             "give exactly one of velocity, energy, energy_range")
+    return given[0]
+
+
+def check_energy_range(rng, M: float, v_unit: float) -> np.ndarray:
+    """Energies [J] of a curve: (A, B, N), 0 < A < B, 2 <= N <= N_ENERGIES_MAX,
+    geometric; each initial velocity <= V0_MAX L w0."""
+    from ..core.params import ParameterError, check_int, check_real
+    try:
+        a, b, n = rng
+    except (TypeError, ValueError):
+        raise ParameterError("energy_range", rng, "must be three values A B N") from None
+    hi = 0.5 * M * (V0_MAX * v_unit) ** 2
+    a = check_real("energy_range", a, lo=0.0, lo_open=True, hi=hi)
+    b = check_real("energy_range", b, lo=a, lo_open=True, hi=hi)
+    n = check_int("energy_range", n, lo=2, hi=N_ENERGIES_MAX)
+    return np.geomspace(a, b, n)
+
+
+def _initial_velocity(velocity_m_s, energy_J, M: float, v_unit: float) -> float:
+    """Initial LO velocity [m/s] from velocity or energy E = M V^2 / 2 (one is given)."""
+    from ..core.params import check_real
+    if velocity_m_s is not None:
+        return check_real("velocity", velocity_m_s, lo=0.0, lo_open=True,
+                          hi=V0_MAX * v_unit)
+    E = check_real("energy", energy_J, lo=0.0, lo_open=True,
+                   hi=0.5 * M * (V0_MAX * v_unit) ** 2)
+    return math.sqrt(2.0 * E / M)
+
+
+def _series(decays: list[Decay], key: str, time_unit: float) -> list:
+    return [dec.summary(time_unit)[key] for dec in decays]
+
+
+def shock(*, eta, clearance_m, velocity_m_s=None, energy_J=None, energy_range=None,
+          periods=N_PERIODS_DEFAULT, M_kg=None, k_N_per_m=None, c_Ns_per_m=None, d=None,
+          r=None, omega_band=None) -> dict:
+    """Free decay after an impulse: the VI NES (eta, clearance) by the exact solver, the
+    equal-mass TMD tuned for ``omega_band`` as ``vines.design`` tunes it, the LO alone.
+
+    Give one of velocity_m_s (LO's initial velocity), energy_J (E0 = M V0^2 / 2) or
+    energy_range (A, B, N: N energies from A to B J, geometric). Window: ``periods``
+    natural periods of the LO. Structure as ``vines.design`` (Table 1 by default). Returns
+    a JSON-ready dict (keys inputs, scales, activation, vines, tmd, lo_alone and, for one
+    shock, history; for a range, curve and optimal). ParameterError on bad input.
+    """
+    import time
+
+    from ..core.params import R_DEFAULT, check_param, check_real
+    from .design_checks import DEFAULT_BAND, check_band, check_eta, check_structure
+    from .tmd import optimal_tmd
+    t0 = time.perf_counter()
+    M, k, c, d = check_structure(M_kg, k_N_per_m, c_Ns_per_m, d)
+    r = check_param("r", R_DEFAULT if r is None else r)
+    eta = check_eta("eta", eta)
+    L = check_real("clearance", clearance_m, lo=0.0, lo_open=True, hi=1e6)
+    periods = check_real("periods", periods, lo=0.0, lo_open=True, hi=N_PERIODS_MAX)
+    band = check_band(DEFAULT_BAND if omega_band is None else omega_band)
+    mode = check_initial(velocity_m_s, energy_J, energy_range)
+    w0 = math.sqrt(k / M)
+    v_unit = L * w0
+    if mode == "energy_range":
+        energies = check_energy_range(energy_range, M, v_unit)
+        velocities = np.sqrt(2.0 * energies / M)
+    else:
+        velocities = np.array([_initial_velocity(velocity_m_s, energy_J, M, v_unit)])
+    tmd = optimal_tmd(eta, d, band)
+    lin = {"tmd": linear_decay(tmd_system(d, eta, tmd.frequency_ratio, tmd.damping_ratio),
+                               periods),
+           "lo_alone": linear_decay(lo_system(d), periods)}
+    decays = energy_curve(eta, r, d, velocities / v_unit, periods)
+    v_act = activation_velocity(d) * v_unit
+    out = {
+        "inputs": {"mode": mode, "eta": eta, "clearance_m": L, "M_kg": M, "k_N_per_m": k,
+                   "c_Ns_per_m": c, "d": d, "r": r, "periods": periods,
+                   "omega_band": list(band)},
+        "scales": {"w0_rad_s": w0, "natural_period_s": 2.0 * math.pi / w0,
+                   "window_s": 2.0 * math.pi * periods / w0, "velocity_unit_m_s": v_unit,
+                   "energy_unit_J": M * v_unit * v_unit},
+        "activation": {"velocity_m_s": v_act, "energy_J": 0.5 * M * v_act * v_act},
+        "tmd": {**lin["tmd"].summary(1.0 / w0), "design": tmd.to_dict()},
+        "lo_alone": lin["lo_alone"].summary(1.0 / w0),
+    }
+    if mode == "energy_range":
+        out["curve"] = _curve(decays, energies, velocities, lin, 1.0 / w0)
+        frac = np.array(out["curve"]["vines"]["dissipated_fraction"])
+        best = int(np.argmax(frac))
+        out["optimal"] = {"energy_J": float(energies[best]),
+                          "velocity_m_s": float(velocities[best]),
+                          "dissipated_fraction": float(frac[best])}
+        out["vines"] = {"n_sticks": [dec.n_sticks for dec in decays]}
+    else:
+        dec = decays[0]
+        out["inputs"].update(velocity_m_s=float(velocities[0]),
+                             energy_J=float(0.5 * M * velocities[0] ** 2))
+        out["vines"] = {**dec.summary(1.0 / w0), "n_sticks": dec.n_sticks}
+        out["history"] = _history(dec, lin, 1.0 / w0)
+    out["cost"] = {"wall_s": time.perf_counter() - t0, "n_runs": len(decays)}
+    return out
+
+
+def _curve(decays, energies, velocities, lin, time_unit) -> dict:
+    """The curve against initial energy: the VI NES per energy, the linear ones repeated
+    (their fractions do not depend on the energy)."""
+    n = len(decays)
+    return {"energy_J": energies.tolist(), "velocity_m_s": velocities.tolist(),
+            "vines": {key: _series(decays, key, time_unit) for key in KEYS},
+            **{name: {key: [dec.summary(time_unit)[key]] * n for key in KEYS}
+               for name, dec in lin.items()}}
+
+
+def _history(dec: Decay, lin: dict, time_unit: float) -> dict:
+    """The energies in time (fractions of E0) at the reported times [s]."""
+    def one(x: Decay) -> dict:
+        return {"remaining_fraction": x.remaining.tolist(),
+                "by_damping": x.by_damping.tolist(), "by_impacts": x.by_impacts.tolist(),
+                "by_absorber": x.by_absorber.tolist(), "n_impacts": x.n_impacts.tolist()}
+    return {"t_s": (dec.times * time_unit).tolist(), "vines": one(dec),
+            **{name: one(x) for name, x in lin.items()}}
