@@ -188,8 +188,11 @@ def invariants(p: ModelParams, st_: SolverSettings, raw) -> dict:
     t_last = raw.t_last
     imp = raw.impacts
     grid = np.linspace(0.0, t_last, max(2, int(t_last / 1e-2) + 1))
+    imp = imp[imp["t"] < t_last]        # a run stopped at max_impacts ends on an impact
     y = raw.state_at(np.concatenate([grid, imp["t"]]))
-    w_tol = 8 * eps * (1.0 + np.abs(y[0]) + np.abs(y[2])) + st_.root_tol
+    # round-off of w: of z_m, z_b and of the closed form's parts (F gain, see below)
+    parts = p.F * (1.0 + p.omega) * closed_form_gain(p)
+    w_tol = 8 * eps * (1.0 + np.abs(y[0]) + np.abs(y[2]) + parts) + st_.root_tol
     w_excess = float(np.max(np.abs(y[0] - y[2]) - 1.0 - w_tol))
     assert w_excess <= 0.0, f"|w| exceeds 1 by {w_excess:.3g} beyond round-off"
     post = y[:, grid.size:]
@@ -197,7 +200,6 @@ def invariants(p: ModelParams, st_: SolverSettings, raw) -> dict:
     if imp.size:
         # round-off: the impact law's, and the closed form's restart from the post-impact
         # state (its parts reach F gain omega, ``core.params.check_conditioning``)
-        parts = p.F * (1.0 + p.omega) * closed_form_gain(p)
         mom_pre = imp["v_m"] + p.eta * imp["v_b"]
         mom_post = post[1] + p.eta * post[3]
         scale = np.abs(imp["v_m"]) + p.eta * np.abs(imp["v_b"]) + parts
