@@ -151,6 +151,18 @@ def test_save_is_atomic_and_writes_both_files(tmp_path):
     assert (tmp_path / "f.png").read_bytes()[:4] == b"\x89PNG"
 
 
+def test_save_removes_the_temporaries_of_a_killed_write(tmp_path):
+    """A write killed by SIGKILL leaves its temporary (.f.png.<random>.png): the next save of
+    that figure removes it; another figure's temporaries are not touched."""
+    stale = [tmp_path / ".f.png.k1l2e3d4.png", tmp_path / ".f.pdf.abcdefgh.pdf"]
+    other = tmp_path / ".f1.png.k1l2e3d4.png"
+    for p in (*stale, other):
+        p.write_bytes(b"half a figure")
+    fig, axes = P.figure(1, 1)
+    P.save(fig, tmp_path / "f.pdf", tmp_path / "f.png")
+    assert sorted(p.name for p in tmp_path.iterdir()) == [other.name, "f.pdf", "f.png"]
+
+
 # ------------------------------------------------------------------ figure scripts
 
 def _run_script(name, tmp_path, **inputs):

@@ -209,6 +209,17 @@ def test_dataset_round_trip_cf_attrs_and_byte_identical_rewrite(tmp_path):
     assert p1.stat().st_mode & 0o777 == 0o666 & ~mask
 
 
+def test_write_removes_the_temporary_of_a_killed_write(tmp_path):
+    """A write killed by SIGKILL leaves its temporary (.x.nc.<random>.tmp): the next write of
+    that dataset removes it; another dataset's temporary is not touched."""
+    stale, other = tmp_path / ".x.nc.k1l2e3d4.tmp", tmp_path / ".x.nc2.k1l2e3d4.tmp"
+    for p in (stale, other):
+        p.write_bytes(b"half a dataset")
+    ds = xr.Dataset({"x": ("n", [1.0], {"long_name": "x", "units": "1"})})
+    write_dataset(ds, tmp_path / "x.nc")
+    assert sorted(p.name for p in tmp_path.iterdir()) == [other.name, "x.nc"]
+
+
 def test_write_refuses_variables_without_units(tmp_path):
     ds = xr.Dataset({"x": ("n", [1.0], {"long_name": "x"})})
     with pytest.raises(ValueError, match="long_name/units"):

@@ -8,6 +8,8 @@
 """
 from __future__ import annotations
 
+import contextlib
+import glob
 import os
 import tempfile
 import threading
@@ -63,6 +65,20 @@ def new_file_mode() -> int:
     return 0o666 & ~mask
 
 
+def temporary_beside(path: Path, suffix: str) -> str:
+    """A new temporary file ``.<name>.<random><suffix>`` beside ``path`` (mode as a new file),
+    to be renamed onto ``path`` once written. Temporaries of ``path`` left by a writer that
+    was killed (SIGKILL leaves no chance to clean up) are removed first: no two writers of
+    one output run at once (Snakemake's jobs own their outputs)."""
+    for stale in path.parent.glob(f".{glob.escape(path.name)}.*{suffix}"):
+        with contextlib.suppress(FileNotFoundError):
+            stale.unlink()
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=suffix, dir=path.parent)
+    os.close(fd)
+    os.chmod(tmp, new_file_mode())
+    return tmp
+
+
 def _write_netcdf4(ds: xr.Dataset, path: str, encoding: dict) -> None:
     """``ds.to_netcdf(path, format="NETCDF4", engine="netcdf4")`` with a plain thread lock.
 
@@ -89,9 +105,7 @@ def write_dataset(ds: xr.Dataset, path, encoding: dict | None = None) -> Path:
     enc = default_encoding(ds)
     for k, v in (encoding or {}).items():
         enc.setdefault(k, {}).update(v)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    os.close(fd)
-    os.chmod(tmp, new_file_mode())
+    tmp = temporary_beside(path, ".tmp")
     try:
         _write_netcdf4(ds, tmp, enc)
         os.replace(tmp, path)

@@ -2,7 +2,6 @@
 from __future__ import annotations
 
 import os
-import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -20,7 +19,7 @@ from matplotlib.ticker import MaxNLocator  # noqa: E402
 
 from ..core.conventions import WALL_L, WALL_R  # noqa: E402
 from ..core.params import L_HALF_M  # noqa: E402
-from ..data.netcdf import new_file_mode  # noqa: E402
+from ..data.netcdf import temporary_beside  # noqa: E402
 from . import palette  # noqa: E402
 from .checks import FigureInputError  # noqa: E402
 from .impacts import SAME_WAY, TOWARDS, impact_direction, point_impacts  # noqa: E402
@@ -406,10 +405,7 @@ def save(fig, pdf, png, dpi=150):
     layout (constrained layout: ~0.5 s a figure) is computed once, for the PNG."""
     for path, kw in ((Path(png), {"dpi": dpi}), (Path(pdf), {})):
         path.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=path.suffix,
-                                   dir=path.parent)
-        os.close(fd)
-        os.chmod(tmp, new_file_mode())
+        tmp = temporary_beside(path, path.suffix)
         try:
             fmt_ = path.suffix.lstrip(".")
             fig.savefig(tmp, format=fmt_, metadata=METADATA.get(fmt_), **kw)
