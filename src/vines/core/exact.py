@@ -51,10 +51,15 @@ class Trajectory:
         if seg.shape[0] == 0 or np.any(times < seg[0, 0]) or np.any(times > self.t_last):
             lo = seg[0, 0] if seg.shape[0] else math.nan
             raise ValueError(f"times must lie in the recorded span [{lo:g}, {self.t_last:g}]")
-        idx = np.searchsorted(seg[:, 0], times, side="right") - 1
+        return self.on_segments(np.searchsorted(seg[:, 0], times, side="right") - 1, times)
+
+    def on_segments(self, idx, times) -> np.ndarray:
+        """States (4, n) at ``times`` on the closed form of the recorded segments ``idx``
+        (a time on a segment boundary: the segment named, not the one after it)."""
+        times = np.ascontiguousarray(times, dtype=float)
         out = np.empty((4, times.size))
-        eng.dense_states(seg, idx.astype(np.int64), times, self._osc_f, self._osc_s,
-                         self.params.omega, self.params.phi, out)
+        eng.dense_states(self.segments, np.ascontiguousarray(idx, dtype=np.int64), times,
+                         self._osc_f, self._osc_s, self.params.omega, self.params.phi, out)
         return out
 
 

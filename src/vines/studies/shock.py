@@ -114,16 +114,6 @@ def _first_below(times, energy_at, remaining, level) -> float:
 
 # ----------------------------------------------------------------- VI NES (exact solver)
 
-def _segment_states(traj, idx, times) -> np.ndarray:
-    """States (4, n) at ``times`` on the closed form of segments ``idx``."""
-    from ..core import kernel as eng
-    out = np.empty((4, times.size))
-    eng.dense_states(traj.segments, np.ascontiguousarray(idx, dtype=np.int64),
-                     np.ascontiguousarray(times, dtype=float), traj._osc_f, traj._osc_s,
-                     traj.params.omega, traj.params.phi, out)
-    return out
-
-
 def _energy(states, eta) -> np.ndarray:
     zm, vm, _, vb = states
     return 0.5 * (vm * vm + zm * zm + eta * vb * vb)
@@ -141,7 +131,7 @@ def _damping_integral(traj, cuts, d) -> np.ndarray:
     a = lo[owner] + k * h
     t = (a[:, None] + 0.5 * h[:, None] * (_X[None, :] + 1.0)).ravel()
     idx = np.repeat(seg_idx[owner], GAUSS_NODES)
-    v = _segment_states(traj, idx, t)[1].reshape(-1, GAUSS_NODES)
+    v = traj.on_segments(idx, t)[1].reshape(-1, GAUSS_NODES)
     piece = 0.5 * h * ((v * v) @ _W)
     return d * np.bincount(owner, weights=piece, minlength=lo.size)
 
@@ -165,7 +155,7 @@ def vines_decay(eta: float, r: float, d: float, v0: float, periods: float,
     times = times[times <= t_last]
     # energy jumps at events: end of segment i against start of segment i + 1
     t_ev = seg[1:, 0]
-    before = _energy(_segment_states(traj, np.arange(t_ev.size), t_ev), eta)
+    before = _energy(traj.on_segments(np.arange(t_ev.size), t_ev), eta)
     after = _energy(seg[1:, 1:5].T, eta)
     jump_cum = np.concatenate([[0.0], np.cumsum(before - after)]) / e0
     by_impacts = jump_cum[np.searchsorted(t_ev, times, side="right")]
