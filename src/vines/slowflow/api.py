@@ -10,6 +10,7 @@ from ..core.params import (
     D_DEFAULT,
     PARAM_BOUNDS,
     R_DEFAULT,
+    ParameterError,
     check_param,
     check_real,
     check_reals,
@@ -30,11 +31,19 @@ REGIMES = ("two-impact", "SMR", "no impact")
 
 def model(eta, F, r, d) -> Model:
     """The validated scalars; ParameterError where the slow flow does not apply."""
-    eta = check_real("eta", eta, lo=0.0, lo_open=True, hi=ETA_MAX)
-    F = check_param("F", F)
-    r = check_real("r", r, lo=0.0, hi=1.0, hi_open=True)
-    d = check_real("d", d, lo=0.0, hi=D_MAX)
-    return Model(eta=eta, F=F, r=r, d=d)
+    eta = _checked("eta", eta, "> 0 and <= 0.5 (a light ball)", lo_open=True, hi=ETA_MAX)
+    d = _checked("d", d, ">= 0 and <= 0.5 (light damping)", hi=D_MAX)
+    r = _checked("r", r, ">= 0 and < 1 (impacts that dissipate)", hi=1.0, hi_open=True)
+    return Model(eta=eta, F=check_param("F", F), r=r, d=d)
+
+
+def _checked(name: str, value, allowed: str, **bounds) -> float:
+    """check_real with the slow flow's own bounds, the message saying why."""
+    try:
+        return check_real(name, value, lo=0.0, **bounds)
+    except ParameterError:
+        raise ParameterError(name, value, f"must be a finite number {allowed} for the slow "
+                                          f"flow (otherwise use the exact solver)") from None
 
 
 def warnings_for(m: Model, omegas: np.ndarray) -> list[str]:
