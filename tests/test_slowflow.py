@@ -56,7 +56,9 @@ def ball_flight(X, alpha, r):
     vm = -X * math.sin(alpha)
     # w'+ = -r w'-: vm - u = -r (vm - u_before), the ball arriving with u_before = -u
     u = vm * (1.0 + r) / (1.0 - r)
-    gap = lambda t: X * math.cos(t) - (zb0 + u * (t - alpha)) + 1.0      # w + 1
+
+    def gap(t):                                         # w + 1: zero at wall R
+        return X * math.cos(t) - (zb0 + u * (t - alpha)) + 1.0
     ts = alpha + np.linspace(1e-6, 2.0 * math.pi, 20001)
     g = np.array([gap(t) for t in ts])
     k = int(np.flatnonzero(g <= 0.0)[0])
@@ -255,7 +257,7 @@ def test_frc_rows_are_the_responses():
         rows = np.flatnonzero(out.omega == w)
         assert sorted(o.amplitude for o in res.orbits) == pytest.approx(
             sorted(out.amplitude[rows]))
-        assert res.regime == out.regime[np.flatnonzero(W == w)[0]]
+        assert res.regime == out.regime[np.flatnonzero(w == W)[0]]
     d = out.to_dict()
     assert {"omega", "amplitude", "ball_amplitude", "phase", "stable", "branch"} <= set(
         d["frc"][0])
