@@ -295,3 +295,19 @@ def test_optimal_F_is_the_band_minimum():
             for F in np.geomspace(1e-3, 2.0, 37)]
     assert opt.worst_ratio <= min(scan) + 1e-9
     assert 0.8 <= opt.omega_peak <= 1.2
+
+
+@pytest.mark.slow
+def test_optimal_clearance_against_the_exact_design():
+    """At eta = 0.02 (one base amplitude, 0.75 mm): the exact worst case (``vines.design``)
+    at the slow flow's best clearance is within a factor 1.3 of the exact optimum's
+    (``vines.design`` optimising (eta <= 0.02, clearance)), and the slow flow's own peak
+    within that factor of the exact value at its design."""
+    from vines.slowflow import optimal_clearance
+    from vines.studies.design import design
+    A = [0.75e-3]
+    sf = optimal_clearance(0.02, A)
+    at_sf = design(eta=0.02, clearance_m=sf.clearance_m, amplitudes_m=A, census_n=0)
+    best = design(eta_max=0.02, n_eta=1, amplitudes_m=A, census_n=0)
+    assert at_sf.worst_ratio <= 1.3 * best.worst_ratio
+    assert 1 / 1.3 <= sf.worst_ratio / at_sf.worst_ratio <= 1.3
