@@ -150,7 +150,7 @@ def _jacobian(m: Model, w, alpha, X):
     P = -0.5 * m.d * X - eKw * X * s * s
     Q = 0.5 * (w * w - 1.0) / w + eKw * s * c
     da = sim.dalpha_dX(alpha, m.rho)
-    with np.errstate(invalid="ignore"):
+    with np.errstate(invalid="ignore", over="ignore"):
         dP = -0.5 * m.d - eKw * (s * s + X * 2.0 * s * c * da)
         dQ = eKw * (c * c - s * s) * da
         trace = dP + P / X
