@@ -221,7 +221,6 @@ class FRC:
                                       strict=True)]
         return {"model": "slowflow", "rho": self.rho, "xi_min": self.xi_min,
                 "x_flip": self.x_flip, "frc": rows, "regimes": regimes,
-                "smr": {"amplitude_low": self.xi_min, "amplitude_high": 1.0},
                 "warnings": list(self.warnings)}
 
 
