@@ -2,7 +2,7 @@
 frequencies, with the regime and the warnings outside the expansion's assumptions."""
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass
 
 import numpy as np
 
@@ -83,8 +83,7 @@ class SlowFlowOrbit:
     branch: str
 
     def to_dict(self) -> dict:
-        return {"amplitude": self.amplitude, "ball_amplitude": self.ball_amplitude,
-                "phase": self.phase, "stable": self.stable, "branch": self.branch}
+        return asdict(self)
 
 
 def regimes(R: Roots, x_linear: np.ndarray) -> np.ndarray:

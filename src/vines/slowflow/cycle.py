@@ -8,7 +8,7 @@ repeats; the result is the cycle's period and the time spent impacting."""
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass
 
 import numpy as np
 
@@ -35,9 +35,7 @@ class SMRCycle:
     amplitude_high: float
 
     def to_dict(self) -> dict:
-        return {"period": self.period, "time_impacting": self.time_impacting,
-                "time_free": self.time_free, "amplitude_low": self.amplitude_low,
-                "amplitude_high": self.amplitude_high}
+        return asdict(self)
 
 
 def upper_alpha(X, rh):
