@@ -12,8 +12,9 @@ periodic orbit returns exactly.
 over the points (a coordinate without spread dropped), the return error of lag q is
 e(q) = max_k max_j |y_(k+q), j - y_k, j| (k < N - q), the return lag q* minimises it over
 1 <= q <= N/2, and the points fill a closed curve when RETURN_FLOOR < e(q*) <= RETURN_TOL
-(at or below RETURN_FLOOR they repeat: a periodic orbit, not a curve). q* T is then a
-period of the modulation, or a multiple of it (the lag of the best return).
+(at or below RETURN_FLOOR they repeat: a periodic orbit, not a curve, and q* is the
+smallest such lag, its period). q* T is the lag of the best return: for a modulated
+motion a period of the modulation or a multiple of it.
 
 ``envelope``: the LO amplitude max |z_m| over each forcing period (units of L), from
 ENV_SAMPLES samples per period (a smooth maximum is missed by at most
@@ -64,9 +65,9 @@ def closed_curve(points: np.ndarray) -> dict:
         return {"closed": None, "lag": None, "return_error": None, "periodic": False,
                 "n_strobe": n}
     e = return_errors(points)
-    q = int(np.argmin(e)) + 1
+    periodic = bool(e.min() <= RETURN_FLOOR)
+    q = int(np.argmax(e <= RETURN_FLOOR) if periodic else np.argmin(e)) + 1
     err = float(e[q - 1])
-    periodic = err <= RETURN_FLOOR
     return {"closed": bool(not periodic and err <= RETURN_TOL), "lag": q,
             "return_error": err, "periodic": bool(periodic), "n_strobe": n}
 
