@@ -98,3 +98,65 @@ def test_chaos_is_not_quasi_periodic():
     for a in c["attractors"]:
         assert a["regime_asymptotic"] == a["regime"] != "quasi-periodic"
         assert "modulation" not in a
+
+
+#: points where the slow flow predicts SMR (no attracting two-impact fixed point, linear
+#: amplitude above the clearance): (eta, Omega, F, r, d)
+SMR_POINTS = [(0.02, 1.0, 0.015, 0.65, 0.011998), (0.01, 1.0, 0.005, 0.65, 0.005),
+              (0.01, 1.0, 0.004, 0.65, 0.003)]
+#: the exact envelope's low end may undershoot the slow flow's fold by this share (the
+#: ball keeps hitting for a while after the motion has left the SIM; measured 23-25 %)
+SMR_LOW_TOL = 0.35
+
+
+@pytest.mark.parametrize("point", SMR_POINTS)
+def test_smr_predicted_by_the_slow_flow_is_chaotic_smr_in_the_exact_model(point):
+    """Where the slow flow predicts SMR the exact motion lasts (persistent, no escape) and
+    is a chaotic strongly modulated response: lambda_1 > 0, no closed curve, the LO
+    amplitude envelope swinging by a factor >= 3 over many forcing periods, its range
+    [min, max] within the predicted [xi_min, 1] (low end to SMR_LOW_TOL)."""
+    from vines.slowflow import response
+    eta, omega, F, r, d = point
+    pred = response(eta, omega, F, r=r, d=d)
+    assert pred.regime == "SMR"
+    low, high = pred.smr
+    c = census(eta, omega, F, r=r, d=d, n=2, seed=0, t_max=40000.0, n_threads=1)
+    sampled = [a.to_dict() for a in c.attractors if a.count > 0]
+    assert sum(a["count"] for a in sampled) == 2       # (split by KE ratio, maybe)
+    for a in sampled:
+        assert not a["periodic"] and a["status"] == "persistent"
+        assert a["lifetime"]["escaped"] == 0 and a["lyapunov_max_ci"][0] > 0.0   # chaos
+    a = sampled[0]
+    p = ModelParams(eta=eta, omega=omega, F=F, r=r, d=d)
+    st = SolverSettings(state0=a["example_state"])
+    run = run_exact(p, st, record_from=st.t_end - 1.0)      # one member, to t_end
+    m = torus.modulation(p, st, 40000.0, run.solver_info["final_state"])
+    assert not m["closed"] and m["lambda_1_ci"][0] > 0.0
+    lo, hi = m["amplitude"]
+    assert (1.0 - SMR_LOW_TOL) * low <= lo < hi <= high
+    assert hi >= 3.0 * lo and m["period"] > 20.0
+
+
+def test_two_impact_regime_of_the_slow_flow_is_not_modulated():
+    """Beside the SMR points, where the slow flow has an attracting two-impact fixed point,
+    the exact census ends on the 1:1 orbit: the check above can tell them apart."""
+    from vines.slowflow import response
+    assert response(0.02, 1.0, 0.02, r=0.65).regime == "two-impact"
+    c = census(0.02, 1.0, 0.02, r=0.65, n=2, seed=0, t_max=20000.0, n_threads=1)
+    assert c.attractors[c.from_rest_asymptotic].regime == "1:1"
+
+
+@pytest.mark.slow
+def test_torus_point_lies_past_a_neimark_sacker_curve_of_boundaries():
+    """``vines boundaries`` at F = 0.484 has a Neimark-Sacker curve of the symmetric 1:1
+    orbit crossing eta = 0.511 between Omega = 1.24 and TORUS's 1.26 (15 s)."""
+    from vines.orbits.boundaries import boundaries
+    b = boundaries(TORUS[2], [0.45, 0.55], [1.2, 1.3], n_scan=3, n_map=0)
+    ns = [c for c in b.curves if c.type == "neimark-sacker" and c.family == "symmetric"]
+    crossings = []
+    for c in ns:
+        e, w = c.points[:, 0], c.points[:, 1]
+        for i in np.flatnonzero(np.diff(np.sign(e - TORUS[0])) != 0):
+            t = (TORUS[0] - e[i]) / (e[i + 1] - e[i])
+            crossings.append(w[i] + t * (w[i + 1] - w[i]))
+    assert any(1.24 < w < TORUS[1] for w in crossings)
