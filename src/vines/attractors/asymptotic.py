@@ -79,10 +79,13 @@ class Continuation:
     t_escape: float = math.nan
 
 
-def asymptotic_settings(st: SolverSettings, t_max: float) -> SolverSettings:
-    """Settings of the continuation runs [t_end, t_max] (window from t_end)."""
-    return SolverSettings(t_end=t_max, t_transient=st.t_end, v_stick=st.v_stick,
-                          max_impacts=st.max_impacts, root_tol=st.root_tol)
+def asymptotic_settings(st: SolverSettings, t_max: float,
+                        t_window: float | None = None) -> SolverSettings:
+    """Settings of the continuation runs [t_end, t_max] (window from t_window, default
+    t_end)."""
+    return SolverSettings(t_end=t_max, t_transient=st.t_end if t_window is None else t_window,
+                          v_stick=st.v_stick, max_impacts=st.max_impacts,
+                          root_tol=st.root_tol)
 
 
 def continue_state(p: ModelParams, st: SolverSettings, st_max: SolverSettings,

@@ -20,6 +20,11 @@ motion a period of the modulation or a multiple of it.
 ENV_SAMPLES samples per period (a smooth maximum is missed by at most
 (pi / ENV_SAMPLES)^2 / 2 of it, 0.12 %); its min and max are the modulation range, and the
 mean time between its upward crossings of its mid level the modulation period.
+
+``modulation`` runs a motion's state at t_end on to t_max (the census's continuation) and
+applies both over its strobe window, the last min(N_STROBE, half of [t_end, t_max])
+forcing periods, with the leading Lyapunov exponent over that window (the tangent frame
+carried from t_end, aligned by the first half); ``asymptotic.is_quasi_periodic`` reads it.
 """
 from __future__ import annotations
 
@@ -90,11 +95,6 @@ def modulation_period(env: np.ndarray) -> float:
     return float(np.diff(up).mean()) if up.size >= 2 else math.nan
 
 
-def _settings(st: SolverSettings, t_max: float, t_window: float) -> SolverSettings:
-    return SolverSettings(t_end=t_max, t_transient=t_window, v_stick=st.v_stick,
-                          max_impacts=st.max_impacts, root_tol=st.root_tol)
-
-
 def strobe_window(T: float, t_end: float, t_max: float, n: int = N_STROBE) -> tuple:
     """(k0, k1): the periods k0 <= k < k1 tested, the last min(n, half of [t_end, t_max])
     before t_max (the first half at least aligns the Lyapunov frame)."""
@@ -111,12 +111,13 @@ def modulation(p: ModelParams, st: SolverSettings, t_max: float, state: np.ndarr
     ``lambda_1`` and its 95 % interval ``lambda_1_ci`` (the frame carried from st.t_end),
     and ``window`` [k0 T, k1 T]."""
     from ..core.exact import run_exact
+    from .asymptotic import asymptotic_settings
     from .lyapunov import spectrum
     T = p.period
     k0, k1 = strobe_window(T, st.t_end, t_max, n)
     out = {"amplitude": None, "period": None, "lambda_1": None, "lambda_1_ci": None,
            "window": [k0 * T, k1 * T]}
-    st_w = _settings(st, t_max, k0 * T)
+    st_w = asymptotic_settings(st, t_max, k0 * T)
     raw = run_exact(p, st_w, record_from=st.t_end, state0=tuple(state), t0=st.t_end)
     if raw.status != "ok" or k1 - k0 < N_STROBE_MIN:
         return closed_curve(np.zeros((0, 4))) | out
