@@ -86,9 +86,11 @@ class Model:
 
 
 def linear_amplitude(m: Model, W: np.ndarray) -> np.ndarray:
-    """Exact amplitude of the LO without impacts (the base-excited linear response)."""
+    """Exact amplitude of the LO without impacts (the base-excited linear response; inf at
+    resonance without damping)."""
     dW = m.d * W
-    return m.F * np.sqrt((1.0 + dW * dW) / ((1.0 - W * W) ** 2 + dW * dW))
+    with np.errstate(divide="ignore"):
+        return m.F * np.sqrt((1.0 + dW * dW) / ((1.0 - W * W) ** 2 + dW * dW))
 
 
 def _coefficients(m: Model, W: np.ndarray):
