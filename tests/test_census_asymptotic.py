@@ -11,7 +11,8 @@ from vines.core.params import ParameterError
 FIG16 = (0.5, 0.9, 0.3077)
 CHAOTIC = (0.2026, 0.917, 0.1345)
 NEW_KEYS = {"basin_fraction_asymptotic", "ci_asymptotic", "status", "lyapunov_max",
-            "lyapunov_max_ci", "lyapunov_window", "lifetime", "escape_to", "horizon"}
+            "lyapunov_max_ci", "lyapunov_window", "lifetime", "escape_to", "horizon",
+            "regime_asymptotic", "modulation"}
 
 
 def _t_end_view(d: dict, n_attractors: int) -> dict:

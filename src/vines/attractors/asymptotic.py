@@ -26,9 +26,13 @@ Wilson interval), where its states escape to, the lifetime and the status:
 * status ``transient``: escapes were seen and either every member escaped before t_max or
   the upper end of the lifetime interval is at most (t_max - t_end) / TRANSIENT_FACTOR (a
   law that slow would have let >= 95 % escape);
-  ``persistent``: no escape, and either every member settled in place or the leading
+  ``persistent``: no escape, and either every member settled in place, or the leading
   Lyapunov exponent of a member over [t_end, t_max] is positive (lower end of its interval
-  > 0: chaos that lasted the whole horizon); otherwise ``unresolved``, with ``horizon``:
+  > 0: chaos that lasted the whole horizon), or the class is **quasi-periodic**: that
+  exponent's interval contains 0 and the member's strobe points over the last
+  ``torus.N_STROBE`` forcing periods before t_max fill a closed curve
+  (``torus.closed_curve``: a motion on a torus, e.g. a strongly modulated response);
+  otherwise ``unresolved``, with ``horizon``:
   t_end + TRANSIENT_FACTOR x (upper end of the lifetime interval, or, with no escape,
   the time at risk per member x 10), a t_max that would resolve it.
 
@@ -75,10 +79,13 @@ class Continuation:
     t_escape: float = math.nan
 
 
-def asymptotic_settings(st: SolverSettings, t_max: float) -> SolverSettings:
-    """Settings of the continuation runs [t_end, t_max] (window from t_end)."""
-    return SolverSettings(t_end=t_max, t_transient=st.t_end, v_stick=st.v_stick,
-                          max_impacts=st.max_impacts, root_tol=st.root_tol)
+def asymptotic_settings(st: SolverSettings, t_max: float,
+                        t_window: float | None = None) -> SolverSettings:
+    """Settings of the continuation runs [t_end, t_max] (window from t_window, default
+    t_end)."""
+    return SolverSettings(t_end=t_max, t_transient=st.t_end if t_window is None else t_window,
+                          v_stick=st.v_stick, max_impacts=st.max_impacts,
+                          root_tol=st.root_tol)
 
 
 def continue_state(p: ModelParams, st: SolverSettings, st_max: SolverSettings,
@@ -190,20 +197,40 @@ def _km_median(residual: np.ndarray, escaped: np.ndarray) -> float | None:
 
 
 def class_status(life: dict, n_settled: int, n_members: int, lam_long: tuple | None,
-                 t_end: float, t_max: float) -> tuple[str, float | None]:
-    """(status, horizon) of a motion class (module docstring)."""
+                 t_end: float, t_max: float,
+                 quasi_periodic: bool = False) -> tuple[str, float | None]:
+    """(status, horizon) of a motion class (module docstring); quasi_periodic: its
+    continuation was recognised as quasi-periodic (``is_quasi_periodic``)."""
     span = t_max - t_end
     if n_members == 0:                      # reached from rest only: nothing sampled
         return "unresolved", None
     if life["escaped"] > 0 and (life["censored"] == 0
                                 or life["ci"][1] <= span / TRANSIENT_FACTOR):
         return "transient", None
-    if life["escaped"] == 0 and (n_settled == n_members
+    if life["escaped"] == 0 and (n_settled == n_members or quasi_periodic
                                  or (lam_long is not None and lam_long[1][0] > 0.0)):
         return "persistent", None
     hi = life["ci"][1]
     horizon = t_end + TRANSIENT_FACTOR * hi if math.isfinite(hi) else t_end + 10.0 * span
     return "unresolved", float(horizon)
+
+
+def may_be_quasi_periodic(life: dict, n_settled: int, n_members: int,
+                          lam_long: tuple | None) -> bool:
+    """Whether a motion class gets the quasi-periodic test: no escape, not every member
+    settled in place (so ``lam_long`` was measured) and no positive exponent (lower end of
+    its interval > 0: chaos)."""
+    return (n_members > 0 and life["escaped"] == 0 and n_settled < n_members
+            and lam_long is not None and lam_long[1][0] <= 0.0)
+
+
+def is_quasi_periodic(modulation: dict | None) -> bool:
+    """Quasi-periodic: over the strobe window of the continuation (``torus.modulation``)
+    the interval of lambda_1 contains 0 and the strobe points fill a closed curve."""
+    if modulation is None or not modulation["closed"]:
+        return False
+    lo, hi = modulation["lambda_1_ci"]
+    return lo <= 0.0 <= hi
 
 
 def window_lambda(p: ModelParams, st: SolverSettings, states: np.ndarray, members: list,

@@ -373,7 +373,7 @@ def _asymptotic_view(out: Census, runs: _Runs, groups: list, rest: tuple) -> Non
         if g.end.kind == "motion":
             view |= _motion_view(runs, g, conts, members)
         else:
-            view |= {"status": "persistent",
+            view |= {"status": "persistent", "regime_asymptotic": a.regime,
                      "lyapunov_max": asy.periodic_lambda(p, st, oscs, g.end),
                      "lyapunov_window": None}
         a.asymptotic = view
@@ -396,17 +396,25 @@ def _motion_view(runs: _Runs, g: _Group, conts: dict, members: np.ndarray) -> di
     if mem and life["escaped"] == 0 and n_settled < len(mem):
         first = next(i for i, c in zip(mem, cs, strict=True) if c.outcome == "censored")
         lam_long = asy.long_lambda(p, st, t_max, runs.ends[first])
+    mod = None
+    if asy.may_be_quasi_periodic(life, n_settled, len(mem), lam_long):
+        from .torus import modulation
+        mod = modulation(p, st, t_max, runs.ends[first].final_state)
+    qp = asy.is_quasi_periodic(mod)
     status, horizon = asy.class_status(life, n_settled, len(mem), lam_long, st.t_end,
-                                       t_max)
+                                       t_max, quasi_periodic=qp)
     if lam_long is not None:
         lam, ci, win = lam_long
     elif mem:
         lam, ci, win = asy.window_lambda(p, st, runs.states, mem, runs.n_threads)
     else:
         lam, ci, win = math.nan, [math.nan, math.nan], None
-    view = {"status": status, "lyapunov_max": lam, "lyapunov_max_ci": ci,
+    view = {"status": status, "regime_asymptotic": "quasi-periodic" if qp else g.end.regime,
+            "lyapunov_max": lam, "lyapunov_max_ci": ci,
             "lyapunov_window": win, "lifetime": life,
             "escape_to": {str(j): dest.count(j) for j in sorted(set(dest))}}
+    if mod is not None:
+        view["modulation"] = mod
     if horizon is not None:
         view["horizon"] = horizon
     return view
@@ -429,7 +437,7 @@ def _rest_asymptotic(out: Census, runs: _Runs, groups: list, rest: tuple) -> int
         a = _attractor(p, st, oscs, groups[j], [], np.zeros((0, 4)), out.n)
         a.window_regimes = {}
         a.asymptotic = {"basin_fraction_asymptotic": 0.0, "ci_asymptotic": _wilson(0, out.n),
-                        "status": "persistent",
+                        "status": "persistent", "regime_asymptotic": a.regime,
                         "lyapunov_max": asy.periodic_lambda(p, st, oscs, c.end),
                         "lyapunov_window": None}
         out.attractors.append(a)

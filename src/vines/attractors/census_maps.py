@@ -81,9 +81,10 @@ def basin_slice(eta: float, omega: float, F: float, z_m0: ArrayLike, v_m0: Array
     the attractor table (regime, period, ke_ratio, xmax_m, basin_fraction within the
     slice), from_rest (index into the table) and the census for further use. With ``t_max``
     in census_kw also the asymptotic view: attractor_asymptotic (the attractor each point
-    is on at t_max), from_rest_asymptotic, and in the table basin_fraction_asymptotic and
-    status (persistent / transient / unresolved); attractors reached only after t_end are
-    in the table with basin_fraction 0."""
+    is on at t_max), from_rest_asymptotic, and in the table basin_fraction_asymptotic,
+    status (persistent / transient / unresolved) and regime_asymptotic (the regime label,
+    or quasi-periodic); attractors reached only after t_end are in the table with
+    basin_fraction 0."""
     c = census(eta, omega, F, states=slice_states(z_m0, v_m0), **census_kw)
     shape = (np.size(z_m0), np.size(v_m0))
     table = {k: [getattr(a, k) for a in c.attractors]
@@ -91,7 +92,7 @@ def basin_slice(eta: float, omega: float, F: float, z_m0: ArrayLike, v_m0: Array
     out = dict(attractor=c.members.reshape(shape), table=table,
                from_rest=-1 if c.from_rest is None else int(c.from_rest), census=c)
     if c.t_max is not None:
-        for k in ("basin_fraction_asymptotic", "status"):
+        for k in ("basin_fraction_asymptotic", "status", "regime_asymptotic"):
             table[k] = [a.asymptotic[k] for a in c.attractors]
         out["attractor_asymptotic"] = c.members_asymptotic.reshape(shape)
         out["from_rest_asymptotic"] = (-1 if c.from_rest_asymptotic is None

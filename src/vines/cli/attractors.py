@@ -47,7 +47,9 @@ def add_parser(subparsers) -> VinesArgumentParser:
     p.add_argument("--json", action="store_true", help="print one JSON object on stdout "
                    "(keys: attractors, from_rest, unsettled_fraction; with --t-max also "
                    "t_max, from_rest_asymptotic and per attractor basin_fraction_asymptotic, "
-                   "ci_asymptotic, status, lyapunov_max, lifetime, escape_to)")
+                   "ci_asymptotic, status, regime_asymptotic, lyapunov_max, lifetime, "
+                   "escape_to; modulation where a lasting motion was tested for "
+                   "quasi-periodicity)")
     return p
 
 
@@ -86,6 +88,9 @@ def _asymptotic_text(a: dict) -> str:
     ci = a["ci_asymptotic"]
     out = (f"  -> {a['status']}, asymptotic basin {a['basin_fraction_asymptotic']:.3f} "
            f"[{ci[0]:.3f}, {ci[1]:.3f}]")
+    if a.get("regime_asymptotic") == "quasi-periodic":
+        amp = a["modulation"]["amplitude"]
+        out += f", quasi-periodic (LO amplitude {amp[0]:.4g} to {amp[1]:.4g} L)"
     life = a.get("lifetime")
     if life:
         g = _fmt

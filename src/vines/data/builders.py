@@ -378,7 +378,8 @@ def basin_slice_dataset(z_m0, v_m0, res: dict, attrs: dict) -> xr.Dataset:
             cf(a, "attractor_asymptotic"))
         data["from_rest_asymptotic"] = xr.Variable((), np.int32(res["from_rest_asymptotic"]),
                                                    cf(a, "from_rest_asymptotic"))
-        for k, dt in (("basin_fraction_asymptotic", "f8"), ("status", "U16")):
+        for k, dt in (("basin_fraction_asymptotic", "f8"), ("status", "U16"),
+                      ("regime_asymptotic", "U16")):
             data[k] = xr.Variable(("attractor_index",),
                                   np.asarray(table[k], dt).reshape(n_att), cf(a, k))
     coords = {"z_m0": xr.Variable(("z_m0",), np.asarray(z_m0, float), cf(a, "z_m0")),

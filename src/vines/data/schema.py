@@ -185,6 +185,9 @@ BASIN_SLICE_ATTRS = {
     "basin_fraction_asymptotic": ("fraction of the slice's points on the attractor at t_max",
                                   "1"),
     "status": ("persistent, transient or unresolved (states followed to t_max)", ""),
+    "regime_asymptotic": ("regime of the attractor at t_max: the window's label, or "
+                          "quasi-periodic for a lasting motion whose strobe points fill a "
+                          "closed curve", ""),
     "from_rest_asymptotic": ("index of the attractor the start from rest is on at t_max "
                              "(-1: stopped early)", "1"),
 }

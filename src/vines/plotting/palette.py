@@ -44,6 +44,9 @@ REGIMES = {0: ("no impact", "0.85"), 1: ("1:1 symmetric", OKABE_ITO["orange"]),
 REGIMES_SPLIT = {**REGIMES, 4: (r"irregular, $\lambda_1$ < 0", OKABE_ITO["sky blue"]),
                  6: (r"chaotic ($\lambda_1$ > 0)", OKABE_ITO["vermillion"]),
                  7: (r"quasi-periodic ($\lambda_1$ = 0)", OKABE_ITO["blue"])}
+#: regimes of the census's asymptotic view beyond the window's labels (``regime_asymptotic``
+#: of the basin slices) -> (legend label, colour); quasi-periodic as in REGIMES_SPLIT
+CENSUS_REGIMES = {"quasi-periodic": ("quasi-periodic (torus)", REGIMES_SPLIT[7][1])}
 #: stability classes (value of ``cls`` in the stability maps) -> (label, colour); the
 #: paper's orange / black / white, grey where it leaves points without a 1:1 orbit white
 CLASSES = {0: ("no admissible 1:1", "0.6"), 1: ("symmetric stable 1:1", OKABE_ITO["orange"]),

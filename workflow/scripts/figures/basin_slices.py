@@ -4,7 +4,7 @@ its own colour (legend: regime, KE ratio, share of the slice), the start from re
 Top row: the window view (the attractor the state is on at t_end); with the asymptotic view
 in the datasets (config t_max) a second row: the attractor the same state is on at t_max,
 in the same colours, the legend giving each attractor's status (persistent / transient /
-unresolved)."""
+unresolved) and its regime at t_max (a lasting motion on a torus: quasi-periodic)."""
 import numpy as np
 from matplotlib.colors import BoundaryNorm, ListedColormap
 
@@ -30,6 +30,16 @@ def mirror_notes(ds, shown: int) -> list:
                 notes[k] = f", mirror image of {j + 1}"
                 break
     return notes
+
+
+def regime_label(ds, k: int, view: str) -> str:
+    """Attractor k's regime: the window's label; in the asymptotic view the label at t_max
+    (``regime_asymptotic``: quasi-periodic for a lasting motion on a torus) where the
+    dataset has it, its legend text from the palette."""
+    label = str(ds["regime"].values[k])
+    if view == "asymptotic" and "regime_asymptotic" in ds:
+        label = str(ds["regime_asymptotic"].values[k])
+    return P.palette.CENSUS_REGIMES.get(label, (label,))[0]
 
 
 #: view -> (attractor map, basin fraction, from-rest index) variables
@@ -58,7 +68,8 @@ def draw(ax, ds, view="window"):
         mark = " (from rest)" if k == rest else ""
         status = f", {ds['status'].values[k]}" if view == "asymptotic" else ""
         handles.append(ax.fill_between([], [], color=COLOURS[k], label=(
-            f"{k + 1}: {ds['regime'].values[k]}, KE {float(ds['ke_ratio'].values[k]):.3f}, "
+            f"{k + 1}: {regime_label(ds, k, view)}, "
+            f"KE {float(ds['ke_ratio'].values[k]):.3f}, "
             f"{100 * frac:.1f} %{status}{notes[k]}{mark}")))
     ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.14), fontsize=7,
               frameon=False, ncol=1)
