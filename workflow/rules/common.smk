@@ -86,6 +86,7 @@ WORK_PRECISION_SETTINGS = {k: v for k, v in WORK_PRECISION.items() if k != "case
 CONVERGENCE = config["convergence"]
 DESIGNS = config["designs"]
 ORBIT_ATLASES = config["orbit_atlases"]
+SHOCKS = config["shocks"]
 
 # A results folder that cannot be written (permissions, a read-only disk, a file in the
 # way) would fail every job: stop before any job, in one line.
@@ -165,12 +166,13 @@ STAGE_ENTRIES = {
     "convergence": CONVERGENCE,
     "design": DESIGNS,
     "orbit_atlas": ORBIT_ATLASES,
+    "shock": SHOCKS,
 }
 
 
 #: the stages behind the paper's figures (rule `paper`, the default target); the others
-#: (Lyapunov exponents, attractor censuses, solver studies, design, orbit atlas) go beyond
-#: the paper and run with rule `all`
+#: (Lyapunov exponents, attractor censuses, solver studies, design, orbit atlas, shock) go
+#: beyond the paper and run with rule `all`
 PAPER_STAGES = (
     "extract_measures",
     "bifurcation_sweep",

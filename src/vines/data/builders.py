@@ -45,6 +45,7 @@ from .schema import (
     REFERENCES,
     ROBUST_ASYMPTOTIC_ATTRS,
     ROBUST_ATTRS,
+    SHOCK_ATTRS,
     STABILITY_ATTRS,
     STABILITY_CLASS_FLAGS,
     SWEEP_INSTANCE_ATTRS,
@@ -643,3 +644,73 @@ def atlas_dataset(eta, omega, families: dict, arrays: dict, attrs: dict) -> xr.D
               "family": xr.Variable(fam, np.asarray(keys), cf(ATLAS_FAMILY_ATTRS, "family"))}
     own = {"Conventions": CONVENTIONS, "note": ATLAS_NOTE}
     return xr.Dataset(data, coords=coords, attrs={**own, **attrs})
+
+
+def _sv(name, dims, data, dtype="f8") -> xr.Variable:
+    return xr.Variable(dims, np.asarray(data, dtype=dtype), cf(SHOCK_ATTRS, name))
+
+
+def _padded(values, n: int, fill) -> np.ndarray:
+    """``values`` followed by ``fill`` up to length ``n`` (a run that stopped early)."""
+    v = np.asarray(values, dtype=float)
+    return np.concatenate([v, np.full(n - v.size, fill)])
+
+
+def shock_dataset(curve: dict, histories: list, history_energies, time_periods,
+                  attrs: dict) -> xr.Dataset:
+    """A shock study: ``curve`` (``studies.shock.shock`` over an energy range) and
+    ``histories`` (``shock`` at each of ``history_energies`` [J]) sampled at
+    ``time_periods`` (natural periods of the LO). Times in s; a time not reached (None) is NaN. ``attrs`` (provenance) are
+    merged over the study's own (design, structure, window)."""
+    c, inp = curve["curve"], curve["inputs"]
+    E = ("energy",)
+    vin = c["vines"]
+    data = {"velocity": _sv("velocity", E, c["velocity_m_s"]),
+            **{f"vines_{k}": _sv(f"vines_{k}", E, [_nan(x) for x in vin[k]])
+               for k in ("dissipated_fraction", "by_damping", "by_impacts", "t_10", "t_1",
+                         "t_reached")},
+            "vines_n_impacts": _sv("vines_n_impacts", E, vin["n_impacts"], "i4"),
+            "vines_n_sticks": _sv("vines_n_sticks", E, curve["vines"]["n_sticks"], "i4"),
+            "vines_status": xr.Variable(E, np.asarray(vin["status"], dtype=str),
+                                        cf(SHOCK_ATTRS, "vines_status"))}
+    tmd, lo = curve["tmd"], curve["lo_alone"]
+    scalars = {"tmd_dissipated_fraction": tmd["dissipated_fraction"],
+               "tmd_by_damping": tmd["by_damping"], "tmd_by_absorber": tmd["by_absorber"],
+               "tmd_t_10": tmd["t_10"], "tmd_t_1": tmd["t_1"],
+               "tmd_frequency_ratio": tmd["design"]["frequency_ratio"],
+               "tmd_damping_ratio": tmd["design"]["damping_ratio"],
+               "lo_alone_dissipated_fraction": lo["dissipated_fraction"],
+               "lo_alone_t_10": lo["t_10"], "lo_alone_t_1": lo["t_1"],
+               "activation_energy": curve["activation"]["energy_J"],
+               "activation_velocity": curve["activation"]["velocity_m_s"],
+               "optimal_energy": curve["optimal"]["energy_J"],
+               "optimal_dissipated_fraction": curve["optimal"]["dissipated_fraction"]}
+    data.update({k: _sv(k, (), _nan(v)) for k, v in scalars.items()})
+    data.update(_shock_histories(histories, np.size(time_periods)))
+    coords = {"energy": _sv("energy", E, c["energy_J"]),
+              "history_energy": _sv("history_energy", ("history_energy",),
+                                    history_energies),
+              "time_periods": _sv("time_periods", ("time_periods",), time_periods)}
+    own = {"Conventions": CONVENTIONS, "eta": inp["eta"], "clearance_m": inp["clearance_m"],
+           "M_kg": inp["M_kg"], "k_N_per_m": inp["k_N_per_m"], "c_Ns_per_m": inp["c_Ns_per_m"],
+           "d": inp["d"], "r": inp["r"], "periods": inp["periods"],
+           "omega_band": np.asarray(inp["omega_band"], dtype="f8"),
+           "natural_period_s": curve["scales"]["natural_period_s"]}
+    return xr.Dataset(data, coords=coords, attrs={**own, **attrs})
+
+
+def _shock_histories(histories: list, n: int) -> dict:
+    """The decays in time: the VI NES's per history energy (padded after a run that
+    stopped), the linear systems' once (their fractions do not depend on E0)."""
+    H, T = ("history_energy", "time_periods"), ("time_periods",)
+    vin = [h["history"]["vines"] for h in histories]
+    out = {"vines_remaining": _sv("vines_remaining", H, [_padded(v["remaining_fraction"], n,
+                                                                  np.nan) for v in vin]),
+           "vines_history_by_impacts": _sv("vines_history_by_impacts", H,
+                                           [_padded(v["by_impacts"], n, np.nan) for v in vin]),
+           "vines_history_n_impacts": _sv("vines_history_n_impacts", H,
+                                          [_padded(v["n_impacts"], n, -1) for v in vin], "i4")}
+    for name in ("tmd", "lo_alone"):
+        out[f"{name}_remaining"] = _sv(f"{name}_remaining", T,
+                                       histories[0]["history"][name]["remaining_fraction"])
+    return out

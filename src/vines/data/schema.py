@@ -329,3 +329,50 @@ ATLAS_ATTRS = {
 ATLAS_FLAGS = {"flag_values": np.array([0, 1], dtype="i1"), "flag_meanings": "no yes"}
 ATLAS_NOTE = ("finite search: a family marked absent may exist where no seed reached it "
               "(docs/bifurcation.md)")
+
+# ------------------------------------------------------------------ shock
+
+#: shock datasets (``vines.studies.shock``): the curve against the initial energy (VI NES per
+#: energy, the linear systems once: their fractions do not depend on it), the decays in time
+SHOCK_ATTRS = {
+    "energy": ("initial energy E0 = M V0^2/2 of the LO", "J"),
+    "velocity": ("initial LO velocity V0 of the impulse", "m s-1"),
+    "history_energy": ("initial energy E0 of a decay in time", "J"),
+    "time_periods": ("time after the shock in natural periods 2 pi/w0 of the LO", "1"),
+    "vines_dissipated_fraction": ("fraction of E0 dissipated within the window by the LO "
+                                  "with the VI NES", "1"),
+    "vines_by_damping": ("fraction of E0 dissipated by the LO's damping (VI NES)", "1"),
+    "vines_by_impacts": ("fraction of E0 dissipated by the impacts (VI NES)", "1"),
+    "vines_n_impacts": ("impacts within the window (VI NES)", "1"),
+    "vines_n_sticks": ("sticking events within the window (VI NES)", "1"),
+    "vines_t_10": ("time to decay to 10 % of E0 (VI NES; NaN: not within the window)", "s"),
+    "vines_t_1": ("time to decay to 1 % of E0 (VI NES; NaN: not within the window)", "s"),
+    "vines_t_reached": ("end of the VI NES run: the window's end unless the solver stopped "
+                        "early (status)", "s"),
+    "vines_status": ("solver status of the VI NES run", ""),
+    "tmd_dissipated_fraction": ("fraction of E0 dissipated within the window with the TMD "
+                                "(any E0)", "1"),
+    "tmd_by_damping": ("fraction of E0 dissipated by the LO's damping with the TMD", "1"),
+    "tmd_by_absorber": ("fraction of E0 dissipated by the TMD's damper", "1"),
+    "tmd_t_10": ("time to decay to 10 % of E0 with the TMD (NaN: not within the window)", "s"),
+    "tmd_t_1": ("time to decay to 1 % of E0 with the TMD (NaN: not within the window)", "s"),
+    "tmd_frequency_ratio": ("TMD tuning w_a/w0 (tuned for omega_band as vines design)", "1"),
+    "tmd_damping_ratio": ("TMD damping ratio c_a/(2 m_a w_a)", "1"),
+    "lo_alone_dissipated_fraction": ("fraction of E0 dissipated within the window by the LO "
+                                     "alone (any E0)", "1"),
+    "lo_alone_t_10": ("time to decay to 10 % of E0, LO alone (NaN: not within the window)",
+                      "s"),
+    "lo_alone_t_1": ("time to decay to 1 % of E0, LO alone (NaN: not within the window)", "s"),
+    "activation_energy": ("least E0 at which the ball is hit (the free LO's first peak "
+                          "reaches the wall)", "J"),
+    "activation_velocity": ("initial LO velocity of activation_energy", "m s-1"),
+    "optimal_energy": ("E0 of the curve at which the VI NES dissipates most", "J"),
+    "optimal_dissipated_fraction": ("largest dissipated fraction of the VI NES on the curve",
+                                    "1"),
+    "vines_remaining": ("energy left with the VI NES, fraction of E0 (NaN: after the run "
+                        "stopped)", "1"),
+    "vines_history_by_impacts": ("fraction of E0 dissipated by impacts so far (VI NES)", "1"),
+    "vines_history_n_impacts": ("impacts so far (VI NES; -1: after the run stopped)", "1"),
+    "tmd_remaining": ("energy left with the TMD, fraction of E0", "1"),
+    "lo_alone_remaining": ("energy left, LO alone, fraction of E0", "1"),
+}

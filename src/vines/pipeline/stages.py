@@ -484,3 +484,34 @@ def orbit_atlas(grid: dict, *, sim_t_end: float, model: dict, code: str, title: 
                              settings=model, code_version=code)
     attrs.update(F=F, sim_t_end=float(sim_t_end))
     return builders.atlas_dataset(eta, omega, families, arrays, attrs)
+
+
+# ------------------------------------------------------------------ shock
+
+#: keys of a ``shocks`` entry passed to ``studies.shock.shock`` as they are
+SHOCK_KEYS = ("eta", "clearance_m", "periods", "omega_band", "M_kg", "k_N_per_m",
+              "c_Ns_per_m", "d")
+
+
+def shock(spec: dict, *, model: dict, code: str, title: str):
+    """Dataset of one ``shocks`` entry: ``studies.shock.shock`` over the entry's energy range
+    (the curve) and at each of its history energies (the decays in time), with the model's
+    r (the structure's damping is the entry's: M, k, c or d, Table 1 by default)."""
+    import math
+
+    from ..studies.shock import report_times
+    from ..studies.shock import shock as free_decay
+    kw = {k: spec[k] for k in SHOCK_KEYS if spec.get(k) is not None}
+    lo, hi = spec["energy_range_J"]
+    curve = free_decay(**kw, r=model["r"], energy_range=(lo, hi, spec["n_energies"]))
+    histories = [free_decay(**kw, r=model["r"], energy_J=E)
+                 for E in spec["history_energies_J"]]
+    opt = curve["optimal"]
+    print(f"shock: {spec['n_energies'] + len(histories)} exact runs; VI NES best "
+          f"{opt['dissipated_fraction']:.4f} at {opt['energy_J']:.4g} J, TMD "
+          f"{curve['tmd']['dissipated_fraction']:.4f}, LO alone "
+          f"{curve['lo_alone']['dissipated_fraction']:.4f} within {spec['periods']:g} periods")
+    attrs = provenance_attrs(title=title, config_subset={"spec": spec, "model": model},
+                             settings={"r": model["r"]}, code_version=code)
+    periods = report_times(curve["inputs"]["periods"]) / (2.0 * math.pi)
+    return builders.shock_dataset(curve, histories, spec["history_energies_J"], periods, attrs)
