@@ -9,6 +9,7 @@ from vines.pipeline.codeversion import (
     ATTRACTORS,
     COMPUTE,
     FIGURES,
+    MODELS,
     NOT_TRACKED,
     PKG_DIR,
     STUDIES,
@@ -16,7 +17,8 @@ from vines.pipeline.codeversion import (
     tracked_files,
 )
 
-KINDS = {"compute": COMPUTE, "studies": STUDIES, "attractors": ATTRACTORS, "figures": FIGURES}
+KINDS = {"compute": COMPUTE, "studies": STUDIES, "attractors": ATTRACTORS, "figures": FIGURES,
+         "models": MODELS}
 MODULES = sorted(p.relative_to(PKG_DIR) for p in PKG_DIR.rglob("*.py")
                  if p.relative_to(PKG_DIR).parts[0] not in NOT_TRACKED)
 
@@ -46,9 +48,11 @@ def test_editing_any_module_changes_a_code_version(pkg_copy, module):
     if module.parts[0] == "plotting":
         assert changed == {"figures"}
     if module.parts[0] in ("core", "orbits", "data", "pipeline"):
-        assert {"compute", "studies", "attractors"} <= changed and "figures" not in changed
+        assert {"compute", "studies", "attractors", "models"} <= changed and "figures" not in changed
     if module.parts[0] == "attractors":
         assert changed == {"attractors"}
+    if module.parts[0] == "slowflow":
+        assert changed == {"models"}
 
 
 def test_cli_changes_no_code_version(pkg_copy):
@@ -63,7 +67,7 @@ def test_cli_changes_no_code_version(pkg_copy):
 
 def test_every_subpackage_is_known():
     subs = {p.parent.name for p in PKG_DIR.glob("*/__init__.py")} - set(NOT_TRACKED)
-    assert subs == set(STUDIES) | set(ATTRACTORS) | set(FIGURES)
+    assert subs == set(STUDIES) | set(ATTRACTORS) | set(FIGURES) | set(MODELS)
     with pytest.raises(ValueError, match="no subpackage"):
         tracked_files(("nonexistent",))
     assert all(isinstance(p, Path) for p in tracked_files(COMPUTE))

@@ -8,7 +8,8 @@ import pytest
 NUMBA_FREE = ["vines", "vines.plotting", "vines.data.builders", "vines.data.netcdf",
               "vines.pipeline.config", "vines.pipeline.axes",
               "vines.pipeline.codeversion", "vines.pipeline.stages", "vines.pipeline.jobs",
-              "vines.studies.design_checks", "vines.studies.shock", "vines.cli.shock"]
+              "vines.studies.design_checks", "vines.studies.shock", "vines.cli.shock",
+              "vines.slowflow", "vines.cli.slowflow"]
 
 
 def _loaded_after(code: str) -> set[str]:

@@ -24,8 +24,9 @@ STUDIES = COMPUTE + ("reference", "studies")               # work-precision, con
 ATTRACTORS = COMPUTE + ("attractors",)                     # robust-TET maps, basin slices
 DESIGN = STUDIES + ("attractors",)                         # designs (census of the attractors)
 FIGURES = ("plotting",)                                    # figure rules (+ their script)
+MODELS = STUDIES + ("slowflow",)                           # the slow flow beside the exact model
 #: every kind above (a job's code param must be the version of one of them)
-KINDS = (COMPUTE, STUDIES, ATTRACTORS, DESIGN, FIGURES)
+KINDS = (COMPUTE, STUDIES, ATTRACTORS, DESIGN, FIGURES, MODELS)
 
 
 def tracked_files(subpackages, pkg_dir=PKG_DIR) -> list[Path]:

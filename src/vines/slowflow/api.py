@@ -1,0 +1,232 @@
+"""The public slow flow: validated inputs, ``response`` at one point and ``frc`` over many
+frequencies, with the regime and the warnings outside the expansion's assumptions."""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..core.params import (
+    D_DEFAULT,
+    PARAM_BOUNDS,
+    R_DEFAULT,
+    ParameterError,
+    check_param,
+    check_real,
+    check_reals,
+)
+from . import manifold as sim
+from .response import Model, Roots, fixed_points, linear_amplitude
+
+#: above these the slow flow answers with a warning; above the maxima it refuses
+ETA_WARN, ETA_MAX = 0.1, 0.5
+D_WARN, D_MAX = 0.1, 0.5
+F_WARN = 0.2
+DETUNING_WARN = 0.2          # |Omega - 1|
+#: at most this many frequencies in one FRC
+N_OMEGA_MAX = 10_000_000
+
+REGIMES = ("two-impact", "SMR", "no impact")
+
+
+def model(eta, F, r, d) -> Model:
+    """The validated scalars; ParameterError where the slow flow does not apply."""
+    eta = _checked("eta", eta, "> 0 and <= 0.5 (a light ball)", lo_open=True, hi=ETA_MAX)
+    d = _checked("d", d, ">= 0 and <= 0.5 (light damping)", hi=D_MAX)
+    r = _checked("r", r, ">= 0 and < 1 (impacts that dissipate)", hi=1.0, hi_open=True)
+    return Model(eta=eta, F=check_param("F", F), r=r, d=d)
+
+
+def _checked(name: str, value, allowed: str, **bounds) -> float:
+    """check_real with the slow flow's own bounds, the message saying why."""
+    try:
+        return check_real(name, value, lo=0.0, **bounds)
+    except ParameterError:
+        raise ParameterError(name, value, f"must be a finite number {allowed} for the slow "
+                                          f"flow (otherwise use the exact solver)") from None
+
+
+def warnings_for(m: Model, omegas: np.ndarray) -> list[str]:
+    """One line per assumption of the slow flow that the inputs leave (docs/slowflow.md)."""
+    out = []
+    if m.eta > ETA_WARN:
+        out.append(f"eta = {m.eta:g} is not small (> {ETA_WARN:g}): the slow flow's error "
+                   f"is O(eta)")
+    if m.d > D_WARN:
+        out.append(f"d = {m.d:g} is not small (> {D_WARN:g}): the slow flow's error is O(d)")
+    if m.F > F_WARN:
+        out.append(f"F = {m.F:g} is not small (> {F_WARN:g}): the LO's motion is not "
+                   f"near-harmonic")
+    far = np.abs(omegas - 1.0) > DETUNING_WARN
+    if far.any():
+        w = omegas[far][np.argmax(np.abs(omegas[far] - 1.0))]
+        out.append(f"omega = {w:g} is far from resonance (|omega - 1| > {DETUNING_WARN:g}): "
+                   f"the detuning is not small")
+    return out
+
+
+@dataclass(frozen=True)
+class SlowFlowOrbit:
+    """One fixed point of the slow flow: a symmetric two-impact (1:1) orbit.
+
+    amplitude: max |z_m| over a period (units of L); ball_amplitude: max |z_b|; phase:
+    forcing phase mod(Omega t + phi, 2 pi) at the impact on wall L (as ``PeriodicOrbit``'s
+    phase_L); stable: stable in the slow flow and on the SIM's stable branch; branch: the SIM
+    branch ("stable", "unstable" between the fold and X = 1, "flip" beyond the flip).
+    """
+
+    amplitude: float
+    ball_amplitude: float
+    phase: float
+    stable: bool
+    branch: str
+
+    def to_dict(self) -> dict:
+        return {"amplitude": self.amplitude, "ball_amplitude": self.ball_amplitude,
+                "phase": self.phase, "stable": self.stable, "branch": self.branch}
+
+
+def regimes(R: Roots, x_linear: np.ndarray) -> np.ndarray:
+    """Per frequency: 'two-impact' where a fixed point attracts (slow-stable on the SIM's
+    stable branch, or beyond its flip); else 'no impact' where the LO without impacts stays
+    inside the clearance (amplitude < 1); else 'SMR' (relaxation around the fold)."""
+    attracts = np.zeros(x_linear.size, dtype=bool)
+    attracts[R.index[R.attracting]] = True
+    return np.where(attracts, "two-impact", np.where(x_linear < 1.0, "no impact", "SMR"))
+
+
+def flip_warning(R: Roots) -> list[str]:
+    """The warning where a regime rests on a fixed point beyond the flip."""
+    beyond = R.attracting & ~R.stable
+    if not beyond.any():
+        return []
+    return [f"the two-impact fixed point at omega = {R.omega[beyond][0]:g} lies beyond the "
+            f"flip of the SIM (LO amplitude {R.X[beyond][0]:.4g} > x_flip): the symmetric "
+            f"1:1 orbit is unstable there, the impacts period-double at about this amplitude"]
+
+
+@dataclass(frozen=True)
+class SlowFlowResponse:
+    """The slow flow's answer at one (eta, omega, F, r, d); lengths in units of L.
+
+    rho, xi_min (the SIM's fold: activation threshold), x_flip (the upper end of its stable
+    branch), orbits (every fixed point, stable first), regime, smr (None or the relaxation
+    cycle's LO amplitude range (xi_min, 1)), linear_amplitude (the LO without impacts),
+    warnings (the assumptions the inputs leave).
+    """
+
+    eta: float
+    omega: float
+    F: float
+    r: float
+    d: float
+    rho: float
+    xi_min: float
+    x_flip: float
+    orbits: list
+    regime: str
+    smr: tuple | None
+    linear_amplitude: float
+    warnings: list
+
+    def to_dict(self) -> dict:
+        return {"model": "slowflow",
+                "params": {"eta": self.eta, "omega": self.omega, "F": self.F, "r": self.r,
+                           "d": self.d},
+                "rho": self.rho, "xi_min": self.xi_min, "x_flip": self.x_flip,
+                "orbits": [o.to_dict() for o in self.orbits], "regime": self.regime,
+                "smr": None if self.smr is None else {"amplitude_low": self.smr[0],
+                                                      "amplitude_high": self.smr[1]},
+                "linear_amplitude": self.linear_amplitude, "warnings": list(self.warnings)}
+
+
+def _orbits(R: Roots) -> list[SlowFlowOrbit]:
+    out = [SlowFlowOrbit(amplitude=float(R.X[j]), ball_amplitude=float(R.ball_amplitude[j]),
+                         phase=float(R.phase[j]), stable=bool(R.stable[j]),
+                         branch=sim.BRANCH_NAMES[int(R.branch[j])])
+           for j in range(R.X.size)]
+    return sorted(out, key=lambda o: (not o.stable, o.amplitude))
+
+
+def smr_range(m: Model, regime: str) -> tuple | None:
+    """The relaxation cycle's LO amplitude range: from the fold xi_min (impacts stop) to
+    X = 1 (a ball at rest in the centre is reached again: the jump back onto the SIM)."""
+    return (sim.xi_min(m.rho), 1.0) if regime == "SMR" else None
+
+
+def response(eta, omega, F, *, r=R_DEFAULT, d=D_DEFAULT) -> SlowFlowResponse:
+    """The slow flow at one point: its fixed points, their stability and the regime.
+
+    ParameterError for eta > 0.5, d > 0.5 or r = 1 (no impact dissipation: no SIM);
+    ``warnings`` lists the assumptions the inputs leave (eta, d, F or |omega - 1| not small).
+    """
+    m = model(eta, F, r, d)
+    W = np.array([check_param("omega", omega)])
+    R = fixed_points(m, W)
+    xl = linear_amplitude(m, W)
+    regime = str(regimes(R, xl)[0])
+    return SlowFlowResponse(eta=m.eta, omega=float(W[0]), F=m.F, r=m.r, d=m.d, rho=m.rho,
+                            xi_min=sim.xi_min(m.rho), x_flip=sim.x_flip(m.rho),
+                            orbits=_orbits(R), regime=regime, smr=smr_range(m, regime),
+                            linear_amplitude=float(xl[0]),
+                            warnings=warnings_for(m, W) + flip_warning(R))
+
+
+@dataclass(frozen=True)
+class FRC:
+    """The slow flow's frequency-response curves: one row per fixed point (all branches).
+
+    Rows: omega, amplitude (max |z_m|, units of L), ball_amplitude, phase (forcing phase at
+    the L impact, rad), stable, branch (SIM branch code: 1 stable, 2 unstable, 3 flip;
+    ``manifold.BRANCH_*``), slow_stable (stable in the slow flow, whatever the branch).
+    Per frequency of ``omega_grid``: linear_amplitude, regime.
+    """
+
+    omega: np.ndarray
+    amplitude: np.ndarray
+    ball_amplitude: np.ndarray
+    phase: np.ndarray
+    stable: np.ndarray
+    branch: np.ndarray
+    slow_stable: np.ndarray
+    omega_grid: np.ndarray
+    linear_amplitude: np.ndarray
+    regime: np.ndarray
+    rho: float
+    xi_min: float
+    x_flip: float
+    warnings: list
+
+    def to_dict(self) -> dict:
+        rows = [{"omega": w, "amplitude": a, "ball_amplitude": b, "phase": p,
+                 "stable": bool(s), "branch": sim.BRANCH_NAMES[int(c)]}
+                for w, a, b, p, s, c in zip(self.omega, self.amplitude, self.ball_amplitude,
+                                            self.phase, self.stable, self.branch,
+                                            strict=True)]
+        regimes = [{"omega": w, "regime": str(g), "linear_amplitude": x}
+                   for w, g, x in zip(self.omega_grid, self.regime, self.linear_amplitude,
+                                      strict=True)]
+        return {"model": "slowflow", "rho": self.rho, "xi_min": self.xi_min,
+                "x_flip": self.x_flip, "frc": rows, "regimes": regimes,
+                "smr": {"amplitude_low": self.xi_min, "amplitude_high": 1.0},
+                "warnings": list(self.warnings)}
+
+
+def frc_of(m: Model, W: np.ndarray) -> FRC:
+    """The FRC of a validated model over the frequencies W (no checks)."""
+    R = fixed_points(m, W)
+    xl = linear_amplitude(m, W)
+    return FRC(omega=R.omega, amplitude=R.X, ball_amplitude=R.ball_amplitude,
+               phase=R.phase, stable=R.stable, branch=R.branch,
+               slow_stable=R.slow_stable, omega_grid=W, linear_amplitude=xl,
+               regime=regimes(R, xl), rho=m.rho, xi_min=sim.xi_min(m.rho),
+               x_flip=sim.x_flip(m.rho), warnings=warnings_for(m, W) + flip_warning(R))
+
+
+def frc(eta, omegas, F, *, r=R_DEFAULT, d=D_DEFAULT) -> FRC:
+    """The slow flow's FRC at the frequencies ``omegas`` (any order; all branches)."""
+    m = model(eta, F, r, d)
+    lo, lo_open, hi = PARAM_BOUNDS["omega"]
+    W = check_reals("omegas", omegas, lo=lo, lo_open=lo_open, hi=hi, max_size=N_OMEGA_MAX)
+    return frc_of(m, W)
+
