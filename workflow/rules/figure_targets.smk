@@ -108,6 +108,8 @@ FIG_INPUTS = {
     "atlas": {"atlases": _atlases("atlas"), "measures": _measures("fig12")},
     # beyond the paper: free decay after a shock against the TMD
     "shock": {"shocks": _shocks("shock")},
+    # beyond the paper: the slow flow against the exact model, amplitudes and costs
+    "model_ladder": {"ladders": _named("model_ladder", "model_ladder")},
     # beyond the paper: the solver studies
     "workprecision": {
         "cases": [dataset("work_precision", c) for c in WORK_PRECISION["cases"]]

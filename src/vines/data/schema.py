@@ -376,3 +376,49 @@ SHOCK_ATTRS = {
     "tmd_remaining": ("energy left with the TMD, fraction of E0", "1"),
     "lo_alone_remaining": ("energy left, LO alone, fraction of E0", "1"),
 }
+
+# ------------------------------------------------------------------ model ladder
+
+#: model-ladder datasets (``vines.studies.model_ladder``): per panel (eta) the grid, the
+#: slow flow's and the exact orbits' amplitudes (padded rows), the continued branches, the
+#: simulation from rest, the slow flow's error and each model's cost
+MODEL_LADDER_ATTRS = {
+    "eta": (COORD_ATTRS["eta"]["long_name"] + " of the panel", "1"),
+    "sigma": ("scaled detuning sigma = (omega - 1)/eta of the grid", "1"),
+    "sigma_dense": ("scaled detuning of the slow flow's dense curve", "1"),
+    "model": ("model of the ladder", ""),
+    "tolerance": ("relative amplitude error tolerance of a band", "1"),
+    "F": ("forcing amplitude F = f eta of the panel", "1"),
+    "omega": (COORD_ATTRS["omega"]["long_name"] + " of the grid", "1"),
+    "omega_dense": (COORD_ATTRS["omega"]["long_name"] + " of the dense curve", "1"),
+    "xi_min": ("activation threshold of the slow flow: the LO amplitude at the fold of its "
+               "slow invariant manifold", "1"),
+    "slowflow_amplitude": ("LO amplitude max |z_m| of each slow-flow fixed point (units of "
+                           "L; NaN: no more fixed points)", "1"),
+    "slowflow_stable": ("1 where the slow-flow fixed point is stable", "1"),
+    "slowflow_error": ("relative difference of the slow flow's amplitude from the nearest "
+                       "exact symmetric 1:1 orbit at the same omega (NaN: none)", "1"),
+    "dense_amplitude": ("LO amplitude of each slow-flow fixed point on the dense curve", "1"),
+    "dense_stable": ("1 where the fixed point on the dense curve is stable", "1"),
+    "exact_amplitude": ("LO amplitude max |z_m| over a period of each exact admissible "
+                        "symmetric 1:1 orbit (map solve; NaN: no more orbits)", "1"),
+    "exact_stable": ("1 where the exact orbit is stable (map eigenvalues)", "1"),
+    "continuation_omega": ("omega along a continued exact branch (NaN: padding)", "1"),
+    "continuation_amplitude": ("LO amplitude along a continued exact branch (NaN: not "
+                               "admissible or padding)", "1"),
+    "continuation_stable": ("1 where the continued orbit is stable", "1"),
+    "simulation_xmax": ("max |z_m| over the window of the exact simulation from rest "
+                        "(units of L)", "1"),
+    "simulation_regime": ("regime of the simulation from rest", ""),
+    "n_slowflow": ("slow-flow fixed points at the grid frequency", "1"),
+    "n_exact": ("exact admissible symmetric 1:1 orbits found at the grid frequency", "1"),
+    "error_max": ("largest relative amplitude difference of the slow flow's fixed points from "
+                  "the exact orbits, both sorted (0: neither has an orbit; NaN: their "
+                  "numbers differ)", "1"),
+    "band_lo": ("lowest omega of the widest run of grid frequencies within the tolerance "
+                "(NaN: none)", "1"),
+    "band_hi": ("highest omega of that run (NaN: none)", "1"),
+    "share_within": ("share of the grid frequencies within the tolerance", "1"),
+    "seconds": ("wall-clock time of the model over the panel's grid (time.perf_counter; "
+                "the slow flow: mean of repeated calls)", "s"),
+}

@@ -398,6 +398,26 @@ def check_shocks(config: dict, model: dict, limits: dict) -> None:
         _check_shock(f"shocks.{name}", sh, limits)
 
 
+def _check_model_ladder(key: str, ml: dict, model: dict, limits: dict) -> None:
+    """One ``model_ladders`` entry through ``studies.model_ladder.check_inputs`` (the
+    validators of the slow flow and of the exact solver), its grids within the limits."""
+    from ..studies.model_ladder import check_inputs
+    try:
+        check_inputs(**{k: v for k, v in ml.items() if k != "description"}, r=model["r"],
+                     d=model["d"])
+    except ParameterError as err:
+        sub = "etas" if err.name == "eta" else err.name
+        raise ConfigError(f"{key}.{sub}", f"{err.value!r}: {err.allowed}") from None
+    _check_t_end(f"{key}.t_end", ml["t_end"], limits)
+    _check_size(key, len(ml["etas"]) * max(ml["n_omega"], ml["n_dense"]), limits,
+                "frequencies (etas x max(n_omega, n_dense))")
+
+
+def check_model_ladders(config: dict, model: dict, limits: dict) -> None:
+    for name, ml in config["model_ladders"].items():
+        _check_model_ladder(f"model_ladders.{name}", ml, model, limits)
+
+
 def atlas_grid(config: dict, name: str) -> dict:
     """The (eta, omega, F) of ``orbit_atlases[name]``: its own, or its stability map's."""
     oa = config["orbit_atlases"][name]
@@ -449,5 +469,6 @@ def check_physical(config: dict) -> None:
                                     "root_tol")}, limits)
     for check in (check_grids, check_sweeps, check_lyapunov_sweeps, check_branches,
                   check_maps_and_points, check_attractor_maps, check_boundaries, check_studies,
-                  check_designs, check_orbit_atlases, check_shocks):
+                  check_designs, check_orbit_atlases, check_shocks,
+                  check_model_ladders):
         check(config, model, limits)
