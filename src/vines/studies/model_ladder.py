@@ -46,7 +46,7 @@ class Ladder:
     xi_min: float
 
 
-def _timed(fn, min_time: float = MIN_TIME):
+def timed(fn, min_time: float = MIN_TIME):
     """(fn(), mean seconds per call over repeated calls lasting >= min_time)."""
     t0 = time.perf_counter()
     out = fn()
@@ -72,7 +72,7 @@ def _frc_rows(frc, W: np.ndarray) -> dict:
 def slowflow_rows(eta, W, F, r, d) -> tuple[dict, float, float]:
     """(rows, seconds per FRC over W, xi_min) of the slow flow (``vines.slowflow.frc``)."""
     from ..slowflow import frc
-    out, seconds = _timed(lambda: frc(eta, W, F, r=r, d=d))
+    out, seconds = timed(lambda: frc(eta, W, F, r=r, d=d))
     return _frc_rows(out, W), seconds, float(out.xi_min)
 
 
