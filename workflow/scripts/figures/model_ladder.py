@@ -13,19 +13,17 @@ def main(sm):
     ladders = [M.model_ladder(p) for p in sm.input.ladders]
     n = max(ds.sizes["eta"] for ds in ladders)
     fig, axes = P.figure(2 * len(ladders), n, width=3.7 * n + 0.4,
-                         height=3.8 * len(ladders) + 0.8)
-    i = 0
+                         height=7.0 * len(ladders) + 1.4)
     for row, ds in enumerate(ladders):
         top, bottom = axes[2 * row], axes[2 * row + 1]
         for k in range(ds.sizes["eta"]):
             M.frc_panel(top[k], ds, k)
             M.error_panel(bottom[k], ds, k)
             eta, F = float(ds["eta"][k]), float(ds["F"][k])
-            P.panel_label(top[k], i, rf"$\eta$ = {eta:g}, $F$ = {F:g}")
-            P.panel_label(bottom[k], i + 1, "slow flow against the exact orbits")
+            P.panel_label(top[k], 2 * row * n + k, rf"$\eta$ = {eta:g}, $F$ = {F:g}")
+            P.panel_label(bottom[k], (2 * row + 1) * n + k, "slow flow against the exact orbits")
             bottom[k].text(0.02, 0.02, M.cost_line(ds, k).replace(", ", "\n"),
                            transform=bottom[k].transAxes, fontsize=6.5, va="bottom")
-            i += 2
             print(M.summary(ds, k))
         for k in range(ds.sizes["eta"], n):
             top[k].set_visible(False)
