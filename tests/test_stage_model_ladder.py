@@ -1,19 +1,16 @@
 """The model_ladder stage: the exact orbits' amplitudes against the simulation from rest
 where it settles on them, the slow flow's rows against its own one-point answer, the error
 and band rules on hand-made rows, and the figure."""
-import runpy
-from pathlib import Path
-from types import SimpleNamespace
 
 import numpy as np
 import pytest
+from _figures import run_figure
 
 from vines.core.params import D_DEFAULT
 from vines.data.netcdf import write_dataset
 from vines.pipeline import stages
 from vines.studies import model_ladder as ml
 
-ROOT = Path(__file__).resolve().parents[1]
 MODEL = {"r": 0.65, "d": D_DEFAULT}
 #: omega 0.99, 1.0, 1.01 at eta = F = 0.05: the simulation from rest settles on the stable
 #: symmetric 1:1 orbit there
@@ -66,14 +63,7 @@ def test_error_and_band_rules():
 
 def test_model_ladder_figure_from_the_stage_dataset(ds, tmp_path):
     path = write_dataset(ds, tmp_path / "model_ladder.nc")
-    out = tmp_path / "figures"
-    sm = SimpleNamespace(input=SimpleNamespace(ladders=[str(path)]), rule="fig_model_ladder",
-                         wildcards={}, params=SimpleNamespace(),
-                         output=SimpleNamespace(pdf=str(out / "model_ladder.pdf"),
-                                                png=str(out / "model_ladder.png")),
-                         log=[str(tmp_path / "logs" / "model_ladder.log")])
-    runpy.run_path(str(ROOT / "workflow" / "scripts" / "figures" / "model_ladder.py"),
-                   init_globals={"snakemake": sm})
-    assert (out / "model_ladder.png").read_bytes()[:4] == b"\x89PNG"
-    assert "eta = 0.05, F = 0.05: within 1%:" in (tmp_path / "logs" /
-                                                  "model_ladder.log").read_text()
+    png, log = run_figure("model_ladder", tmp_path, "model_ladder", colormap=None,
+                          ladders=[str(path)])
+    assert png.read_bytes()[:4] == b"\x89PNG"
+    assert "eta = 0.05, F = 0.05: within 1%:" in log

@@ -1,18 +1,15 @@
 """The shock stage: its dataset against the LO's closed-form free decay, its energy
 balance, its decays in time consistent with its curve, and its figure."""
 import math
-import runpy
-from pathlib import Path
-from types import SimpleNamespace
 
 import numpy as np
 import pytest
+from _figures import run_figure
 
 from vines.core.params import D_DEFAULT
 from vines.data.netcdf import write_dataset
 from vines.pipeline import stages
 
-ROOT = Path(__file__).resolve().parents[1]
 MODEL = {"r": 0.65, "d": D_DEFAULT}
 #: the default design (activation ~10.7 J): 1 J below activation, 100 J above it
 SPEC = {"eta": 0.1, "clearance_m": 0.0424, "energy_range_J": [1.0, 100.0], "n_energies": 3,
@@ -69,14 +66,6 @@ def test_energy_balance_and_history_agree_with_the_curve(ds):
 
 def test_shock_figure_from_the_stage_dataset(ds, tmp_path):
     path = write_dataset(ds, tmp_path / "shock_x.nc")
-    out = tmp_path / "figures"
-    sm = SimpleNamespace(input=SimpleNamespace(shocks=[str(path)]), rule="fig_shock",
-                         wildcards={}, params=SimpleNamespace(),
-                         output=SimpleNamespace(pdf=str(out / "shock.pdf"),
-                                                png=str(out / "shock.png")),
-                         log=[str(tmp_path / "logs" / "shock.log")])
-    runpy.run_path(str(ROOT / "workflow" / "scripts" / "figures" / "shock.py"),
-                   init_globals={"snakemake": sm})
-    assert (out / "shock.png").read_bytes()[:4] == b"\x89PNG"
-    log = (tmp_path / "logs" / "shock.log").read_text()
+    png, log = run_figure("shock", tmp_path, "shock", colormap=None, shocks=[str(path)])
+    assert png.read_bytes()[:4] == b"\x89PNG"
     assert "eta = 0.1, L = 42.4 mm, 2 periods: VI NES best" in log
