@@ -36,8 +36,9 @@ The contract of every command:
 * Integer options accept what people type for an integer (`1000`, `1e3`, `1_000`).
 * The JSON keys of `vines simulate` are listed in [usage.md](usage.md#the-simulate-command);
   those of the other commands in [bifurcation.md](bifurcation.md) (periodic, continue,
-  boundaries), [attractors.md](attractors.md) (attractors, lyapunov) and
-  [design.md](design.md) (design, shock).
+  boundaries), [attractors.md](attractors.md) (attractors, lyapunov),
+  [design.md](design.md) (design, shock) and [slowflow.md](slowflow.md) (slowflow, and
+  design's --model).
 """
 
 

@@ -84,11 +84,59 @@ def add_parser(subparsers) -> VinesArgumentParser:
     p.add_argument("--json", action="store_true",
                    help="print one JSON object on stdout (keys: inputs, curves, lo_alone, "
                         "tmd, vines, search, worst_case, cost)")
+    add_model_choice(p)
     return p
 
 
+# --------------------------------------------------------------------------- --model
+MODELS = ("exact", "slowflow", "both")
+
+
+def add_model_choice(p: VinesArgumentParser) -> None:
+    """--model: the exact answer (default), the slow flow's (docs/slowflow.md) or both."""
+    p.add_argument("--model", choices=MODELS, default="exact",
+                   help="exact: simulations (default); slowflow: the averaged slow flow, a "
+                        "first pass in under a second (keys: model, inputs, vines, optimal "
+                        "or search, lo_alone, cost); both: the exact object with keys "
+                        "slowflow and difference (slow flow minus exact)")
+
+
+def with_model(args: argparse.Namespace, exact) -> dict:
+    """The answer of --model: ``exact()`` (the exact object), the slow flow's, or both."""
+    if args.model == "exact":
+        return exact()
+    from ..studies.design_slowflow import difference, slowflow_design
+    with quiet_stdout():
+        slow = slowflow_design(omega_band=args.omega_band, amplitudes_m=args.amplitude,
+                               M_kg=args.M, k_N_per_m=args.k, c_Ns_per_m=args.c, d=args.d,
+                               r=args.r, eta=args.eta, clearance_m=args.clearance,
+                               eta_max=args.eta_max, clearance_range_m=args.clearance_range,
+                               n_eta=args.n_eta)
+    if args.model == "slowflow":
+        return slow
+    d = exact()
+    return d | {"slowflow": slow, "difference": difference(d, slow)}
+
+
+def text_slowflow(d: dict) -> str:
+    """A reader's summary of the slow flow's design."""
+    v, i = d["vines"], d["inputs"]
+    lines = [f"slow flow, band omega {i['omega_band'][0]:g}-{i['omega_band'][1]:g}, "
+             f"{i['mode']}",
+             f"  LO alone: worst x_max/A {_fmt(d['lo_alone']['worst_ratio'])}",
+             f"  VI NES eta {v['eta']:.4g}, clearance {1e3 * v['clearance_m']:.4g} mm: worst "
+             f"{_fmt(v['worst_ratio'])} at omega {v['worst_omega']:.4g}"]
+    if "optimal" in d:
+        o = d["optimal"]
+        lines.append(f"  best clearance for eta {o['eta']:.4g}: {1e3 * o['clearance_m']:.4g} "
+                     f"mm, worst {_fmt(o['worst_ratio'])}")
+    lines += [f"  warning: {w}" for w in v.get("warnings", [])]
+    lines.append(f"  cost {d['cost']['wall_s']:.3f} s")
+    return "\n".join(lines)
+
+
 def run(args: argparse.Namespace) -> int:
-    return emit(args.json, compute(args), text)
+    return emit(args.json, with_model(args, lambda: compute(args)), text)
 
 
 def compute(args: argparse.Namespace) -> dict:
@@ -111,6 +159,14 @@ def _fmt(x) -> str:
 
 def text(d: dict) -> str:
     """A reader's summary of ``run``'s object."""
+    if d.get("model") == "slowflow":
+        return text_slowflow(d)
+    if "slowflow" in d:
+        diff = d["difference"]
+        return "\n".join([text({k: x for k, x in d.items() if k not in ("slowflow", "difference")}), text_slowflow(d["slowflow"]),
+                          f"  slow flow minus exact: worst ratio {diff['worst_ratio']:+.4g} "
+                          f"({100 * diff['worst_ratio_relative']:+.1f} %), "
+                          f"{diff['speedup']:.3g}x faster"])
     v, t, lo = d["vines"], d["tmd"], d["lo_alone"]
     lines = [f"band omega {d['inputs']['omega_band'][0]:g}-{d['inputs']['omega_band'][1]:g}"
              f" ({d['inputs']['n_omega']} points), {d['inputs']['mode']}",

@@ -16,6 +16,7 @@ from ..core.params import (
     check_reals,
 )
 from . import manifold as sim
+from .cycle import SMRCycle, smr_cycle
 from .response import Model, Roots, fixed_points, linear_amplitude
 
 #: above these the slow flow answers with a warning; above the maxima it refuses
@@ -111,8 +112,9 @@ class SlowFlowResponse:
 
     rho, xi_min (the SIM's fold: activation threshold), x_flip (the upper end of its stable
     branch), orbits (every fixed point, stable first), regime, smr (None or the relaxation
-    cycle's LO amplitude range (xi_min, 1)), linear_amplitude (the LO without impacts),
-    warnings (the assumptions the inputs leave).
+    cycle's LO amplitude range (low, 1): low the cycle's smallest amplitude, xi_min or
+    below), linear_amplitude (the LO without impacts), warnings (the assumptions the inputs
+    leave), smr_cycle (None or the cycle: period, time impacting and free; ``cycle``).
     """
 
     eta: float
@@ -128,15 +130,21 @@ class SlowFlowResponse:
     smr: tuple | None
     linear_amplitude: float
     warnings: list
+    smr_cycle: SMRCycle | None = None
 
     def to_dict(self) -> dict:
+        smr = None if self.smr is None else {"amplitude_low": self.smr[0],
+                                             "amplitude_high": self.smr[1]}
+        if self.smr_cycle is not None:
+            c = self.smr_cycle
+            smr |= {"period": c.period, "time_impacting": c.time_impacting,
+                    "time_free": c.time_free}
         return {"model": "slowflow",
                 "params": {"eta": self.eta, "omega": self.omega, "F": self.F, "r": self.r,
                            "d": self.d},
                 "rho": self.rho, "xi_min": self.xi_min, "x_flip": self.x_flip,
                 "orbits": [o.to_dict() for o in self.orbits], "regime": self.regime,
-                "smr": None if self.smr is None else {"amplitude_low": self.smr[0],
-                                                      "amplitude_high": self.smr[1]},
+                "smr": smr,
                 "linear_amplitude": self.linear_amplitude, "warnings": list(self.warnings)}
 
 
@@ -148,10 +156,13 @@ def _orbits(R: Roots) -> list[SlowFlowOrbit]:
     return sorted(out, key=lambda o: (not o.stable, o.amplitude))
 
 
-def smr_range(m: Model, regime: str) -> tuple | None:
-    """The relaxation cycle's LO amplitude range: from the fold xi_min (impacts stop) to
-    X = 1 (a ball at rest in the centre is reached again: the jump back onto the SIM)."""
-    return (sim.xi_min(m.rho), 1.0) if regime == "SMR" else None
+def smr_range(m: Model, cycle: SMRCycle | None) -> tuple:
+    """The relaxation cycle's LO amplitude range: from the fold xi_min (impacts stop; lower
+    where the LO keeps losing amplitude after that) to X = 1 (a ball at rest in the centre is
+    reached again: the jump back onto the SIM); (xi_min, 1) where the cycle was not found."""
+    if cycle is None:
+        return (sim.xi_min(m.rho), 1.0)
+    return (cycle.amplitude_low, cycle.amplitude_high)
 
 
 def response(eta, omega, F, *, r=R_DEFAULT, d=D_DEFAULT) -> SlowFlowResponse:
@@ -165,11 +176,13 @@ def response(eta, omega, F, *, r=R_DEFAULT, d=D_DEFAULT) -> SlowFlowResponse:
     R = fixed_points(m, W)
     xl = linear_amplitude(m, W)
     regime = str(regimes(R, xl)[0])
+    cycle = smr_cycle(m, float(W[0])) if regime == "SMR" else None
     return SlowFlowResponse(eta=m.eta, omega=float(W[0]), F=m.F, r=m.r, d=m.d, rho=m.rho,
                             xi_min=sim.xi_min(m.rho), x_flip=sim.x_flip(m.rho),
-                            orbits=_orbits(R), regime=regime, smr=smr_range(m, regime),
+                            orbits=_orbits(R), regime=regime,
+                            smr=smr_range(m, cycle) if regime == "SMR" else None,
                             linear_amplitude=float(xl[0]),
-                            warnings=warnings_for(m, W) + flip_warning(R))
+                            warnings=warnings_for(m, W) + flip_warning(R), smr_cycle=cycle)
 
 
 @dataclass(frozen=True)

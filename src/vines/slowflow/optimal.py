@@ -22,8 +22,8 @@ from .api import model, regimes, warnings_for
 from .response import Model, fixed_points, linear_amplitude
 
 #: frequencies of the band, F (or L) values of the grid, golden-section steps
-N_OMEGA_DEFAULT = 801
-N_GRID_DEFAULT = 121
+N_OMEGA_DEFAULT = 401
+N_GRID_DEFAULT = 61
 N_GOLDEN = 40
 #: default search range of F = A/L
 F_RANGE_DEFAULT = (1e-3, 2.0)
@@ -42,10 +42,17 @@ def from_rest_amplitude(m: Model, W: np.ndarray) -> np.ndarray:
     return out
 
 
+def ratios(m: Model, F: np.ndarray, W: np.ndarray) -> np.ndarray:
+    """Transmissibility X/F from rest of the model m at every F (rows) and W (columns): one
+    vectorised evaluation (the model's F replaced by the rows' values)."""
+    FF, WW = np.repeat(F, W.size), np.tile(W, F.size)
+    x = from_rest_amplitude(Model(eta=m.eta, F=FF, r=m.r, d=m.d), WW)
+    return (x / FF).reshape(F.size, W.size)
+
+
 def worst_ratio(eta, F_values, W, r, d) -> float:
     """Largest transmissibility X/F over the frequencies W and the values F."""
-    return max(float(np.max(from_rest_amplitude(model(eta, F, r, d), W))) / F
-               for F in F_values)
+    return float(ratios(model(eta, 1.0, r, d), np.asarray(F_values, dtype=float), W).max())
 
 
 @dataclass(frozen=True)
@@ -73,41 +80,47 @@ def _band(band, n_omega) -> np.ndarray:
     return np.linspace(lo, hi, check_int("n_omega", n_omega, lo=3, hi=100_001))
 
 
-def _minimise(objective, lo: float, hi: float, n_grid: int) -> float:
-    """Argmin of objective(u) on [lo, hi]: the best of a grid, then golden section in the
-    grid cells beside it (the function may jump: the grid's best value is never lost)."""
+def _minimise(worst, lo: float, hi: float, n_grid: int) -> float:
+    """Argmin over u in [lo, hi] of worst(u) (u an array: one value per entry): the best of
+    a grid, then golden section in the grid cells beside it (the function may jump: the
+    grid's best value is never lost)."""
     grid = np.linspace(lo, hi, n_grid)
-    vals = np.array([objective(u) for u in grid])
+    vals = worst(grid)
     j = int(np.argmin(vals))
     a, b = grid[max(j - 1, 0)], grid[min(j + 1, n_grid - 1)]
     best_u, best_v = grid[j], vals[j]
     g = (math.sqrt(5.0) - 1.0) / 2.0
     c, e = b - g * (b - a), a + g * (b - a)
-    fc, fe = objective(c), objective(e)
+    fc, fe = worst(np.array([c, e]))
     for _ in range(N_GOLDEN):
         if fc < fe:
             b, e, fe = e, c, fc
             c = b - g * (b - a)
-            fc = objective(c)
+            fc = worst(np.array([c]))[0]
         else:
             a, c, fc = c, e, fe
             e = a + g * (b - a)
-            fe = objective(e)
+            fe = worst(np.array([e]))[0]
     for u, v in ((c, fc), (e, fe)):
         if v < best_v:
             best_u, best_v = u, v
     return float(best_u)
 
 
-def _peak(m_of, F_values, W) -> tuple[float, float]:
-    """(worst ratio, its frequency) of the designs m_of(F) for F in F_values."""
-    best, w_best = -np.inf, float("nan")
-    for F in F_values:
-        x = from_rest_amplitude(m_of(F), W) / F
-        j = int(np.argmax(x))
-        if x[j] > best:
-            best, w_best = float(x[j]), float(W[j])
-    return best, w_best
+def _worst_of(m: Model, A: np.ndarray, W: np.ndarray):
+    """worst(u): for clearances 10**u, the largest X/F over the amplitudes A (F = A/L)
+    and W."""
+    def worst(u):
+        F = (A[None, :] / 10.0 ** np.asarray(u)[:, None]).ravel()
+        return ratios(m, F, W).reshape(len(u), A.size * W.size).max(axis=1)
+    return worst
+
+
+def _peak(m: Model, F, W) -> tuple[float, float]:
+    """(worst ratio, its frequency) over the values F and the frequencies W."""
+    x = ratios(m, np.asarray(F, dtype=float), W)
+    i, j = np.unravel_index(int(np.argmax(x)), x.shape)
+    return float(x[i, j]), float(W[j])
 
 
 def optimal_F(eta, omega_band=(0.8, 1.2), *, r=R_DEFAULT, d=D_DEFAULT,
@@ -120,16 +133,23 @@ def optimal_F(eta, omega_band=(0.8, 1.2), *, r=R_DEFAULT, d=D_DEFAULT,
                          max_size=2)
     if not lo < hi:
         raise ParameterError("F_range", F_range, "must be two numbers LO < HI")
-    model(eta, 1.0, r, d)                  # validates eta, r, d once
-
-    def objective(u):
-        return worst_ratio(eta, [10.0 ** u], W, r, d)
-
-    F = 10.0 ** _minimise(objective, math.log10(lo), math.log10(hi),
-                          check_int("n_grid", n_grid, lo=3, hi=10_000))
-    ratio, w_peak = _peak(lambda f: model(eta, f, r, d), [F], W)
+    m = model(eta, 1.0, r, d)
+    # with A = 1 the clearance 10**u is 1/F: search u = -log10 F
+    u = _minimise(_worst_of(m, np.ones(1), W), -math.log10(hi), -math.log10(lo),
+                  check_int("n_grid", n_grid, lo=3, hi=10_000))
+    F = 10.0 ** -u
+    ratio, w_peak = _peak(m, [F], W)
     return Optimum(clearance_m=None, F=[F], worst_ratio=ratio, omega_peak=w_peak,
                    warnings=warnings_for(model(eta, F, r, d), W))
+
+
+def design_ratio(eta, amplitudes_m, clearance_m, omega_band, *, r=R_DEFAULT, d=D_DEFAULT,
+                 n_omega=N_OMEGA_DEFAULT) -> tuple[float, float]:
+    """(worst transmissibility, its frequency) of the design (eta, clearance_m [m]) over
+    the band and the base amplitudes [m]."""
+    A = check_reals("amplitudes_m", amplitudes_m, lo=0.0, lo_open=True, hi=1e3)
+    L = check_reals("clearance_m", clearance_m, lo=0.0, lo_open=True, hi=1e6, max_size=1)[0]
+    return _peak(model(eta, 1.0, r, d), A / L, _band(omega_band, n_omega))
 
 
 def optimal_clearance(eta, amplitudes_m: float | Sequence[float], omega_band=(0.8, 1.2), *,
@@ -146,16 +166,12 @@ def optimal_clearance(eta, amplitudes_m: float | Sequence[float], omega_band=(0.
     if not lo < hi:
         raise ParameterError("clearance_range_m", clearance_range_m,
                              "must be two numbers LO < HI")
-    model(eta, 1.0, r, d)
-
-    def objective(u):
-        return worst_ratio(eta, A / 10.0 ** u, W, r, d)
-
-    L = 10.0 ** _minimise(objective, math.log10(lo), math.log10(hi),
+    m = model(eta, 1.0, r, d)
+    L = 10.0 ** _minimise(_worst_of(m, A, W), math.log10(lo), math.log10(hi),
                           check_int("n_grid", n_grid, lo=3, hi=10_000))
-    ratio, w_peak = _peak(lambda f: model(eta, f, r, d), A / L, W)
+    ratio, w_peak = _peak(m, A / L, W)
     return Optimum(clearance_m=L, F=[float(x) for x in A / L], worst_ratio=ratio,
-                   omega_peak=w_peak, warnings=warnings_for(model(eta, float(A.max() / L),
-                                                                  r, d), W))
+                   omega_peak=w_peak,
+                   warnings=warnings_for(model(eta, float(A.max() / L), r, d), W))
 
 

@@ -86,9 +86,11 @@ class Model:
 
 
 def linear_amplitude(m: Model, W: np.ndarray) -> np.ndarray:
-    """Exact amplitude of the LO without impacts (the base-excited linear response)."""
+    """Exact amplitude of the LO without impacts (the base-excited linear response; inf at
+    resonance without damping)."""
     dW = m.d * W
-    return m.F * np.sqrt((1.0 + dW * dW) / ((1.0 - W * W) ** 2 + dW * dW))
+    with np.errstate(divide="ignore"):
+        return m.F * np.sqrt((1.0 + dW * dW) / ((1.0 - W * W) ** 2 + dW * dW))
 
 
 def _coefficients(m: Model, W: np.ndarray):
@@ -148,7 +150,7 @@ def _jacobian(m: Model, w, alpha, X):
     P = -0.5 * m.d * X - eKw * X * s * s
     Q = 0.5 * (w * w - 1.0) / w + eKw * s * c
     da = sim.dalpha_dX(alpha, m.rho)
-    with np.errstate(invalid="ignore"):
+    with np.errstate(invalid="ignore", over="ignore"):
         dP = -0.5 * m.d - eKw * (s * s + X * 2.0 * s * c * da)
         dQ = eKw * (c * c - s * s) * da
         trace = dP + P / X
