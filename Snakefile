@@ -29,12 +29,14 @@ include: "workflow/rules/work_precision.smk"
 include: "workflow/rules/convergence.smk"
 include: "workflow/rules/design.smk"
 include: "workflow/rules/orbit_atlas.smk"
+include: "workflow/rules/shock.smk"
+include: "workflow/rules/model_ladder.smk"
 include: "workflow/rules/figures.smk"
 
 
 # `snakemake -c2` (rule `paper`): the paper's Figures 2-16 and the datasets of their stages.
 # `snakemake -c2 all`: also the stages beyond the paper (Lyapunov exponents, attractor
-# censuses, solver studies, design, orbit atlas) and their figures.
+# censuses, solver studies, design, orbit atlas, shock, model ladder) and their figures.
 rule paper:
     default_target: True
     input:

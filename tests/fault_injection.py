@@ -43,8 +43,9 @@ CONFIGFILE = "config/smoke.yaml"
 RUN = "smoke"
 #: wall-clock measurements, which legitimately differ between two runs
 TIMING = {"seconds", "run_time", "impacts_per_second", "calls"}
-TIMED = {"work_precision", "convergence"}        # folders of the datasets holding TIMING
-TIMED_FIGURES = ("workprecision", "convergence")  # figures drawn from TIMING
+#: folders of the datasets holding TIMING, and the figures drawn from it
+TIMED = {"work_precision", "convergence", "model_ladder"}
+TIMED_FIGURES = ("workprecision", "convergence", "model_ladder")
 #: provenance attributes that differ between a checkout and its copy
 PROVENANCE = {"git_commit"}
 #: what a run refused by a lock left by a killed run says: the logger plugin's line (the

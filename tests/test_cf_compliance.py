@@ -1,7 +1,7 @@
 """CF compliance of the pipeline's datasets (docs/cf-compliance.md).
 
 Tiny datasets of every pipeline stage (grid chunk, measures, sweep, branch, stability map,
-boundary curves, time history, robust-TET map, basin slice, design, orbit atlas) are built with the stage functions, written with ``write_dataset`` and checked
+boundary curves, time history, robust-TET map, basin slice, design, orbit atlas, shock, model ladder) are built with the stage functions, written with ``write_dataset`` and checked
 
 * by the IOOS compliance checker, suite ``cf:1.10``: no high- or medium-priority failure
   except the documented ones (see ``KNOWN``), no checker exception except the documented one;
@@ -46,8 +46,12 @@ DESIGN = {"omega_band": [0.9, 1.1], "n_omega": 3, "amplitudes_m": [0.003], "eta_
           "n_eta": 1, "n_clearance": 2, "census_n": 2, "t_end": 200.0, "t_transient": 100.0,
           "description": None}
 ATLAS = {"eta": [0.1, 0.5], "omega": [0.9, 1.0], "F": 0.3077}
+SHOCK = {"eta": 0.1, "clearance_m": 0.0424, "energy_range_J": [1.0, 100.0], "n_energies": 3,
+         "history_energies_J": [100.0], "periods": 1.0, "omega_band": [0.8, 1.2]}
+LADDER = {"etas": [0.05], "f": 1.0, "sigma_range": [-2.0, 2.0], "n_omega": 3, "n_dense": 20,
+          "continuation_step": 0.05, "t_end": 100.0, "t_transient": 50.0}
 KINDS = ("grid_chunk", "measures", "sweep", "branch", "stability", "boundaries", "timehistory",
-         "robust", "basin_slice", "design", "atlas")
+         "robust", "basin_slice", "design", "atlas", "shock", "model_ladder")
 RAGGED = ("sweep", "branch", "boundaries", "timehistory")
 
 #: documented findings of the IOOS checker (docs/cf-compliance.md): it recognises a DSG
@@ -83,6 +87,8 @@ def datasets(tmp_path_factory):
     put("design", stages.design(DESIGN, model=MODEL, simulation={"v_stick": 1e-6,
                                 "max_impacts": 10**6, "root_tol": 1e-13}, **kw))
     put("atlas", stages.orbit_atlas(ATLAS, sim_t_end=100.0, model=MODEL, **kw))
+    put("shock", stages.shock(SHOCK, model=MODEL, **kw))
+    put("model_ladder", stages.model_ladder(LADDER, model=MODEL, **kw))
     return out
 
 

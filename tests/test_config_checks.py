@@ -24,7 +24,8 @@ def _first(section):
 SW, BR, SM, TH = _first("sweeps"), _first("branches"), _first("stability_maps"), _first("timehistories")
 WP = sorted(SMOKE["work_precision"]["cases"])[0]
 GR, BD = _first("grids"), _first("boundaries")
-DZ, OA = _first("designs"), _first("orbit_atlases")
+DZ, OA, SH = _first("designs"), _first("orbit_atlases"), _first("shocks")
+ML = _first("model_ladders")
 
 BAD = [  # (path to set, keys joined by '/', value, expected key in the message, expected words)
     ("simulation/t_end", math.nan, "t_end", "finite"),
@@ -92,6 +93,25 @@ BAD = [  # (path to set, keys joined by '/', value, expected key in the message,
      "orbit_atlases.own", "limits.max_grid_points"),
     (f"orbit_atlases/{OA}/sim_t_end", 1e300, f"orbit_atlases.{OA}.sim_t_end",
      "limits.max_t_end"),
+    # shocks: the validators of studies.shock, named by the config key
+    (f"shocks/{SH}/eta", 0.0, f"shocks.{SH}.eta", ""),
+    (f"shocks/{SH}/clearance_m", -0.01, f"shocks.{SH}.clearance_m", ""),
+    (f"shocks/{SH}/energy_range_J", [10.0, 1.0], f"shocks.{SH}.energy_range_J", ""),
+    (f"shocks/{SH}/n_energies", 10**6, f"shocks.{SH}.n_energies", "<= 10000"),
+    (f"shocks/{SH}/history_energies_J", [1.0, -2.0], f"shocks.{SH}.history_energies_J[1]",
+     ""),
+    ("shocks/both", {"eta": 0.1, "clearance_m": 0.01, "history_energies_J": [1.0],
+                     "c_Ns_per_m": 2.0, "d": 0.01}, "shocks.both.d", "not both"),
+    (f"shocks/{SH}/omega_band", [1.2, 0.8], f"shocks.{SH}.omega_band", ""),
+    (f"shocks/{SH}/periods", 1e9, f"shocks.{SH}.periods", "<= 10000"),
+    # model ladders: the slow flow's and the exact solver's validators
+    (f"model_ladders/{ML}/etas", [0.05, 0.6], f"model_ladders.{ML}.etas", "slow flow"),
+    (f"model_ladders/{ML}/sigma_range", [-20.0, 3.0], f"model_ladders.{ML}.sigma_range",
+     "omega must be > 0"),
+    (f"model_ladders/{ML}/f", -1.0, f"model_ladders.{ML}.f", ""),
+    (f"model_ladders/{ML}/t_transient", 1e6, f"model_ladders.{ML}.t_transient", ""),
+    (f"model_ladders/{ML}/continuation_step", 2.0, f"model_ladders.{ML}.continuation_step",
+     ""),
     # numbers YAML reads as text, and 16.0 for an integer: how to write them
     ("simulation/t_end", yaml.safe_load("x: 1e4")["x"], "simulation.t_end",
      "YAML reads 1e4 as text: write 10000.0"),

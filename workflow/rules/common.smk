@@ -29,6 +29,7 @@ from vines.pipeline.codeversion import (
     COMPUTE,
     DESIGN,
     FIGURES,
+    MODELS,
     STUDIES,
     code_version,
     script_version,
@@ -60,6 +61,7 @@ CODE_STUDY = code_version(STUDIES)
 CODE_ATTRACTORS = code_version(ATTRACTORS)
 CODE_DESIGN = code_version(DESIGN)
 CODE_FIGURES = code_version(FIGURES)
+CODE_MODELS = code_version(MODELS)
 SCRIPTS = os.path.join(workflow.basedir, "workflow", "scripts")
 
 
@@ -86,6 +88,8 @@ WORK_PRECISION_SETTINGS = {k: v for k, v in WORK_PRECISION.items() if k != "case
 CONVERGENCE = config["convergence"]
 DESIGNS = config["designs"]
 ORBIT_ATLASES = config["orbit_atlases"]
+SHOCKS = config["shocks"]
+MODEL_LADDERS = config["model_ladders"]
 
 # A results folder that cannot be written (permissions, a read-only disk, a file in the
 # way) would fail every job: stop before any job, in one line.
@@ -165,12 +169,14 @@ STAGE_ENTRIES = {
     "convergence": CONVERGENCE,
     "design": DESIGNS,
     "orbit_atlas": ORBIT_ATLASES,
+    "shock": SHOCKS,
+    "model_ladder": MODEL_LADDERS,
 }
 
 
 #: the stages behind the paper's figures (rule `paper`, the default target); the others
-#: (Lyapunov exponents, attractor censuses, solver studies, design, orbit atlas) go beyond
-#: the paper and run with rule `all`
+#: (Lyapunov exponents, attractor censuses, solver studies, design, orbit atlas, shock,
+#: model ladder) go beyond the paper and run with rule `all`
 PAPER_STAGES = (
     "extract_measures",
     "bifurcation_sweep",

@@ -53,6 +53,10 @@ def _atlases(p):
     return _named("orbit_atlas", p)
 
 
+def _shocks(p):
+    return _named("shock", p)
+
+
 def _family_boundaries():
     """Boundary curves of the families beyond 1:1 (boundaries entries with other walls or
     periods than LR/1), drawn on the atlas."""
@@ -102,6 +106,10 @@ FIG_INPUTS = {
     # beyond the paper: absorber design against the TMD, the periodic-orbit atlas
     "design": {"designs": _designs("design")},
     "atlas": {"atlases": _atlases("atlas"), "measures": _measures("fig12")},
+    # beyond the paper: free decay after a shock against the TMD
+    "shock": {"shocks": _shocks("shock")},
+    # beyond the paper: the slow flow against the exact model, amplitudes and costs
+    "model_ladder": {"ladders": _named("model_ladder", "model_ladder")},
     # beyond the paper: the solver studies
     "workprecision": {
         "cases": [dataset("work_precision", c) for c in WORK_PRECISION["cases"]]

@@ -42,9 +42,11 @@ from .schema import (
     FLAG_MEANINGS,
     LYAPUNOV_SWEEP_ATTRS,
     MEASURE_ATTRS,
+    MODEL_LADDER_ATTRS,
     REFERENCES,
     ROBUST_ASYMPTOTIC_ATTRS,
     ROBUST_ATTRS,
+    SHOCK_ATTRS,
     STABILITY_ATTRS,
     STABILITY_CLASS_FLAGS,
     SWEEP_INSTANCE_ATTRS,
@@ -644,3 +646,174 @@ def atlas_dataset(eta, omega, families: dict, arrays: dict, attrs: dict) -> xr.D
               "family": xr.Variable(fam, np.asarray(keys), cf(ATLAS_FAMILY_ATTRS, "family"))}
     own = {"Conventions": CONVENTIONS, "note": ATLAS_NOTE}
     return xr.Dataset(data, coords=coords, attrs={**own, **attrs})
+
+
+def _sv(name, dims, data, dtype="f8") -> xr.Variable:
+    return xr.Variable(dims, np.asarray(data, dtype=dtype), cf(SHOCK_ATTRS, name))
+
+
+def _padded(values, n: int, fill) -> np.ndarray:
+    """``values`` followed by ``fill`` up to length ``n`` (a run that stopped early)."""
+    v = np.asarray(values, dtype=float)
+    return np.concatenate([v, np.full(n - v.size, fill)])
+
+
+def shock_dataset(curve: dict, histories: list, history_energies, time_periods,
+                  attrs: dict) -> xr.Dataset:
+    """A shock study: ``curve`` (``studies.shock.shock`` over an energy range) and
+    ``histories`` (``shock`` at each of ``history_energies`` [J]) sampled at
+    ``time_periods`` (natural periods of the LO). Times in s; a time not reached (None) is NaN. ``attrs`` (provenance) are
+    merged over the study's own (design, structure, window)."""
+    c, inp = curve["curve"], curve["inputs"]
+    E = ("energy",)
+    vin = c["vines"]
+    data = {"velocity": _sv("velocity", E, c["velocity_m_s"]),
+            **{f"vines_{k}": _sv(f"vines_{k}", E, [_nan(x) for x in vin[k]])
+               for k in ("dissipated_fraction", "by_damping", "by_impacts", "t_10", "t_1",
+                         "t_reached")},
+            "vines_n_impacts": _sv("vines_n_impacts", E, vin["n_impacts"], "i4"),
+            "vines_n_sticks": _sv("vines_n_sticks", E, curve["vines"]["n_sticks"], "i4"),
+            "vines_status": xr.Variable(E, np.asarray(vin["status"], dtype=str),
+                                        cf(SHOCK_ATTRS, "vines_status"))}
+    tmd, lo = curve["tmd"], curve["lo_alone"]
+    scalars = {"tmd_dissipated_fraction": tmd["dissipated_fraction"],
+               "tmd_by_damping": tmd["by_damping"], "tmd_by_absorber": tmd["by_absorber"],
+               "tmd_t_10": tmd["t_10"], "tmd_t_1": tmd["t_1"],
+               "tmd_frequency_ratio": tmd["design"]["frequency_ratio"],
+               "tmd_damping_ratio": tmd["design"]["damping_ratio"],
+               "lo_alone_dissipated_fraction": lo["dissipated_fraction"],
+               "lo_alone_t_10": lo["t_10"], "lo_alone_t_1": lo["t_1"],
+               "activation_energy": curve["activation"]["energy_J"],
+               "activation_velocity": curve["activation"]["velocity_m_s"],
+               "optimal_energy": curve["optimal"]["energy_J"],
+               "optimal_dissipated_fraction": curve["optimal"]["dissipated_fraction"]}
+    data.update({k: _sv(k, (), _nan(v)) for k, v in scalars.items()})
+    data.update(_shock_histories(histories, np.size(time_periods)))
+    coords = {"energy": _sv("energy", E, c["energy_J"]),
+              "history_energy": _sv("history_energy", ("history_energy",),
+                                    history_energies),
+              "time_periods": _sv("time_periods", ("time_periods",), time_periods)}
+    own = {"Conventions": CONVENTIONS, "eta": inp["eta"], "clearance_m": inp["clearance_m"],
+           "M_kg": inp["M_kg"], "k_N_per_m": inp["k_N_per_m"], "c_Ns_per_m": inp["c_Ns_per_m"],
+           "d": inp["d"], "r": inp["r"], "periods": inp["periods"],
+           "omega_band": np.asarray(inp["omega_band"], dtype="f8"),
+           "natural_period_s": curve["scales"]["natural_period_s"]}
+    return xr.Dataset(data, coords=coords, attrs={**own, **attrs})
+
+
+def _shock_histories(histories: list, n: int) -> dict:
+    """The decays in time: the VI NES's per history energy (padded after a run that
+    stopped), the linear systems' once (their fractions do not depend on E0)."""
+    H, T = ("history_energy", "time_periods"), ("time_periods",)
+    vin = [h["history"]["vines"] for h in histories]
+    out = {"vines_remaining": _sv("vines_remaining", H, [_padded(v["remaining_fraction"], n,
+                                                                  np.nan) for v in vin]),
+           "vines_history_by_impacts": _sv("vines_history_by_impacts", H,
+                                           [_padded(v["by_impacts"], n, np.nan) for v in vin]),
+           "vines_history_n_impacts": _sv("vines_history_n_impacts", H,
+                                          [_padded(v["n_impacts"], n, -1) for v in vin], "i4")}
+    for name in ("tmd", "lo_alone"):
+        out[f"{name}_remaining"] = _sv(f"{name}_remaining", T,
+                                       histories[0]["history"][name]["remaining_fraction"])
+    return out
+
+
+def _mv(name, dims, data, dtype="f8") -> xr.Variable:
+    extra = ATLAS_FLAGS if dtype == "i1" else {}
+    return xr.Variable(dims, np.asarray(data, dtype=dtype), cf(MODEL_LADDER_ATTRS, name, **extra))
+
+
+def _slots(groups, n_slots: int, fill) -> np.ndarray:
+    """Rows grouped by an index as a (groups, n_slots) array padded with ``fill`` (float)."""
+    out = np.full((len(groups), n_slots), float(fill))
+    for i, g in enumerate(groups):
+        out[i, :len(g)] = g
+    return out
+
+
+def _by_index(rows: dict, key: str, n: int) -> list:
+    return [rows[key][rows["index"] == i] for i in range(n)]
+
+
+def model_ladder_dataset(panels: list, sigma, sigma_dense, tolerances, bands: list,
+                         attrs: dict) -> xr.Dataset:
+    """A model ladder: one ``studies.model_ladder.Ladder`` per eta over the grid ``sigma``
+    (the slow flow also over ``sigma_dense``); ``bands[k][j]`` = (lo, hi, share) of panel k
+    at tolerance j. Rows of fixed points, orbits and branches are padded with NaN (0 for
+    the stability flags); the times (``seconds``) are wall-clock measurements."""
+    from ..studies.model_ladder import MODELS
+    n, nd = np.size(sigma), np.size(sigma_dense)
+    grouped = {}
+    for key, src, m in (("slowflow", "slowflow", n), ("dense", "dense", nd),
+                        ("exact", "exact", n)):
+        grouped[key] = [(_by_index(getattr(p, src), "amplitude", m),
+                         _by_index(getattr(p, src), "stable", m)) for p in panels]
+    width = {k: max([1] + [len(a) for amp, _ in g for a in amp]) for k, g in grouped.items()}
+
+    def stack(key, which, fill):
+        return np.stack([_slots(g[which], width[key], fill) for g in grouped[key]])
+
+    K, S, R = ("eta",), ("eta", "sigma"), ("eta", "sigma", "root")
+    data = {"F": _mv("F", K, [p.F for p in panels]),
+            "xi_min": _mv("xi_min", K, [p.xi_min for p in panels]),
+            "omega": _mv("omega", S, [p.omega for p in panels]),
+            "omega_dense": _mv("omega_dense", ("eta", "sigma_dense"),
+                               [p.dense["grid"] for p in panels]),
+            "slowflow_amplitude": _mv("slowflow_amplitude", R, stack("slowflow", 0, np.nan)),
+            "slowflow_stable": _mv("slowflow_stable", R, stack("slowflow", 1, False), "i1"),
+            "slowflow_error": _mv("slowflow_error", R, np.stack([_slots(
+                _by_index({"index": p.slowflow["index"], "e": p.slowflow["nearest_error"]},
+                          "e", n), width["slowflow"], np.nan) for p in panels])),
+            "dense_amplitude": _mv("dense_amplitude", ("eta", "sigma_dense", "dense_root"),
+                                   stack("dense", 0, np.nan)),
+            "dense_stable": _mv("dense_stable", ("eta", "sigma_dense", "dense_root"),
+                                stack("dense", 1, False), "i1"),
+            "exact_amplitude": _mv("exact_amplitude", ("eta", "sigma", "orbit"),
+                                   stack("exact", 0, np.nan)),
+            "exact_stable": _mv("exact_stable", ("eta", "sigma", "orbit"),
+                                stack("exact", 1, False), "i1"),
+            "n_slowflow": _mv("n_slowflow", S, [np.bincount(p.slowflow["index"], minlength=n)
+                                                for p in panels], "i4"),
+            "n_exact": _mv("n_exact", S, [np.bincount(p.exact["index"], minlength=n)
+                                          for p in panels], "i4"),
+            "error_max": _mv("error_max", S, [p.error_max for p in panels]),
+            "simulation_xmax": _mv("simulation_xmax", S,
+                                   [p.simulation["xmax"] for p in panels]),
+            "simulation_regime": xr.Variable(S, np.asarray([p.simulation["regime"]
+                                                            for p in panels], dtype=str),
+                                             cf(MODEL_LADDER_ATTRS, "simulation_regime")),
+            "seconds": _mv("seconds", ("eta", "model"),
+                           [[p.seconds[m] for m in MODELS] for p in panels])}
+    data.update(_ladder_curves(panels))
+    T = ("eta", "tolerance")
+    for j, name in enumerate(("band_lo", "band_hi", "share_within")):
+        data[name] = _mv(name, T, [[b[j] for b in bk] for bk in bands])
+    coords = {"eta": _mv("eta", K, [p.eta for p in panels]),
+              "sigma": _mv("sigma", ("sigma",), sigma),
+              "sigma_dense": _mv("sigma_dense", ("sigma_dense",), sigma_dense),
+              "tolerance": _mv("tolerance", ("tolerance",), tolerances),
+              "model": xr.Variable(("model",), np.asarray(MODELS, dtype=str),
+                                   cf(MODEL_LADDER_ATTRS, "model"))}
+    return xr.Dataset(data, coords=coords, attrs={"Conventions": CONVENTIONS, **attrs})
+
+
+def _ladder_curves(panels: list) -> dict:
+    """The continued branches: (eta, curve, branch_point) padded with NaN / 0."""
+    curves = []
+    for p in panels:
+        c = p.continuation
+        k = int(c["curve"].max()) + 1 if c["curve"].size else 0
+        curves.append([{f: c[f][c["curve"] == j] for f in ("omega", "amplitude", "stable")}
+                       for j in range(k)])
+    n_c = max([1] + [len(cs) for cs in curves])
+    n_p = max([1] + [cv["omega"].size for cs in curves for cv in cs])
+    out = {f: np.full((len(panels), n_c, n_p), np.nan) for f in ("omega", "amplitude")}
+    out["stable"] = np.zeros((len(panels), n_c, n_p), dtype="i1")
+    for i, cs in enumerate(curves):
+        for j, cv in enumerate(cs):
+            for f in out:
+                out[f][i, j, :cv[f].size] = cv[f]
+    D = ("eta", "curve", "branch_point")
+    return {"continuation_omega": _mv("continuation_omega", D, out["omega"]),
+            "continuation_amplitude": _mv("continuation_amplitude", D, out["amplitude"]),
+            "continuation_stable": _mv("continuation_stable", D, out["stable"], "i1")}

@@ -332,3 +332,96 @@ ATLAS_ATTRS = {
 ATLAS_FLAGS = {"flag_values": np.array([0, 1], dtype="i1"), "flag_meanings": "no yes"}
 ATLAS_NOTE = ("finite search: a family marked absent may exist where no seed reached it "
               "(docs/bifurcation.md)")
+
+# ------------------------------------------------------------------ shock
+
+#: shock datasets (``vines.studies.shock``): the curve against the initial energy (VI NES per
+#: energy, the linear systems once: their fractions do not depend on it), the decays in time
+SHOCK_ATTRS = {
+    "energy": ("initial energy E0 = M V0^2/2 of the LO", "J"),
+    "velocity": ("initial LO velocity V0 of the impulse", "m s-1"),
+    "history_energy": ("initial energy E0 of a decay in time", "J"),
+    "time_periods": ("time after the shock in natural periods 2 pi/w0 of the LO", "1"),
+    "vines_dissipated_fraction": ("fraction of E0 dissipated within the window by the LO "
+                                  "with the VI NES", "1"),
+    "vines_by_damping": ("fraction of E0 dissipated by the LO's damping (VI NES)", "1"),
+    "vines_by_impacts": ("fraction of E0 dissipated by the impacts (VI NES)", "1"),
+    "vines_n_impacts": ("impacts within the window (VI NES)", "1"),
+    "vines_n_sticks": ("sticking events within the window (VI NES)", "1"),
+    "vines_t_10": ("time to decay to 10 % of E0 (VI NES; NaN: not within the window)", "s"),
+    "vines_t_1": ("time to decay to 1 % of E0 (VI NES; NaN: not within the window)", "s"),
+    "vines_t_reached": ("end of the VI NES run: the window's end unless the solver stopped "
+                        "early (status)", "s"),
+    "vines_status": ("solver status of the VI NES run", ""),
+    "tmd_dissipated_fraction": ("fraction of E0 dissipated within the window with the TMD "
+                                "(any E0)", "1"),
+    "tmd_by_damping": ("fraction of E0 dissipated by the LO's damping with the TMD", "1"),
+    "tmd_by_absorber": ("fraction of E0 dissipated by the TMD's damper", "1"),
+    "tmd_t_10": ("time to decay to 10 % of E0 with the TMD (NaN: not within the window)", "s"),
+    "tmd_t_1": ("time to decay to 1 % of E0 with the TMD (NaN: not within the window)", "s"),
+    "tmd_frequency_ratio": ("TMD tuning w_a/w0 (tuned for omega_band as vines design)", "1"),
+    "tmd_damping_ratio": ("TMD damping ratio c_a/(2 m_a w_a)", "1"),
+    "lo_alone_dissipated_fraction": ("fraction of E0 dissipated within the window by the LO "
+                                     "alone (any E0)", "1"),
+    "lo_alone_t_10": ("time to decay to 10 % of E0, LO alone (NaN: not within the window)",
+                      "s"),
+    "lo_alone_t_1": ("time to decay to 1 % of E0, LO alone (NaN: not within the window)", "s"),
+    "activation_energy": ("least E0 at which the ball is hit (the free LO's first peak "
+                          "reaches the wall)", "J"),
+    "activation_velocity": ("initial LO velocity of activation_energy", "m s-1"),
+    "optimal_energy": ("E0 of the curve at which the VI NES dissipates most", "J"),
+    "optimal_dissipated_fraction": ("largest dissipated fraction of the VI NES on the curve",
+                                    "1"),
+    "vines_remaining": ("energy left with the VI NES, fraction of E0 (NaN: after the run "
+                        "stopped)", "1"),
+    "vines_history_by_impacts": ("fraction of E0 dissipated by impacts so far (VI NES)", "1"),
+    "vines_history_n_impacts": ("impacts so far (VI NES; -1: after the run stopped)", "1"),
+    "tmd_remaining": ("energy left with the TMD, fraction of E0", "1"),
+    "lo_alone_remaining": ("energy left, LO alone, fraction of E0", "1"),
+}
+
+# ------------------------------------------------------------------ model ladder
+
+#: model-ladder datasets (``vines.studies.model_ladder``): per panel (eta) the grid, the
+#: slow flow's and the exact orbits' amplitudes (padded rows), the continued branches, the
+#: simulation from rest, the slow flow's error and each model's cost
+MODEL_LADDER_ATTRS = {
+    "eta": (COORD_ATTRS["eta"]["long_name"] + " of the panel", "1"),
+    "sigma": ("scaled detuning sigma = (omega - 1)/eta of the grid", "1"),
+    "sigma_dense": ("scaled detuning of the slow flow's dense curve", "1"),
+    "model": ("model of the ladder", ""),
+    "tolerance": ("relative amplitude error tolerance of a band", "1"),
+    "F": ("forcing amplitude F = f eta of the panel", "1"),
+    "omega": (COORD_ATTRS["omega"]["long_name"] + " of the grid", "1"),
+    "omega_dense": (COORD_ATTRS["omega"]["long_name"] + " of the dense curve", "1"),
+    "xi_min": ("activation threshold of the slow flow: the LO amplitude at the fold of its "
+               "slow invariant manifold", "1"),
+    "slowflow_amplitude": ("LO amplitude max |z_m| of each slow-flow fixed point (units of "
+                           "L; NaN: no more fixed points)", "1"),
+    "slowflow_stable": ("1 where the slow-flow fixed point is stable", "1"),
+    "slowflow_error": ("relative difference of the slow flow's amplitude from the nearest "
+                       "exact symmetric 1:1 orbit at the same omega (NaN: none)", "1"),
+    "dense_amplitude": ("LO amplitude of each slow-flow fixed point on the dense curve", "1"),
+    "dense_stable": ("1 where the fixed point on the dense curve is stable", "1"),
+    "exact_amplitude": ("LO amplitude max |z_m| over a period of each exact admissible "
+                        "symmetric 1:1 orbit (map solve; NaN: no more orbits)", "1"),
+    "exact_stable": ("1 where the exact orbit is stable (map eigenvalues)", "1"),
+    "continuation_omega": ("omega along a continued exact branch (NaN: padding)", "1"),
+    "continuation_amplitude": ("LO amplitude along a continued exact branch (NaN: not "
+                               "admissible or padding)", "1"),
+    "continuation_stable": ("1 where the continued orbit is stable", "1"),
+    "simulation_xmax": ("max |z_m| over the window of the exact simulation from rest "
+                        "(units of L)", "1"),
+    "simulation_regime": ("regime of the simulation from rest", ""),
+    "n_slowflow": ("slow-flow fixed points at the grid frequency", "1"),
+    "n_exact": ("exact admissible symmetric 1:1 orbits found at the grid frequency", "1"),
+    "error_max": ("largest relative amplitude difference of the slow flow's fixed points from "
+                  "the exact orbits, both sorted (0: neither has an orbit; NaN: their "
+                  "numbers differ)", "1"),
+    "band_lo": ("lowest omega of the widest run of grid frequencies within the tolerance "
+                "(NaN: none)", "1"),
+    "band_hi": ("highest omega of that run (NaN: none)", "1"),
+    "share_within": ("share of the grid frequencies within the tolerance", "1"),
+    "seconds": ("wall-clock time of the model over the panel's grid (time.perf_counter; "
+                "the slow flow: mean of repeated calls)", "s"),
+}

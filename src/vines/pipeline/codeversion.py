@@ -24,7 +24,7 @@ STUDIES = COMPUTE + ("reference", "studies")               # work-precision, con
 ATTRACTORS = COMPUTE + ("attractors",)                     # robust-TET maps, basin slices
 DESIGN = STUDIES + ("attractors",)                         # designs (census of the attractors)
 FIGURES = ("plotting",)                                    # figure rules (+ their script)
-MODELS = STUDIES + ("slowflow",)                           # the slow flow beside the exact model
+MODELS = DESIGN + ("slowflow",)                            # the slow flow beside the exact model
 #: every kind above (a job's code param must be the version of one of them)
 KINDS = (COMPUTE, STUDIES, ATTRACTORS, DESIGN, FIGURES, MODELS)
 

@@ -19,6 +19,7 @@ from ..core.params import (
     ModelParams,
     ParameterError,
     SolverSettings,
+    check_int,
 )
 from .axes import ConfigError, axis_values
 
@@ -360,6 +361,63 @@ def check_designs(config: dict, model: dict, limits: dict) -> None:
         _check_design(f"designs.{name}", ds, model, config["simulation"], limits)
 
 
+#: shock keywords of ``studies.shock`` -> config key, where the API names them differently
+_SHOCK_KEYS = {"M": "M_kg", "k": "k_N_per_m", "c": "c_Ns_per_m", "clearance": "clearance_m",
+               "energy_range": "energy_range_J"}
+
+
+def _check_shock(key: str, sh: dict, limits: dict) -> None:
+    """One ``shocks`` entry through the validators of ``studies.shock`` (without running):
+    the design, the structure, the window, every energy; its runs within the limits."""
+    from ..studies import shock as sk
+    try:
+        inp = sk.check_inputs(eta=sh["eta"], clearance_m=sh["clearance_m"],
+                              periods=sh["periods"], M_kg=sh["M_kg"],
+                              k_N_per_m=sh["k_N_per_m"], c_Ns_per_m=sh["c_Ns_per_m"],
+                              d=sh["d"], omega_band=sh["omega_band"])
+        n = check_int("n_energies", sh["n_energies"], lo=2, hi=sk.N_ENERGIES_MAX)
+        lo, hi = sh["energy_range_J"]
+        sk.check_energy_range((lo, hi, n), inp["M_kg"], inp["v_unit"])
+    except ParameterError as err:
+        sub = _SHOCK_KEYS.get(err.name, err.name)
+        raise ConfigError(f"{key}.{sub}", f"{err.value!r}: {err.allowed}") from None
+    for i, E in enumerate(sh["history_energies_J"]):
+        try:
+            sk.check_energy("energy", E, inp["M_kg"], inp["v_unit"])
+        except ParameterError as err:
+            raise ConfigError(f"{key}.history_energies_J[{i}]",
+                              f"{err.value!r}: {err.allowed}") from None
+    _check_t_end(f"{key}.periods", 2.0 * math.pi * sh["periods"], limits,
+                 "2 pi periods")
+    _check_size(key, sh["n_energies"] + len(sh["history_energies_J"]), limits,
+                "runs (n_energies + history_energies_J)")
+
+
+def check_shocks(config: dict, model: dict, limits: dict) -> None:
+    for name, sh in config["shocks"].items():
+        _check_shock(f"shocks.{name}", sh, limits)
+
+
+def _check_model_ladder(key: str, ml: dict, model: dict, limits: dict) -> None:
+    """One ``model_ladders`` entry through ``studies.model_ladder.check_inputs`` (the
+    validators of the slow flow and of the exact solver), its grids within the limits."""
+    from ..studies.model_ladder import check_inputs
+    try:
+        check_inputs(**{k: v for k, v in ml.items() if k != "description"}, r=model["r"],
+                     d=model["d"])
+    except ParameterError as err:
+        sub = "etas" if err.name == "eta" else err.name
+        raise ConfigError(f"{key}.{sub}", f"{err.value!r}: {err.allowed}") from None
+    _check_t_end(f"{key}.t_end", ml["t_end"], limits)
+    _check_size(key, len(ml["etas"]) * max(ml["n_omega"], ml["n_dense"]), limits,
+                "frequencies (etas x max(n_omega, n_dense))")
+
+
+def check_model_ladders(config: dict, model: dict, limits: dict) -> None:
+    for name, ml in config["model_ladders"].items():
+        _check_model_ladder(f"model_ladders.{name}", ml, model, limits)
+
+
 def atlas_grid(config: dict, name: str) -> dict:
     """The (eta, omega, F) of ``orbit_atlases[name]``: its own, or its stability map's."""
     oa = config["orbit_atlases"][name]
@@ -411,5 +469,6 @@ def check_physical(config: dict) -> None:
                                     "root_tol")}, limits)
     for check in (check_grids, check_sweeps, check_lyapunov_sweeps, check_branches,
                   check_maps_and_points, check_attractor_maps, check_boundaries, check_studies,
-                  check_designs, check_orbit_atlases):
+                  check_designs, check_orbit_atlases, check_shocks,
+                  check_model_ladders):
         check(config, model, limits)

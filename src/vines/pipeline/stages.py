@@ -484,3 +484,69 @@ def orbit_atlas(grid: dict, *, sim_t_end: float, model: dict, code: str, title: 
                              settings=model, code_version=code)
     attrs.update(F=F, sim_t_end=float(sim_t_end))
     return builders.atlas_dataset(eta, omega, families, arrays, attrs)
+
+
+# ------------------------------------------------------------------ shock
+
+#: keys of a ``shocks`` entry passed to ``studies.shock.shock`` as they are
+SHOCK_KEYS = ("eta", "clearance_m", "periods", "omega_band", "M_kg", "k_N_per_m",
+              "c_Ns_per_m", "d")
+
+
+def shock(spec: dict, *, model: dict, code: str, title: str):
+    """Dataset of one ``shocks`` entry: ``studies.shock.shock`` over the entry's energy range
+    (the curve) and at each of its history energies (the decays in time), with the model's
+    r (the structure's damping is the entry's: M, k, c or d, Table 1 by default)."""
+    import math
+
+    from ..studies.shock import report_times
+    from ..studies.shock import shock as free_decay
+    kw = {k: spec[k] for k in SHOCK_KEYS if spec.get(k) is not None}
+    lo, hi = spec["energy_range_J"]
+    curve = free_decay(**kw, r=model["r"], energy_range=(lo, hi, spec["n_energies"]))
+    histories = [free_decay(**kw, r=model["r"], energy_J=E)
+                 for E in spec["history_energies_J"]]
+    opt = curve["optimal"]
+    print(f"shock: {spec['n_energies'] + len(histories)} exact runs; VI NES best "
+          f"{opt['dissipated_fraction']:.4f} at {opt['energy_J']:.4g} J, TMD "
+          f"{curve['tmd']['dissipated_fraction']:.4f}, LO alone "
+          f"{curve['lo_alone']['dissipated_fraction']:.4f} within {spec['periods']:g} periods")
+    attrs = provenance_attrs(title=title, config_subset={"spec": spec, "model": model},
+                             settings={"r": model["r"]}, code_version=code)
+    periods = report_times(curve["inputs"]["periods"]) / (2.0 * math.pi)
+    return builders.shock_dataset(curve, histories, spec["history_energies_J"], periods, attrs)
+
+
+# ------------------------------------------------------------------ model ladder
+
+def model_ladder(spec: dict, *, model: dict, code: str, title: str):
+    """Dataset of one ``model_ladders`` entry: per eta the band omega = 1 + sigma eta at
+    F = f eta by the slow flow, the exact orbits (map solve, continuation) and the
+    simulation from rest (``studies.model_ladder.ladder``), the slow flow's error, its bands
+    within each of ``TOLERANCES`` and every model's wall time (model's r and d)."""
+    from ..studies import model_ladder as ml
+    kw = {k: v for k, v in spec.items() if k != "description"}
+    panels_in = ml.check_inputs(**kw, r=model["r"], d=model["d"])
+    ml.warm_up(model["r"], model["d"])
+    panels, bands = [], []
+    for eta, F, W in panels_in:
+        lad = ml.ladder(eta, F, W, r=model["r"], d=model["d"], t_end=spec["t_end"],
+                        t_transient=spec["t_transient"], n_dense=spec["n_dense"],
+                        continuation_step=spec["continuation_step"])
+        panels.append(lad)
+        bands.append([ml.band(W, lad.error_max, tol) for tol in ml.TOLERANCES])
+        sec = lad.seconds
+        print(f"model_ladder: eta {eta:g}: slow flow {sec['slowflow'] * 1e3:.3g} ms, map solve "
+              f"{sec['map_solve']:.3g} s, continuation {sec['continuation']:.3g} s, "
+              f"simulation {sec['simulation']:.3g} s; within 1 % on "
+              f"{bands[-1][0][2]:.0%} of the grid, 5 % on {bands[-1][1][2]:.0%}")
+    lo, hi = spec["sigma_range"]
+    sigma = np.linspace(lo, hi, spec["n_omega"])
+    sigma_dense = np.linspace(lo, hi, spec["n_dense"])
+    attrs = provenance_attrs(title=title, config_subset={"spec": spec, "model": model},
+                             settings=model, code_version=code)
+    attrs.update(f=float(spec["f"]), r=float(model["r"]), d=float(model["d"]),
+                 t_end=float(spec["t_end"]), t_transient=float(spec["t_transient"]),
+                 continuation_step=float(spec["continuation_step"]))
+    return builders.model_ladder_dataset(panels, sigma, sigma_dense, ml.TOLERANCES, bands,
+                                         attrs)

@@ -285,15 +285,39 @@ def check_energy_range(rng, M: float, v_unit: float) -> np.ndarray:
     return np.geomspace(a, b, n)
 
 
+def check_energy(name: str, energy_J, M: float, v_unit: float) -> float:
+    """An initial energy [J]: > 0, its initial velocity <= V0_MAX L w0."""
+    from ..core.params import check_real
+    return check_real(name, energy_J, lo=0.0, lo_open=True,
+                      hi=0.5 * M * (V0_MAX * v_unit) ** 2)
+
+
 def _initial_velocity(velocity_m_s, energy_J, M: float, v_unit: float) -> float:
     """Initial LO velocity [m/s] from velocity or energy E = M V^2 / 2 (one is given)."""
     from ..core.params import check_real
     if velocity_m_s is not None:
         return check_real("velocity", velocity_m_s, lo=0.0, lo_open=True,
                           hi=V0_MAX * v_unit)
-    E = check_real("energy", energy_J, lo=0.0, lo_open=True,
-                   hi=0.5 * M * (V0_MAX * v_unit) ** 2)
-    return math.sqrt(2.0 * E / M)
+    return math.sqrt(2.0 * check_energy("energy", energy_J, M, v_unit) / M)
+
+
+def check_inputs(*, eta, clearance_m, periods=N_PERIODS_DEFAULT, M_kg=None, k_N_per_m=None,
+                 c_Ns_per_m=None, d=None, r=None, omega_band=None) -> dict:
+    """The validated inputs of ``shock`` besides the initial condition (keys eta,
+    clearance_m, periods, M_kg, k_N_per_m, c_Ns_per_m, d, r, omega_band, w0, v_unit: the
+    natural frequency [rad/s] and the velocity unit L w0 [m/s]); ParameterError."""
+    from ..core.params import R_DEFAULT, check_param, check_real
+    from .design_checks import DEFAULT_BAND, check_band, check_eta, check_structure
+    M, k, c, d = check_structure(M_kg, k_N_per_m, c_Ns_per_m, d)
+    r = check_param("r", R_DEFAULT if r is None else r)
+    eta = check_eta("eta", eta)
+    L = check_real("clearance", clearance_m, lo=0.0, lo_open=True, hi=1e6)
+    periods = check_real("periods", periods, lo=0.0, lo_open=True, hi=N_PERIODS_MAX)
+    band = check_band(DEFAULT_BAND if omega_band is None else omega_band)
+    w0 = math.sqrt(k / M)
+    return {"eta": eta, "clearance_m": L, "periods": periods, "M_kg": M, "k_N_per_m": k,
+            "c_Ns_per_m": c, "d": d, "r": r, "omega_band": band, "w0": w0,
+            "v_unit": L * w0}
 
 
 def _series(decays: list[Decay], key: str, time_unit: float) -> list:
@@ -314,19 +338,15 @@ def shock(*, eta, clearance_m, velocity_m_s=None, energy_J=None, energy_range=No
     """
     import time
 
-    from ..core.params import R_DEFAULT, check_param, check_real
-    from .design_checks import DEFAULT_BAND, check_band, check_eta, check_structure
     from .tmd import optimal_tmd
     t0 = time.perf_counter()
-    M, k, c, d = check_structure(M_kg, k_N_per_m, c_Ns_per_m, d)
-    r = check_param("r", R_DEFAULT if r is None else r)
-    eta = check_eta("eta", eta)
-    L = check_real("clearance", clearance_m, lo=0.0, lo_open=True, hi=1e6)
-    periods = check_real("periods", periods, lo=0.0, lo_open=True, hi=N_PERIODS_MAX)
-    band = check_band(DEFAULT_BAND if omega_band is None else omega_band)
+    inp = check_inputs(eta=eta, clearance_m=clearance_m, periods=periods, M_kg=M_kg,
+                       k_N_per_m=k_N_per_m, c_Ns_per_m=c_Ns_per_m, d=d, r=r,
+                       omega_band=omega_band)
+    eta, L, periods, M, k, c, d, r, band, w0, v_unit = (
+        inp[key] for key in ("eta", "clearance_m", "periods", "M_kg", "k_N_per_m",
+                             "c_Ns_per_m", "d", "r", "omega_band", "w0", "v_unit"))
     mode = check_initial(velocity_m_s, energy_J, energy_range)
-    w0 = math.sqrt(k / M)
-    v_unit = L * w0
     if mode == "energy_range":
         energies = check_energy_range(energy_range, M, v_unit)
         velocities = np.sqrt(2.0 * energies / M)

@@ -1,0 +1,94 @@
+"""The shock figure's panels: the fraction of a shock's energy dissipated within the window
+against the initial energy, and the energy left in time at a few initial energies, for the
+VI NES, the equal-mass TMD and the LO alone (datasets of the stage ``shock``)."""
+from __future__ import annotations
+
+import numpy as np
+import xarray as xr
+from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
+
+from . import palette
+from .checks import load, require
+
+C_LO_ALONE, C_TMD = "0.45", palette.OKABE_ITO["blue"]
+C_VINES = palette.OKABE_ITO["orange"]
+#: the VI NES's decays in time: one colour per initial energy, light to dark
+C_HISTORY = ("#F5C26B", palette.OKABE_ITO["orange"], palette.OKABE_ITO["vermillion"],
+             "#8B3A00", "#4A1F00")
+#: the lowest energy fraction drawn on the decay panel
+E_FLOOR = 1e-6
+
+
+def shock(path) -> xr.Dataset:
+    """A shock dataset, checked: the curve, the decays in time, the linear systems."""
+    ds = load(path)
+    return require(ds, coords=("energy", "history_energy", "time_periods"), min_size=1,
+                   variables=("vines_remaining",),
+                   finite=("vines_dissipated_fraction", "vines_by_impacts", "tmd_remaining",
+                           "lo_alone_remaining", "tmd_dissipated_fraction",
+                           "lo_alone_dissipated_fraction", "activation_energy"))
+
+
+def _plain_log_ticks(axis):
+    """Plain numbers at 1 x 10^k on a log axis."""
+    axis.set_major_locator(LogLocator(base=10))
+    axis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+    axis.set_minor_formatter(NullFormatter())
+
+
+def curve_panel(ax, ds: xr.Dataset) -> None:
+    """Dissipated fraction within the window against E0 (log): the VI NES (dots, its share
+    by impacts dashed), the TMD and the LO alone (flat: linear), the activation energy
+    (dotted) and the VI NES's best energy (triangle)."""
+    E = ds["energy"].values
+    ax.axhline(float(ds["lo_alone_dissipated_fraction"]), color=C_LO_ALONE, lw=1.6,
+               label="LO alone")
+    ax.axhline(float(ds["tmd_dissipated_fraction"]), color=C_TMD, lw=1.6,
+               label=rf"TMD, equal mass ($f$ = {float(ds['tmd_frequency_ratio']):.3g}, "
+                     rf"$\zeta$ = {float(ds['tmd_damping_ratio']):.3g})")
+    ax.plot(E, ds["vines_dissipated_fraction"].values, "o-", color=C_VINES, ms=3, lw=1.4,
+            label="VI NES, total")
+    ax.plot(E, ds["vines_by_impacts"].values, "--", color=C_VINES, lw=1.2,
+            label="VI NES, by impacts")
+    ax.axvline(float(ds["activation_energy"]), color="black", ls=":", lw=1.0,
+               label="activation (first peak reaches the wall)")
+    ax.plot(float(ds["optimal_energy"]), float(ds["optimal_dissipated_fraction"]), "v",
+            color="black", ms=6, label="VI NES best")
+    ax.set_xscale("log")
+    _plain_log_ticks(ax.xaxis)
+    ax.set_ylim(-0.02, 1.02)
+    ax.set_xlabel(r"initial energy $E_0 = M V_0^2/2$ (J)")
+    ax.set_ylabel(f"fraction of $E_0$ dissipated in {ds.attrs['periods']:g} periods")
+
+
+def decay_panel(ax, ds: xr.Dataset) -> None:
+    """Energy left E/E0 (log) against time in natural periods of the LO: the VI NES at each
+    history energy, the TMD and the LO alone (any E0)."""
+    t = ds["time_periods"].values
+    floor = E_FLOOR
+    ax.semilogy(t, np.maximum(ds["tmd_remaining"].values, floor), color=C_TMD, lw=1.6,
+                label="TMD (any $E_0$)")
+    for k, E0 in enumerate(ds["history_energy"].values):
+        rem = ds["vines_remaining"].values[k]
+        ax.semilogy(t, np.maximum(rem, floor), color=C_HISTORY[k % len(C_HISTORY)], lw=1.3,
+                    label=rf"VI NES, $E_0$ = {E0:g} J")
+    # on top, dashed: below activation the VI NES's decay is the LO alone's
+    ax.semilogy(t, np.maximum(ds["lo_alone_remaining"].values, floor), "--",
+                color=C_LO_ALONE, lw=1.4, zorder=3, label="LO alone (any $E_0$)")
+    for level in (0.1, 0.01):
+        ax.axhline(level, color="0.8", lw=0.8, zorder=0)
+    ax.set_ylim(floor, 1.5)
+    ax.set_xlim(t[0], t[-1])
+    ax.set_xlabel(r"time after the shock $t\,\omega_0/2\pi$ (natural periods of the LO)")
+    ax.set_ylabel(r"energy left $E/E_0$")
+
+
+def summary(ds: xr.Dataset) -> str:
+    """One line: the design, the activation and best energies, the three fractions."""
+    a = ds.attrs
+    return (f"eta = {a['eta']:g}, L = {a['clearance_m'] * 1e3:.3g} mm, {a['periods']:g} "
+            f"periods: VI NES best {float(ds['optimal_dissipated_fraction']):.4f} at "
+            f"{float(ds['optimal_energy']):.3g} J (activation "
+            f"{float(ds['activation_energy']):.3g} J), TMD "
+            f"{float(ds['tmd_dissipated_fraction']):.4f}, LO alone "
+            f"{float(ds['lo_alone_dissipated_fraction']):.4f}")
