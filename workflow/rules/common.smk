@@ -85,6 +85,7 @@ WORK_PRECISION = config["work_precision"]
 WORK_PRECISION_SETTINGS = {k: v for k, v in WORK_PRECISION.items() if k != "cases"}
 CONVERGENCE = config["convergence"]
 DESIGNS = config["designs"]
+DESIGN_ROBUST = config["design_robust"]
 ORBIT_ATLASES = config["orbit_atlases"]
 
 # A results folder that cannot be written (permissions, a read-only disk, a file in the
@@ -164,6 +165,7 @@ STAGE_ENTRIES = {
     "work_precision": WORK_PRECISION["cases"],
     "convergence": CONVERGENCE,
     "design": DESIGNS,
+    "design_robust": DESIGN_ROBUST,
     "orbit_atlas": ORBIT_ATLASES,
 }
 

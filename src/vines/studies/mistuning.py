@@ -252,16 +252,32 @@ def robust_tmd(mu: float, d: float, band, D: float, start: tuple) -> tuple[float
     return math.exp(res.x[0]), math.exp(res.x[1])
 
 
-def robust_vines(problem, search, D: float, n_search: int, n_threads=None) -> dict:
+def robust_vines(problem, search, D: float, n_search: int, nominal: tuple,
+                 n_threads=None) -> dict:
     """The VI NES (eta, clearance_m) minimising the largest worst case from rest over
-    n_search host drifts in [-D, D] (``design.optimise`` on a ``RobustEvaluator``);
-    ``search``: the nominal ``design.DesignSearch`` (eta_max, range, grid)."""
-    from .design import optimise
+    n_search host drifts in [-D, D]: ``design.optimise`` on a ``RobustEvaluator``, and a
+    compass search from the ``nominal`` design (eta, L) too, so that the robust design is
+    never worse than the nominal one on this objective; ``search``: the nominal
+    ``design.DesignSearch`` (eta_max, range, grid)."""
+    from .design import _compass, optimise, search_grid
     ev = RobustEvaluator(problem, delta_grid(D, n_search) if n_search > 1 else [0.0],
                          n_threads)
     with progress.task(None, "robust design: runs from rest", "runs"):
         best = optimise(ev, search.eta_max, search.clearance_range_m, search.n_eta,
                         search.n_clearance)
+        etas, Ls = search_grid(search.eta_max, search.clearance_range_m, search.n_eta,
+                               search.n_clearance)
+        logs = np.log10(Ls)
+        steps = [0.5 * (etas[1] - etas[0]) if len(etas) > 1 else 0.0,
+                 0.5 * (logs[1] - logs[0])]
+        x0 = (nominal[0], math.log10(nominal[1]))
+        x, v = _compass(ev, x0, ev.worst([nominal])[0], steps, [etas[0], logs[0]],
+                        [etas[-1], logs[-1]])
+    if v < best["worst_ratio"]:
+        moved = tuple(x) != x0
+        best = best | dict(eta=float(x[0]) if moved else nominal[0],
+                           clearance_m=10.0 ** float(x[1]) if moved else nominal[1],
+                           worst_ratio=v)
     return best | dict(n_runs=ev.n_runs, n_designs=len(ev.cache))
 
 
@@ -287,7 +303,8 @@ def mistuning(result, D, *, n_delta: int = N_DELTA_DEFAULT, robust: bool = False
         search = DesignSearch(eta_max=result.inputs["eta_max"],
                               clearance_range_m=tuple(result.inputs["clearance_range_m"]),
                               n_eta=len(g["eta"]), n_clearance=len(g["clearance_m"]))
-        best = robust_vines(pb, search, D, n_search, n_threads)
+        best = robust_vines(pb, search, D, n_search, (result.eta, result.clearance_m),
+                            n_threads)
         f, z = robust_tmd(t.eta, pb.model.d, pb.band, D,
                           (t.frequency_ratio, t.damping_ratio))
         rob = curves(pb, t.eta, f, z, best["eta"], best["clearance_m"], D, n_delta,
