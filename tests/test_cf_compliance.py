@@ -47,7 +47,7 @@ DESIGN = {"omega_band": [0.9, 1.1], "n_omega": 3, "amplitudes_m": [0.003], "eta_
           "description": None}
 ATLAS = {"eta": [0.1, 0.5], "omega": [0.9, 1.0], "F": 0.3077}
 KINDS = ("grid_chunk", "measures", "sweep", "branch", "stability", "boundaries", "timehistory",
-         "robust", "basin_slice", "design", "atlas")
+         "robust", "basin_slice", "design", "design_robust", "atlas")
 RAGGED = ("sweep", "branch", "boundaries", "timehistory")
 
 #: documented findings of the IOOS checker (docs/cf-compliance.md): it recognises a DSG
@@ -82,6 +82,9 @@ def datasets(tmp_path_factory):
     put("basin_slice", stages.basin_slice(SLICE, model=MODEL, simulation=SIM, **kw))
     put("design", stages.design(DESIGN, model=MODEL, simulation={"v_stick": 1e-6,
                                 "max_impacts": 10**6, "root_tol": 1e-13}, **kw))
+    put("design_robust", stages.design_robust(
+        DESIGN | {"mistuning": 0.1, "n_delta": 3, "n_search": 1}, model=MODEL,
+        simulation={"v_stick": 1e-6, "max_impacts": 10**6, "root_tol": 1e-13}, **kw))
     put("atlas", stages.orbit_atlas(ATLAS, sim_t_end=100.0, model=MODEL, **kw))
     return out
 
