@@ -84,7 +84,7 @@ def add_parser(subparsers) -> VinesArgumentParser:
     add_mistuning_args(p)
     p.add_argument("--json", action="store_true",
                    help="print one JSON object on stdout (keys: inputs, curves, lo_alone, "
-                        "tmd, vines, search, worst_case, cost)")
+                        "tmd, vines, search, worst_case, cost, mistuning)")
     return p
 
 
