@@ -185,7 +185,9 @@ def curves(problem, mu: float, f: float, zeta: float, eta: float, clearance_m: f
         best, x0, h = vals[k], float(grid[k]), (grid[1] - grid[0]) / 2 if D > 0 else 0.0
         for _ in range(N_REFINE_DELTA):
             for x in (x0 - h, x0 + h):
-                if h > 0 and -D <= x <= D and at(x) > best:
+                if not (h > 0 and -D <= x <= D):
+                    progress.advance()          # a candidate outside [-D, D]: skipped
+                elif at(x) > best:
                     best, x0 = seen[x][0], x
             h /= 2
     delta = np.array(sorted(seen))
