@@ -161,20 +161,20 @@ class Curves:
                     n_runs=self.n_runs)
 
 
-def curves(problem, mu: float, f: float, zeta: float, eta: float, clearance_m: float,
-           D: float, n_delta: int = N_DELTA_DEFAULT, n_threads=None) -> Curves:
-    """The LO alone, the TMD (mass ratio mu, tuning f, zeta) and the VI NES (eta,
-    clearance_m) over delta in [-D, D] (module docstring; validated problem and D)."""
-    band, d = problem.band, problem.model.d
+def _vines_over_delta(problem, eta, clearance_m, D, n_delta, n_threads) -> tuple:
+    """({delta: (worst from rest, worst over attractors)}, runs) of a VI NES design on
+    the delta grid, then N_REFINE_DELTA rounds of hill climbing at its largest value (the
+    points at +- h around the best so far, h = grid step / 2, / 4, ...)."""
     grid = delta_grid(D, n_delta)
     seen: dict = {}
-    n_runs = [0]
+    n_runs = 0
 
     def at(x):
+        nonlocal n_runs
         x = float(x)
         if x not in seen:
             w, a, n = vines_worst(problem, eta, clearance_m, x, n_threads)
-            seen[x], n_runs[0] = (w, a), n_runs[0] + n
+            seen[x], n_runs = (w, a), n_runs + n
         progress.advance()
         return seen[x][0]
 
@@ -190,6 +190,16 @@ def curves(problem, mu: float, f: float, zeta: float, eta: float, clearance_m: f
                 elif at(x) > best:
                     best, x0 = seen[x][0], x
             h /= 2
+    return seen, n_runs
+
+
+def curves(problem, mu: float, f: float, zeta: float, eta: float, clearance_m: float,
+           D: float, n_delta: int = N_DELTA_DEFAULT, n_threads=None) -> Curves:
+    """The LO alone, the TMD (mass ratio mu, tuning f, zeta) and the VI NES (eta,
+    clearance_m) over delta in [-D, D] (module docstring; validated problem and D)."""
+    band, d = problem.band, problem.model.d
+    grid = delta_grid(D, n_delta)
+    seen, n_runs = _vines_over_delta(problem, eta, clearance_m, D, n_delta, n_threads)
     delta = np.array(sorted(seen))
     vines = np.array([seen[x][0] for x in delta])
     any_ = (None if problem.census_n == 0
@@ -207,7 +217,7 @@ def curves(problem, mu: float, f: float, zeta: float, eta: float, clearance_m: f
                   vines=dict(eta=eta, clearance_m=clearance_m))
     return Curves(D=D, delta=delta, lo_alone=lo, tmd=tm, vines=vines,
                   vines_any_attractor=any_, worst=worst, worst_delta=where, design=design,
-                  n_runs=n_runs[0])
+                  n_runs=n_runs)
 
 
 # --------------------------------------------------------------------------- robust
