@@ -51,7 +51,8 @@ SHOCK = {"eta": 0.1, "clearance_m": 0.0424, "energy_range_J": [1.0, 100.0], "n_e
 LADDER = {"etas": [0.05], "f": 1.0, "sigma_range": [-2.0, 2.0], "n_omega": 3, "n_dense": 20,
           "continuation_step": 0.05, "t_end": 100.0, "t_transient": 50.0}
 KINDS = ("grid_chunk", "measures", "sweep", "branch", "stability", "boundaries", "timehistory",
-         "robust", "basin_slice", "design", "atlas", "shock", "model_ladder")
+         "robust", "basin_slice", "design", "design_robust", "atlas", "shock",
+         "model_ladder")
 RAGGED = ("sweep", "branch", "boundaries", "timehistory")
 
 #: documented findings of the IOOS checker (docs/cf-compliance.md): it recognises a DSG
@@ -86,6 +87,9 @@ def datasets(tmp_path_factory):
     put("basin_slice", stages.basin_slice(SLICE, model=MODEL, simulation=SIM, **kw))
     put("design", stages.design(DESIGN, model=MODEL, simulation={"v_stick": 1e-6,
                                 "max_impacts": 10**6, "root_tol": 1e-13}, **kw))
+    put("design_robust", stages.design_robust(
+        DESIGN | {"mistuning": 0.1, "n_delta": 3, "n_search": 1}, model=MODEL,
+        simulation={"v_stick": 1e-6, "max_impacts": 10**6, "root_tol": 1e-13}, **kw))
     put("atlas", stages.orbit_atlas(ATLAS, sim_t_end=100.0, model=MODEL, **kw))
     put("shock", stages.shock(SHOCK, model=MODEL, **kw))
     put("model_ladder", stages.model_ladder(LADDER, model=MODEL, **kw))

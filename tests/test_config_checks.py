@@ -24,8 +24,13 @@ def _first(section):
 SW, BR, SM, TH = _first("sweeps"), _first("branches"), _first("stability_maps"), _first("timehistories")
 WP = sorted(SMOKE["work_precision"]["cases"])[0]
 GR, BD = _first("grids"), _first("boundaries")
+<<<<<<< HEAD
 DZ, OA, SH = _first("designs"), _first("orbit_atlases"), _first("shocks")
 ML = _first("model_ladders")
+=======
+DZ, OA = _first("designs"), _first("orbit_atlases")
+DR = _first("design_robust")
+>>>>>>> i36a
 
 BAD = [  # (path to set, keys joined by '/', value, expected key in the message, expected words)
     ("simulation/t_end", math.nan, "t_end", "finite"),
@@ -81,6 +86,11 @@ BAD = [  # (path to set, keys joined by '/', value, expected key in the message,
     (f"designs/{DZ}/t_transient", 1e9, f"designs.{DZ}.t_transient", ""),
     (f"designs/{DZ}/n_eta", 10**6, f"designs.{DZ}.n_eta", ""),
     (f"designs/{DZ}/census_n", 10**6, f"designs.{DZ}", "limits.max_grid_points"),
+    # design_robust: the design's checks, then the mistuning's
+    (f"design_robust/{DR}/mistuning", -0.1, f"design_robust.{DR}.mistuning", "-0.1"),
+    (f"design_robust/{DR}/n_delta", 4, f"design_robust.{DR}.n_delta", "odd"),
+    (f"design_robust/{DR}/omega_band", [1.2, 0.8], f"design_robust.{DR}.omega_band", ""),
+    (f"design_robust/{DR}/eta", 0.1, f"design_robust.{DR}.eta_max", "do not give eta"),
     # orbit atlases: a stability map that exists, or a whole grid the model accepts
     ("orbit_atlases/ref", {"stability_map": "nope"}, "orbit_atlases.ref.stability_map",
      "not a stability_maps entry"),

@@ -87,6 +87,7 @@ WORK_PRECISION = config["work_precision"]
 WORK_PRECISION_SETTINGS = {k: v for k, v in WORK_PRECISION.items() if k != "cases"}
 CONVERGENCE = config["convergence"]
 DESIGNS = config["designs"]
+DESIGN_ROBUST = config["design_robust"]
 ORBIT_ATLASES = config["orbit_atlases"]
 SHOCKS = config["shocks"]
 MODEL_LADDERS = config["model_ladders"]
@@ -168,6 +169,7 @@ STAGE_ENTRIES = {
     "work_precision": WORK_PRECISION["cases"],
     "convergence": CONVERGENCE,
     "design": DESIGNS,
+    "design_robust": DESIGN_ROBUST,
     "orbit_atlas": ORBIT_ATLASES,
     "shock": SHOCKS,
     "model_ladder": MODEL_LADDERS,

@@ -105,6 +105,9 @@ FIG_INPUTS = {
     "basin_slices": {"slices": _slices("basin")},
     # beyond the paper: absorber design against the TMD, the periodic-orbit atlas
     "design": {"designs": _designs("design")},
+    "design_robust": {
+        "robust": [dataset("design_robust", n) for n in sorted(DESIGN_ROBUST)]
+    },
     "atlas": {"atlases": _atlases("atlas"), "measures": _measures("fig12")},
     # beyond the paper: free decay after a shock against the TMD
     "shock": {"shocks": _shocks("shock")},

@@ -81,9 +81,10 @@ def add_parser(subparsers) -> VinesArgumentParser:
                      help=f"start of the x_max window [default {T_TRANSIENT_DEFAULT:g}]")
     run.add_argument("--threads", metavar="N", default=None,
                      help="threads [an integer >= 1; default: all cores]")
+    add_mistuning_args(p)
     p.add_argument("--json", action="store_true",
                    help="print one JSON object on stdout (keys: inputs, curves, lo_alone, "
-                        "tmd, vines, search, worst_case, cost)")
+                        "tmd, vines, search, worst_case, cost, mistuning)")
     add_model_choice(p)
     return p
 
@@ -139,9 +140,54 @@ def run(args: argparse.Namespace) -> int:
     return emit(args.json, with_model(args, lambda: compute(args)), text)
 
 
+# --------------------------------------------------------------------------- mistuning
+
+def add_mistuning_args(p) -> None:
+    """--mistuning D (host frequency (1 + delta) w0, |delta| <= D), --n-delta, --robust."""
+    from ..studies.mistuning import N_DELTA_DEFAULT, N_SEARCH_DEFAULT
+    g = p.add_argument_group("mistuning: the host's natural frequency drifts to "
+                             "(1 + delta) w0, absorbers and band fixed")
+    g.add_argument("--mistuning", metavar="D", default=None,
+                   help="evaluate the designs for delta in [-D, D] [0 <= D <= 0.5; "
+                        "JSON key mistuning]")
+    g.add_argument("--n-delta", metavar="N", default=N_DELTA_DEFAULT,
+                   help=f"grid points in delta, odd [default {N_DELTA_DEFAULT}], then the "
+                        "VI NES's worst refined")
+    g.add_argument("--robust", action="store_true",
+                   help="with --eta-max: also optimise the VI NES and re-tune the TMD for "
+                        f"the worst case over delta ({N_SEARCH_DEFAULT} host frequencies "
+                        "in the search)")
+
+
+def checked_mistuning(args: argparse.Namespace):
+    """--mistuning's values validated before any run (None when not asked)."""
+    from ..core.params import ParameterError
+    from ..studies.mistuning import check_mistuning
+    if args.mistuning is None:
+        if args.robust:
+            raise ParameterError("robust", True, "give --mistuning D with it")
+        return None
+    if args.robust and args.eta_max is None:
+        raise ParameterError("robust", True, "optimises a design: give --eta-max with it")
+    return check_mistuning(args.mistuning, args.n_delta)
+
+
+def add_mistuning(d: dict, res, args: argparse.Namespace, checked) -> dict:
+    """``d`` with the key ``mistuning`` (None when not asked)."""
+    d["mistuning"] = None
+    if checked is not None:
+        from ..studies.mistuning import mistuning
+        with quiet_stdout():
+            d["mistuning"] = mistuning(res, checked[0], n_delta=checked[1],
+                                       robust=args.robust,
+                                       n_threads=res.cost["n_threads"])
+    return d
+
+
 def compute(args: argparse.Namespace) -> dict:
     """The design's JSON object (``DesignResult.to_dict``); ParameterError on bad input."""
     from ..studies.design import design
+    mis = checked_mistuning(args)
     with quiet_stdout():
         res = design(omega_band=args.omega_band, n_omega=args.n_omega,
                      amplitudes_m=args.amplitude, M_kg=args.M, k_N_per_m=args.k,
@@ -150,7 +196,7 @@ def compute(args: argparse.Namespace) -> dict:
                      clearance_range_m=args.clearance_range, n_eta=args.n_eta,
                      n_clearance=args.n_clearance, view=args.view, census_n=args.census_n,
                      t_end=args.t_end, t_transient=args.t_transient, n_threads=args.threads)
-    return res.to_dict()
+    return add_mistuning(res.to_dict(), res, args, mis)
 
 
 def _fmt(x) -> str:
@@ -183,4 +229,21 @@ def text(d: dict) -> str:
                      f"{_fmt(a)} over attractors")
     lines.append(f"  cost {d['cost']['wall_s']:.1f} s, {d['cost']['n_runs_from_rest']} runs "
                  f"from rest, {d['cost']['n_runs_census']} census runs")
-    return "\n".join(lines)
+    return "\n".join(lines + mistuning_text(d.get("mistuning")))
+
+
+def mistuning_text(m: dict | None) -> list:
+    """Lines of the worst cases over the host's drift (none when not asked)."""
+    if m is None:
+        return []
+    lines = [f"  mistuning |delta| <= {m['D']:g} ({len(m['delta'])} host frequencies):"]
+    for name, blk in (("nominal designs", m), ("robust designs", m["robust"])):
+        if blk is None:
+            continue
+        w, v = blk["worst"], blk["design"]["vines"]
+        lines.append(f"    {name}: worst LO alone {_fmt(w['lo_alone'])}, TMD (f = "
+                     f"{blk['design']['tmd']['frequency_ratio']:.4f}) {_fmt(w['tmd'])}, "
+                     f"VI NES (eta {v['eta']:.4g}, {1e3 * v['clearance_m']:.4g} mm) "
+                     f"{_fmt(w['vines'])} from rest, {_fmt(w['vines_any_attractor'])} over "
+                     "attractors")
+    return lines

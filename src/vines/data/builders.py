@@ -37,6 +37,8 @@ from .schema import (
     COUNT_DTYPE,
     DERIVED_ATTRS,
     DESIGN_ATTRS,
+    DESIGN_ROBUST_ATTRS,
+    DESIGN_ROBUST_UNITS,
     DESIGN_UNITS,
     FEATURE_TYPE,
     FLAG_MEANINGS,
@@ -617,6 +619,52 @@ def design_dataset(result, attrs: dict) -> xr.Dataset:
            "census_seed": pb.census_seed, "basin_min": pb.basin_min,
            "t_end": pb.settings.t_end, "t_transient": pb.settings.t_transient,
            **{f"worst_case_{k}": v for k, v in out["worst_case"].items()}}
+    return xr.Dataset(data, coords=coords, attrs={**own, **attrs})
+
+
+def _rv(name, prefix, dims, data) -> xr.Variable:
+    """A design_robust variable ``prefix + name``, attributes of ``name``."""
+    long_name = DESIGN_ROBUST_ATTRS[name] + (" (robust designs)" if prefix else "")
+    return xr.Variable(dims, np.asarray(data, dtype="f8"),
+                       {"long_name": long_name, "units": DESIGN_ROBUST_UNITS.get(name, "1")})
+
+
+def _mistuning_vars(block: dict, prefix: str, dim: str) -> dict:
+    """One block of ``studies.mistuning.mistuning`` (nominal: prefix '', robust:
+    'robust_'): the curves over its delta and the designs and worst cases as scalars."""
+    out = {}
+    for name in ("lo_alone", "tmd", "vines", "vines_any_attractor"):
+        if block[name] is not None:
+            out[prefix + name] = _rv(name, prefix, (dim,), block[name])
+        out[f"{prefix}worst_{name}"] = _rv(f"worst_{name}", prefix, (),
+                                           _nan(block["worst"][name]))
+    des = block["design"]
+    for name, value in (("tmd_frequency_ratio", des["tmd"]["frequency_ratio"]),
+                        ("tmd_damping_ratio", des["tmd"]["damping_ratio"]),
+                        ("vines_eta", des["vines"]["eta"]),
+                        ("vines_clearance", des["vines"]["clearance_m"])):
+        out[prefix + name] = _rv(name, prefix, (), value)
+    return out
+
+
+def design_robust_dataset(result, mistuning: dict, attrs: dict) -> xr.Dataset:
+    """A design's worst cases over the host's drift (``studies.mistuning.mistuning``
+    with robust=True): the nominal designs on ``delta``, the robust ones on
+    ``robust_delta``; attributes: the structure, band, amplitudes, D, the TMD's mass
+    ratio and how the host is detuned, over ``attrs`` (provenance)."""
+    rob = mistuning["robust"]
+    coords = {"delta": _rv("delta", "", ("delta",), mistuning["delta"]),
+              "robust_delta": _rv("robust_delta", "", ("robust_delta",), rob["delta"])}
+    data = _mistuning_vars(mistuning, "", "delta") | _mistuning_vars(rob, "robust_",
+                                                                     "robust_delta")
+    pb = result.problem
+    own = {"Conventions": CONVENTIONS, "mistuning": mistuning["D"],
+           "host": mistuning["host"], "tmd_eta": result.tmd.eta,
+           "omega_band": list(pb.band), "n_omega": len(pb.omega),
+           "amplitudes_m": list(pb.amplitudes_m), "d": pb.model.d, "r": pb.model.r,
+           "M_kg": pb.M_kg, "k_N_per_m": pb.k_N_per_m, "census_n": pb.census_n,
+           "robust_search_delta": rob["search"]["delta"],
+           "t_end": pb.settings.t_end, "t_transient": pb.settings.t_transient}
     return xr.Dataset(data, coords=coords, attrs={**own, **attrs})
 
 

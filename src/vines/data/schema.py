@@ -312,6 +312,30 @@ DESIGN_UNITS = {"amplitude": "m", "search_clearance": "m", "tmd_mass": "kg",
                 "tmd_stiffness": "N m-1", "tmd_damping": "N s m-1",
                 "vines_clearance": "m", "vines_mass": "kg"}
 
+#: design_robust datasets (``vines.studies.mistuning``): worst cases over the host's drift
+#: delta (nominal designs on ``delta``, robust ones on ``robust_delta``) and the designs
+DESIGN_ROBUST_ATTRS = {
+    "delta": "host frequency drift: natural frequency (1 + delta) w0 (nominal designs)",
+    "robust_delta": "host frequency drift: natural frequency (1 + delta) w0 (robust "
+                    "designs)",
+    "lo_alone": "worst-case transmissibility x_max/A over band and amplitudes of the LO "
+                "alone",
+    "tmd": "worst-case transmissibility over band and amplitudes with the TMD",
+    "vines": "worst-case transmissibility over band and amplitudes of the VI NES from rest",
+    "vines_any_attractor": "worst-case transmissibility over band and amplitudes of the "
+                           "VI NES over attractors",
+    "tmd_frequency_ratio": "TMD tuning w_a/w0",
+    "tmd_damping_ratio": "TMD damping ratio c_a/(2 m_a w_a)",
+    "vines_eta": "ball-to-LO mass ratio m/M of the VI NES design",
+    "vines_clearance": "clearance L (half the cavity length) of the VI NES design",
+    "worst_lo_alone": "largest worst-case transmissibility over delta of the LO alone",
+    "worst_tmd": "largest worst-case transmissibility over delta with the TMD",
+    "worst_vines": "largest worst-case transmissibility over delta of the VI NES from rest",
+    "worst_vines_any_attractor": "largest worst-case transmissibility over delta of the "
+                                 "VI NES over attractors",
+}
+DESIGN_ROBUST_UNITS = {"vines_clearance": "m"}
+
 #: orbit atlases (``vines.orbits.atlas``): per family, and per family and grid point
 ATLAS_FAMILY_ATTRS = {
     "family": ("periodic orbit family (wall sequence/forcing periods, -sym/-asym; "

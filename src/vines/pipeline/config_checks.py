@@ -416,6 +416,24 @@ def _check_model_ladder(key: str, ml: dict, model: dict, limits: dict) -> None:
 def check_model_ladders(config: dict, model: dict, limits: dict) -> None:
     for name, ml in config["model_ladders"].items():
         _check_model_ladder(f"model_ladders.{name}", ml, model, limits)
+def check_design_robust(config: dict, model: dict, limits: dict) -> None:
+    """A ``design_robust`` entry: its design keys as a ``designs`` entry's (an
+    optimisation), its mistuning keys through ``studies.mistuning.check_mistuning``, and
+    the runs of the nominal and the robust search (n_search host frequencies) within
+    limits.max_grid_points."""
+    from ..studies.mistuning import check_mistuning
+    for name, ds in config["design_robust"].items():
+        key = f"design_robust.{name}"
+        design = {k: v for k, v in ds.items() if k not in ("mistuning", "n_delta", "n_search")}
+        _check_design(key, design, model, config["simulation"], limits)
+        try:
+            check_mistuning(ds["mistuning"], ds["n_delta"], ds["n_search"])
+        except ParameterError as err:
+            raise ConfigError(f"{key}.{err.name}", f"{err.value!r}: {err.allowed}") from None
+        n_runs = (ds["n_omega"] * len(ds["amplitudes_m"])
+                  * (ds["n_eta"] * ds["n_clearance"] + ds["census_n"]) * (1 + ds["n_search"]))
+        _check_size(key, n_runs, limits, "runs (omega x amplitudes x (grid designs + "
+                    "census_n) x (1 + n_search))")
 
 
 def atlas_grid(config: dict, name: str) -> dict:
@@ -470,5 +488,5 @@ def check_physical(config: dict) -> None:
     for check in (check_grids, check_sweeps, check_lyapunov_sweeps, check_branches,
                   check_maps_and_points, check_attractor_maps, check_boundaries, check_studies,
                   check_designs, check_orbit_atlases, check_shocks,
-                  check_model_ladders):
+                  check_model_ladders, check_design_robust):
         check(config, model, limits)

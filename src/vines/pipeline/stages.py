@@ -4,7 +4,7 @@ One function per stage, named as the rule, the rule file, the workflow script an
 output folder: ``simulate_grid``, ``extract_measures``, ``bifurcation_sweep``,
 ``lyapunov``, ``map_solve``, ``stability_map``, ``boundaries``, ``timehistory``,
 ``robust_map``, ``basin_slice``, ``work_precision``, ``convergence``, ``design``,
-``orbit_atlas``. Each calls the numerics
+``design_robust``, ``orbit_atlas``. Each calls the numerics
 (``vines.core``, ``vines.orbits``, ``vines.attractors``, ``vines.studies``), lets
 ``vines.pipeline.execution`` spread independent tasks over dask, and hands plain arrays to
 ``vines.data.builders``. Results are assembled by index, so the
@@ -436,19 +436,51 @@ def design(spec: dict, *, model: dict, simulation: dict, code: str, title: str,
     """Dataset of one ``designs`` entry: ``vines.design`` with the entry's keywords, the
     model's r and the simulation section's v_stick, max_impacts, root_tol (the structure's
     damping is the entry's: M, k, c or d, Table 1 by default)."""
-    from ..studies.design import design as solve_design
-    kw = {k: v for k, v in spec.items() if k != "description" and v is not None}
-    settings = {k: simulation[k] for k in DESIGN_SETTINGS}
-    res = solve_design(**kw, r=model["r"], **settings, n_threads=max(1, int(n_workers)))
+    res, attrs = _solved_design(spec, model, simulation, code, title, n_workers)
     cost = res.cost
     print(f"design: {cost['n_designs']} designs, {cost['n_runs_from_rest']} runs from rest, "
           f"{cost['n_runs_census']} census runs; wall {cost['wall_s']:.1f} s "
           f"(search {cost['search_s']:.1f} s, census {cost['census_s']:.1f} s), "
           f"CPU {cost['cpu_s']:.1f} s")
+    return builders.design_dataset(res, attrs)
+
+
+def _solved_design(spec, model, simulation, code, title, n_workers, skip=()) -> tuple:
+    """(``vines.design`` of an entry's keywords but ``skip``, the dataset's provenance)."""
+    from ..studies.design import design as solve_design
+    kw = {k: v for k, v in spec.items()
+          if k not in ("description", *skip) and v is not None}
+    settings = {k: simulation[k] for k in DESIGN_SETTINGS}
+    res = solve_design(**kw, r=model["r"], **settings, n_threads=max(1, int(n_workers)))
     attrs = provenance_attrs(title=title, config_subset={"spec": spec, "model": model,
                                                          "settings": settings},
                              settings={"r": model["r"], **settings}, code_version=code)
-    return builders.design_dataset(res, attrs)
+    return res, attrs
+
+
+# ------------------------------------------------------------------ design_robust
+
+#: keys of a ``design_robust`` entry that are not ``vines.design`` keywords
+MISTUNING_KEYS = ("mistuning", "n_delta", "n_search")
+
+
+def design_robust(spec: dict, *, model: dict, simulation: dict, code: str, title: str,
+                  n_workers: int = 1):
+    """Dataset of one ``design_robust`` entry: the design optimised as ``design`` does,
+    its designs over the host's drift delta in [-mistuning, mistuning], and the robust
+    VI NES and re-tuned TMD (``studies.mistuning.mistuning`` with robust=True)."""
+    from ..studies.mistuning import mistuning
+    res, attrs = _solved_design(spec, model, simulation, code, title, n_workers,
+                                skip=MISTUNING_KEYS)
+    mis = mistuning(res, spec["mistuning"], n_delta=spec["n_delta"], robust=True,
+                    n_search=spec["n_search"], n_threads=res.cost["n_threads"])
+    rob = mis["robust"]
+    print(f"design_robust: nominal design {res.cost['cpu_s']:.1f} s CPU; mistuning and "
+          f"robust designs {mis['cost']['cpu_s']:.1f} s CPU ({rob['search']['n_designs']} "
+          f"designs, {rob['search']['n_runs']} runs in the robust search); worst over delta: "
+          f"TMD {mis['worst']['tmd']:.3g} -> {rob['worst']['tmd']:.3g}, VI NES "
+          f"{mis['worst']['vines']:.3g} -> {rob['worst']['vines']:.3g}")
+    return builders.design_robust_dataset(res, mis, attrs)
 
 
 # ------------------------------------------------------------------ orbit-atlas
