@@ -24,13 +24,9 @@ def _first(section):
 SW, BR, SM, TH = _first("sweeps"), _first("branches"), _first("stability_maps"), _first("timehistories")
 WP = sorted(SMOKE["work_precision"]["cases"])[0]
 GR, BD = _first("grids"), _first("boundaries")
-<<<<<<< HEAD
 DZ, OA, SH = _first("designs"), _first("orbit_atlases"), _first("shocks")
 ML = _first("model_ladders")
-=======
-DZ, OA = _first("designs"), _first("orbit_atlases")
 DR = _first("design_robust")
->>>>>>> i36a
 
 BAD = [  # (path to set, keys joined by '/', value, expected key in the message, expected words)
     ("simulation/t_end", math.nan, "t_end", "finite"),

@@ -41,11 +41,7 @@ from vines.pipeline.stages import compute_chunk, compute_sweep
 ROOT = Path(__file__).resolve().parents[1]
 #: the stages of `snakemake -c2 all` beyond the default target `paper`
 BEYOND_PAPER = ("lyapunov", "robust_map", "basin_slice", "orbit_atlas", "design",
-<<<<<<< HEAD
-                "work_precision", "convergence", "shock", "model_ladder")
-=======
-                "design_robust", "work_precision", "convergence")
->>>>>>> i36a
+                "design_robust", "work_precision", "convergence", "shock", "model_ladder")
 SCHEMA = ROOT / "src" / "vines" / "pipeline" / "config.schema.yaml"
 SNAKEMAKE = shutil.which("snakemake")
 needs_snakemake = pytest.mark.skipif(SNAKEMAKE is None, reason="snakemake not installed")
@@ -332,12 +328,8 @@ def test_dry_run_plans_the_full_study_and_the_smoke_run(tmp_path):
     everything = _planned(_smk(tmp_path, "-n", "all"))
     assert beyond <= set(everything)
     assert {"fig3_lyapunov", "fig14_regimes", "fig_robust_tet", "fig_atlas", "fig_design",
-<<<<<<< HEAD
-            "fig_workprecision", "fig_convergence", "fig_basin_slices",
+            "fig_design_robust", "fig_workprecision", "fig_convergence", "fig_basin_slices",
             "fig_shock", "fig_model_ladder"} <= set(everything)
-=======
-            "fig_design_robust", "fig_workprecision", "fig_convergence", "fig_basin_slices"} <= set(everything)
->>>>>>> i36a
     assert all(everything[rule] == n for rule, n in full.items() if rule != "paper")
 
 
