@@ -78,3 +78,28 @@ def test_item_ranges_cover_the_items_in_even_runs_of_whole_items():
     assert item_ranges(3, 100, 10) == [(0, 1), (1, 2), (2, 3)]    # one item at least a run
     assert item_ranges(5, 1, 1000) == [(0, 5)]
     assert item_ranges(0, 1, 10) == []
+
+
+def _config(**top):
+    from vines.pipeline.config import load_schema, validate_config
+    return validate_config({"run": "t", **top}, load_schema())
+
+
+def test_chunks_section_threads_and_the_deprecated_chunk_size():
+    from vines.pipeline.axes import ConfigError
+    from vines.pipeline.config import move_chunk_size
+    assert _config()["chunks"]["robust_map"] == 16 and _config()["threads"] == 2
+    assert _config(threads="max")["threads"] == "max"
+    old = {"chunk_size": 40}
+    assert "chunks: {simulate_grid: 40}" in move_chunk_size(old)
+    assert old == {"chunks": {"simulate_grid": 40}}
+    assert _config(chunk_size=40)["chunks"]["simulate_grid"] == 40
+    assert "chunk_size" not in _config(chunk_size=40)
+    for bad, key in (({"chunks": {"robust_map": 0}}, "chunks.robust_map"),
+                     ({"chunks": {"lyapunov": 2.0}}, "chunks.lyapunov"),
+                     ({"chunks": {"atlas": 5}}, "chunks"),
+                     ({"threads": "all"}, "threads"), ({"threads": 0}, "threads"),
+                     ({"chunk_size": 0}, "chunk_size"),
+                     ({"chunk_size": 8, "chunks": {"simulate_grid": 16}}, "chunk_size")):
+        with pytest.raises(ConfigError, match=f"'{key}'"):
+            _config(**bad)

@@ -10,6 +10,10 @@ the console log).
 #: where the numbers come from
 SOURCE = ("measured on 2 shared, loaded cores: the full study (config/config.yaml, paper "
           "and all; 2 threads a job) and the smoke run (config/smoke.yaml, all; 1 thread)")
+#: run -> the chunked stages its costs measured as one job per entry (before they were split
+#: into chunk jobs): ``cost`` spreads an entry's time over its chunk jobs
+WHOLE = {"paper": ("robust_map", "orbit_atlas", "basin_slice", "lyapunov", "design",
+                   "convergence")}
 #: what no estimate counts
 NOT_COUNTED = "Snakemake's own work, the numba compilation when its cache is cold"
 

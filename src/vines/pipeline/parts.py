@@ -16,9 +16,11 @@ import os
 import pickle
 from pathlib import Path
 
-#: the stages split into chunk jobs (config ``chunks`` keys besides ``simulate_grid``)
-CHUNKED_STAGES = ("robust_map", "orbit_atlas", "basin_slice", "lyapunov", "design",
-                  "convergence")
+#: the stages split into chunk jobs (config ``chunks`` keys besides ``simulate_grid``) ->
+#: the config section of their entries
+CHUNKED_STAGES = {"robust_map": "robust_maps", "orbit_atlas": "orbit_atlases",
+                  "basin_slice": "basin_slices", "lyapunov": "lyapunov_sweeps",
+                  "design": "designs", "convergence": "convergence"}
 
 
 def item_ranges(n_items: int, points_per_item: int, points: int) -> list[tuple[int, int]]:
