@@ -231,7 +231,9 @@ def part_file(stage, name="{name}", k="{k}"):
 
 def part_files(stage):
     """Input function of a gather: the part files of the entry's chunk jobs, in order."""
-    return lambda w: [part_file(stage, w.name, k) for k in range(len(PARTS[stage][w.name]))]
+    return lambda w: [
+        part_file(stage, w.name, k) for k in range(len(PARTS[stage][w.name]))
+    ]
 
 
 def part_range(stage):

@@ -19,7 +19,10 @@ rule lyapunov_chunk:
         runtime=per_attempt(5),
     params:
         part=part_range("lyapunov"),
-        args=lambda w: [LYAPUNOV_SWEEPS[w.name], SWEEPS[LYAPUNOV_SWEEPS[w.name]["sweep"]]],
+        args=lambda w: [
+            LYAPUNOV_SWEEPS[w.name],
+            SWEEPS[LYAPUNOV_SWEEPS[w.name]["sweep"]],
+        ],
         model=MODEL,
         periodic_shortcut=SIMULATION["periodic_shortcut"],
         scheduler=config["dask_scheduler"],
