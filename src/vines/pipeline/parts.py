@@ -12,7 +12,6 @@ item's numbers depend on the item alone, never on the run it is computed in.
 from __future__ import annotations
 
 import math
-import os
 import pickle
 from pathlib import Path
 
@@ -84,19 +83,15 @@ def chunk_plan(stage: str, name: str, config: dict) -> list[tuple[int, int]]:
 
 def write_part(obj, path) -> Path:
     """Pickle ``obj`` to ``path`` atomically (temporary beside it, then renamed)."""
-    from ..data.netcdf import temporary_beside
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = temporary_beside(path, ".tmp")
-    try:
+    from ..data.netcdf import write_atomically
+
+    def dump(tmp):
         with open(tmp, "wb") as fh:
             pickle.dump(obj, fh, protocol=pickle.HIGHEST_PROTOCOL)
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
-    return path
+
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    return write_atomically(path, dump)
 
 
 def read_parts(paths) -> list:
