@@ -15,12 +15,14 @@ SWEEP = {"param": "eta", "values": {"start": 0.05, "stop": 0.3, "num": 2}, "oute
 
 #: stage -> (its config entry and keywords, items, points per item)
 CASES = {
-    "robust_map": (dict(spec={"eta": [0.1, 0.5], "omega": [0.8, 1.0], "F": 0.3077, "n": 2,
+    # coexisting attractors, states that change attractor between t_end and t_max
+    "robust_map": (dict(spec={"eta": [0.1, 0.5], "omega": [0.8, 1.0], "F": 0.2, "n": 4,
                               "seed": 0, "threshold": 0.7, "t_max": 600.0},
                         model=MODEL, simulation=SIM), 4, 1),
-    "basin_slice": (dict(spec={"eta": 0.5, "omega": 0.9, "F": 0.3077, "z_m0": [-1.0, 1.0],
-                               "v_m0": [-1.0, 0.0, 1.0], "t_max": 600.0},
-                         model=MODEL, simulation=SIM), 6, 1),
+    "basin_slice": (dict(spec={"eta": 0.1, "omega": 0.8, "F": 0.2,
+                               "z_m0": [-1.5, -0.5, 0.5, 1.5], "v_m0": [-1.5, 0.0, 1.5],
+                               "t_max": 600.0},
+                         model=MODEL, simulation=SIM), 12, 1),
     "orbit_atlas": (dict(grid={"eta": [0.1, 0.3, 0.5], "omega": [0.8, 1.0], "F": 0.3077},
                          sim_t_end=0.0, model=MODEL), 3, 2),
     "lyapunov": (dict(spec={"sweep": "s", "t_window": 100.0, "n_batches": 2}, sweep=SWEEP,
