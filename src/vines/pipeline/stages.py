@@ -556,6 +556,7 @@ def _atlas_rows(eta, omega, F, kw):
 
 
 def _atlas_kw(sim_t_end: float, model: dict) -> dict:
+    """``atlas_arrays``'s keywords: r, d, and the simulation check (sim_t_end 0: none)."""
     from ..orbits.sequence import SIM_T_END
     return {"r": model["r"], "d": model["d"], "simulation": sim_t_end > 0,
             "sim_t_end": sim_t_end if sim_t_end > 0 else SIM_T_END}
