@@ -42,16 +42,18 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from .. import progress
-from ..core.params import ETA_MAX, F_MAX, ParameterError, check_int, check_real
+from ..core.params import check_int
+from .uncertainty_checks import (
+    N_SAMPLES_DEFAULT,
+    PARAMETERS,
+    Uncertain,
+    check_parameters,
+    check_samples,
+)
 
-#: uncertain parameters -> what their numbers are (relative deviation or the value)
-PARAMETERS = {"frequency": "relative", "clearance": "relative", "mass": "relative",
-              "r": "value"}
-DISTRIBUTIONS = ("uniform", "normal")
-#: a normal distribution is truncated at +- this many standard deviations
-NORMAL_TRUNCATION = 3.0
-N_SAMPLES_DEFAULT = 128
-N_SAMPLES_MAX = 2 ** 16
+__all__ = ["PARAMETERS", "Uncertain", "UncertaintyResult", "evaluate", "sobol_analysis",
+           "uncertainty"]
+
 #: bootstrap of the Sobol indices: confidence level, resamples, and the widest 95 %
 #: interval (absolute) of an index still called reliable
 CONFIDENCE = 0.95
@@ -60,132 +62,6 @@ CI_WIDTH_MAX = 0.1
 #: regimes of a sample's worst point, grouped (``regime_group``); the efficient one is 1:1
 REGIME_GROUPS = ("no-impact", "1:1", "other periodic", "chatter", "irregular")
 EFFICIENT = "1:1"
-
-
-# --------------------------------------------------------------------------- inputs
-
-@dataclass(frozen=True)
-class Uncertain:
-    """One uncertain parameter: ``name`` (a key of PARAMETERS), ``distribution``
-    ('uniform': a = LO, b = HI; 'normal': a = MEAN, b = SD, truncated at
-    +-NORMAL_TRUNCATION SD)."""
-
-    name: str
-    distribution: str
-    a: float
-    b: float
-
-    @property
-    def support(self) -> tuple[float, float]:
-        if self.distribution == "uniform":
-            return self.a, self.b
-        return self.a - NORMAL_TRUNCATION * self.b, self.a + NORMAL_TRUNCATION * self.b
-
-    @property
-    def width(self) -> float:
-        lo, hi = self.support
-        return hi - lo
-
-    def ppf(self, u: np.ndarray) -> np.ndarray:
-        """Values at the unit-interval points u (inverse of the distribution function)."""
-        if self.distribution == "uniform":
-            return self.a + (self.b - self.a) * u
-        from scipy.stats import truncnorm
-        t = NORMAL_TRUNCATION
-        return self.a + self.b * truncnorm.ppf(u, -t, t)
-
-    def to_dict(self) -> dict:
-        keys = ("lo", "hi") if self.distribution == "uniform" else ("mean", "sd")
-        return {"name": self.name, "kind": PARAMETERS[self.name],
-                "distribution": self.distribution, keys[0]: self.a, keys[1]: self.b,
-                "support": list(self.support)}
-
-
-def _spec_parts(name: str, spec) -> tuple:
-    """(distribution, a, b) from 'DIST:A:B' or a sequence (DIST, A, B)."""
-    parts = spec.split(":") if isinstance(spec, str) else spec
-    try:
-        dist, a, b = parts
-    except (TypeError, ValueError):
-        raise ParameterError("uncertainty", f"{name}={spec}", "must be NAME=uniform:LO:HI "
-                             "or NAME=normal:MEAN:SD") from None
-    if dist not in DISTRIBUTIONS:
-        raise ParameterError("uncertainty", f"{name}={spec}",
-                             f"distribution must be one of {', '.join(DISTRIBUTIONS)}")
-    return dist, a, b
-
-
-def check_uncertain(name, spec, *, amplitudes_m: Sequence[float] = (),
-                    clearance_m: float | None = None, eta: float | None = None) -> Uncertain:
-    """One parameter, validated: its name, distribution, numbers (LO <= HI, SD >= 0) and
-    support (frequency and mass deviations > -1; the clearance's keeps F = A/L <= F_MAX
-    for the amplitudes; the mass keeps eta <= ETA_MAX; r within [0, 1])."""
-    if not isinstance(name, str) or name not in PARAMETERS:
-        raise ParameterError("uncertainty", name,
-                             f"parameter must be one of {', '.join(PARAMETERS)}")
-    dist, a, b = _spec_parts(name, spec)
-    what = f"{name}={':'.join(map(str, (dist, a, b)))}"
-    a = check_real("uncertainty", a)
-    b = check_real("uncertainty", b)
-    if dist == "uniform" and b < a:
-        raise ParameterError("uncertainty", what, "the range is empty: give LO <= HI")
-    if dist == "normal" and b < 0:
-        raise ParameterError("uncertainty", what, "the standard deviation must be >= 0")
-    u = Uncertain(name, dist, a, b)
-    lo, hi = u.support
-    for bound, ok, allowed in _support_checks(name, lo, hi, amplitudes_m, clearance_m, eta):
-        if not ok:
-            raise ParameterError("uncertainty", what, f"support [{lo:g}, {hi:g}]: {allowed}")
-    return u
-
-
-def _support_checks(name, lo, hi, amplitudes_m, clearance_m, eta):
-    if name == "r":
-        yield lo, 0.0 <= lo and hi <= 1.0, "must lie within [0, 1]"
-    elif name == "frequency":
-        yield lo, lo > -1.0, "the deviation must stay > -1"
-    elif name == "clearance":
-        yield lo, lo > -1.0, "the deviation must stay > -1"
-        if clearance_m is not None and amplitudes_m:
-            L_min = max(amplitudes_m) / F_MAX
-            yield lo, clearance_m * (1.0 + lo) >= L_min, (
-                f"the clearance must stay >= A_max/{F_MAX:g} = {L_min:g} m")
-    else:
-        yield lo, lo > -1.0, "the deviation must stay > -1"
-        if eta is not None:
-            yield hi, eta * (1.0 + hi) <= ETA_MAX, f"eta (1 + e) must stay <= {ETA_MAX:g}"
-
-
-def check_parameters(parameters, **context) -> tuple[Uncertain, ...]:
-    """A mapping name -> spec (or 'NAME=SPEC' strings): at least one, each once."""
-    if isinstance(parameters, Mapping):
-        items = list(parameters.items())
-    else:
-        if isinstance(parameters, str):
-            parameters = [parameters]
-        items = []
-        for s in parameters or []:
-            name, eq, spec = str(s).partition("=")
-            if not eq:
-                raise ParameterError("uncertainty", s, "must be NAME=uniform:LO:HI or "
-                                                       "NAME=normal:MEAN:SD")
-            items.append((name, spec))
-    if not items:
-        raise ParameterError("uncertainty", parameters, "give at least one parameter "
-                             f"({', '.join(PARAMETERS)})")
-    names = [n for n, _ in items]
-    dup = next((n for n in names if names.count(n) > 1), None)
-    if dup is not None:
-        raise ParameterError("uncertainty", dup, "is given twice")
-    return tuple(check_uncertain(n, s, **context) for n, s in items)
-
-
-def check_samples(n) -> int:
-    """Sobol base sample size: a power of 2 in [2, N_SAMPLES_MAX]."""
-    n = check_int("samples", n, lo=2, hi=N_SAMPLES_MAX)
-    if n & (n - 1):
-        raise ParameterError("samples", n, "must be a power of 2 (Sobol points)")
-    return n
 
 
 # --------------------------------------------------------------------------- sampling
@@ -230,6 +106,8 @@ def sobol_analysis(values: np.ndarray, k: int, n: int, seed: int, names: Sequenc
         return None
     f = dict(f_A=v[:n][None], f_B=v[n:2 * n][None],
              f_AB=v[2 * n:].reshape(k, 1, n))
+    if k == 1:      # scipy cannot take one parameter: a second one without effect
+        f["f_AB"] = np.concatenate([f["f_AB"], f["f_A"][None]])
     res = sobol_indices(func=f, n=n, **{_rng_keyword(sobol_indices): seed})
     with warnings.catch_warnings():     # degenerate resamples (a part without effect)
         warnings.simplefilter("ignore")
@@ -379,8 +257,11 @@ def evaluate(result, parameters: Sequence[Uncertain], n: int, seed: int,
              n_threads=None) -> UncertaintyResult:
     """The design of ``result`` (a ``design.DesignResult``) at the n (k + 2) points of
     ``sobol_blocks``/``saltelli_points`` for validated ``parameters``; each distinct point
-    is evaluated once."""
+    is evaluated once, the points spread over ``n_threads`` threads (each point's runs on
+    one), kept by point: the numbers do not depend on the threads."""
+    import os
     import time
+    from concurrent.futures import ThreadPoolExecutor
     t0, c0 = time.perf_counter(), time.process_time()
     names = [p.name for p in parameters]
     A, B = sobol_blocks(len(parameters), n, seed)
@@ -389,13 +270,17 @@ def evaluate(result, parameters: Sequence[Uncertain], n: int, seed: int,
     pb = result.problem
     keys = [tuple(points[:, j]) for j in range(points.shape[1])]
     distinct = list(dict.fromkeys(keys))
-    seen = {}
-    with progress.task(len(distinct), "uncertainty: samples", "points"):
-        for key in distinct:
-            vals = dict(zip(names, map(float, key), strict=True))
-            w, reg = vines_point(pb, result.eta, result.clearance_m, vals, n_threads)
-            seen[key] = (w, reg, tmd_point(result.tmd, pb.model.d, pb.band, vals))
-            progress.advance()
+    n_threads = n_threads or os.cpu_count() or 1
+
+    def work(key):
+        vals = dict(zip(names, map(float, key), strict=True))
+        worst, regime = vines_point(pb, result.eta, result.clearance_m, vals, 1)
+        return worst, regime, tmd_point(result.tmd, pb.model.d, pb.band, vals)
+
+    with ThreadPoolExecutor(max_workers=n_threads) as ex:
+        rows = ex.map(work, distinct) if n_threads > 1 else map(work, distinct)
+        seen = dict(zip(distinct, progress.track(rows, len(distinct), "uncertainty: samples",
+                                                 "points"), strict=True))
     rows = [seen[key] for key in keys]
     cost = dict(wall_s=time.perf_counter() - t0, cpu_s=time.process_time() - c0,
                 n_distinct_points=len(distinct), n_threads=n_threads)
