@@ -28,6 +28,7 @@ include: "workflow/rules/basin_slice.smk"
 include: "workflow/rules/work_precision.smk"
 include: "workflow/rules/convergence.smk"
 include: "workflow/rules/design.smk"
+include: "workflow/rules/uncertainty.smk"
 include: "workflow/rules/orbit_atlas.smk"
 include: "workflow/rules/figures.smk"
 

@@ -85,6 +85,7 @@ WORK_PRECISION = config["work_precision"]
 WORK_PRECISION_SETTINGS = {k: v for k, v in WORK_PRECISION.items() if k != "cases"}
 CONVERGENCE = config["convergence"]
 DESIGNS = config["designs"]
+UNCERTAINTY = config["uncertainty"]
 ORBIT_ATLASES = config["orbit_atlases"]
 
 # A results folder that cannot be written (permissions, a read-only disk, a file in the
@@ -164,13 +165,14 @@ STAGE_ENTRIES = {
     "work_precision": WORK_PRECISION["cases"],
     "convergence": CONVERGENCE,
     "design": DESIGNS,
+    "uncertainty": UNCERTAINTY,
     "orbit_atlas": ORBIT_ATLASES,
 }
 
 
 #: the stages behind the paper's figures (rule `paper`, the default target); the others
-#: (Lyapunov exponents, attractor censuses, solver studies, design, orbit atlas) go beyond
-#: the paper and run with rule `all`
+#: (Lyapunov exponents, attractor censuses, solver studies, design, uncertainty, orbit
+#: atlas) go beyond the paper and run with rule `all`
 PAPER_STAGES = (
     "extract_measures",
     "bifurcation_sweep",

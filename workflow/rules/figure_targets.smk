@@ -101,6 +101,7 @@ FIG_INPUTS = {
     "basin_slices": {"slices": _slices("basin")},
     # beyond the paper: absorber design against the TMD, the periodic-orbit atlas
     "design": {"designs": _designs("design")},
+    "uncertainty": {"studies": _named("uncertainty", "uncertainty")},
     "atlas": {"atlases": _atlases("atlas"), "measures": _measures("fig12")},
     # beyond the paper: the solver studies
     "workprecision": {

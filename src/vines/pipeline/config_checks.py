@@ -360,6 +360,30 @@ def check_designs(config: dict, model: dict, limits: dict) -> None:
         _check_design(f"designs.{name}", ds, model, config["simulation"], limits)
 
 
+def check_uncertainty(config: dict, model: dict, limits: dict) -> None:
+    """Each ``uncertainty`` entry: its design as a ``designs`` entry, its parameters and
+    samples through the validators of ``studies.uncertainty_checks``, its runs (points x
+    the design's runs from rest) within limits.max_grid_points."""
+    from ..studies import uncertainty_checks as chk
+    from ..studies.design import N_REFINE
+    for name, entry in config["uncertainty"].items():
+        key, ds = f"uncertainty.{name}", entry["design"]
+        _check_design(f"{key}.design", {**ds, "census_n": 0}, model, config["simulation"],
+                      limits)
+        where = "parameters"
+        try:
+            chk.check_parameters(entry["parameters"], amplitudes_m=ds["amplitudes_m"],
+                                 clearance_m=ds.get("clearance_m"), eta=ds.get("eta"))
+            where = "samples"
+            n = chk.check_samples(entry["samples"])
+        except ParameterError as err:
+            raise ConfigError(f"{key}.{where}", f"{err.value!r}: {err.allowed}") from None
+        n_points = n * (len(entry["parameters"]) + 2)
+        runs = len(ds["amplitudes_m"]) * (ds["n_omega"] + 2 * N_REFINE + 1)
+        _check_size(key, n_points * runs, limits,
+                    "runs (samples x (parameters + 2) x the design's runs from rest)")
+
+
 def atlas_grid(config: dict, name: str) -> dict:
     """The (eta, omega, F) of ``orbit_atlases[name]``: its own, or its stability map's."""
     oa = config["orbit_atlases"][name]
@@ -411,5 +435,5 @@ def check_physical(config: dict) -> None:
                                     "root_tol")}, limits)
     for check in (check_grids, check_sweeps, check_lyapunov_sweeps, check_branches,
                   check_maps_and_points, check_attractor_maps, check_boundaries, check_studies,
-                  check_designs, check_orbit_atlases):
+                  check_designs, check_uncertainty, check_orbit_atlases):
         check(config, model, limits)

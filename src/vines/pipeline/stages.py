@@ -4,7 +4,7 @@ One function per stage, named as the rule, the rule file, the workflow script an
 output folder: ``simulate_grid``, ``extract_measures``, ``bifurcation_sweep``,
 ``lyapunov``, ``map_solve``, ``stability_map``, ``boundaries``, ``timehistory``,
 ``robust_map``, ``basin_slice``, ``work_precision``, ``convergence``, ``design``,
-``orbit_atlas``. Each calls the numerics
+``uncertainty``, ``orbit_atlas``. Each calls the numerics
 (``vines.core``, ``vines.orbits``, ``vines.attractors``, ``vines.studies``), lets
 ``vines.pipeline.execution`` spread independent tasks over dask, and hands plain arrays to
 ``vines.data.builders``. Results are assembled by index, so the
@@ -449,6 +449,31 @@ def design(spec: dict, *, model: dict, simulation: dict, code: str, title: str,
                                                          "settings": settings},
                              settings={"r": model["r"], **settings}, code_version=code)
     return builders.design_dataset(res, attrs)
+
+
+# ------------------------------------------------------------------ uncertainty
+
+def uncertainty(spec: dict, *, model: dict, simulation: dict, code: str, title: str,
+                n_workers: int = 1):
+    """Dataset of one ``uncertainty`` entry: the design of its ``design`` keywords (as a
+    ``designs`` entry, from rest: census_n = 0), then ``studies.uncertainty`` with its
+    ``parameters``, ``samples`` and ``seed``."""
+    from ..studies.design import design as solve_design
+    from ..studies.uncertainty import uncertainty as solve
+    kw = {k: v for k, v in spec["design"].items() if k != "description" and v is not None}
+    settings = {k: simulation[k] for k in DESIGN_SETTINGS}
+    n = max(1, int(n_workers))
+    res = solve_design(**{**kw, "census_n": 0}, r=model["r"], **settings, n_threads=n)
+    unc = solve(res, spec["parameters"], samples=spec["samples"], seed=spec["seed"],
+                n_threads=n)
+    cost = unc.cost
+    print(f"uncertainty: design eta {res.eta:.4g}, L {res.clearance_m:.4g} m; "
+          f"{cost['n_distinct_points']} points, wall {cost['wall_s']:.1f} s, "
+          f"CPU {cost['cpu_s']:.1f} s")
+    attrs = provenance_attrs(title=title, config_subset={"spec": spec, "model": model,
+                                                         "settings": settings},
+                             settings={"r": model["r"], **settings}, code_version=code)
+    return builders.uncertainty_dataset(unc, attrs)
 
 
 # ------------------------------------------------------------------ orbit-atlas

@@ -120,15 +120,19 @@ def sobol_analysis(values: np.ndarray, k: int, n: int, seed: int, names: Sequenc
     out = {}
     for i, name in enumerate(names):
         s1, sT, lo1, hi1, loT, hiT = (float(a[i]) for a in flat)
-        c1, cT = [lo1, hi1], [loT, hiT]
+        c1, cT = [_finite(lo1), _finite(hi1)], [_finite(loT), _finite(hiT)]
         if np.array_equal(f["f_AB"][i, 0], f["f_A"][0]):    # no effect at all: exactly 0
             s1 = sT = 0.0
             c1, cT = [0.0, 0.0], [0.0, 0.0]
         out[name] = dict(first_order=s1, total_order=sT,
                          first_order_ci=c1, total_order_ci=cT,
-                         reliable=bool(c1[1] - c1[0] <= CI_WIDTH_MAX
-                                       and cT[1] - cT[0] <= CI_WIDTH_MAX))
+                         reliable=None not in c1 + cT and bool(
+                             c1[1] - c1[0] <= CI_WIDTH_MAX and cT[1] - cT[0] <= CI_WIDTH_MAX))
     return out
+
+
+def _finite(x: float) -> float | None:
+    return x if math.isfinite(x) else None
 
 
 # --------------------------------------------------------------------------- one point
@@ -201,6 +205,7 @@ class UncertaintyResult:
     vines_regime: list
     tmd_worst: np.ndarray
     nominal: dict                 # vines, tmd: the nominal design's worst ratios
+    design: dict                  # eta, clearance_m of the VI NES, tmd_eta
     cost: dict = field(default_factory=dict)
 
     @property
@@ -221,6 +226,7 @@ class UncertaintyResult:
         sens = self.sensitivity()
         mixed = max(shares.values()) < 0.95
         return dict(
+            design=self.design,
             parameters=[p.to_dict() for p in self.parameters], n_base=self.n,
             n_points=int(self.points.shape[1]), seed=self.seed,
             sampler="scrambled Sobol (scipy.stats.qmc.Sobol), Saltelli's blocks A, B, AB_i",
@@ -288,7 +294,9 @@ def evaluate(result, parameters: Sequence[Uncertain], n: int, seed: int,
         parameters=tuple(parameters), n=n, seed=seed, points=points,
         vines_worst=np.array([r[0] for r in rows]), vines_regime=[r[1] for r in rows],
         tmd_worst=np.array([r[2] for r in rows]),
-        nominal=dict(vines=result.worst_ratio, tmd=result.tmd.worst_ratio), cost=cost)
+        nominal=dict(vines=result.worst_ratio, tmd=result.tmd.worst_ratio),
+        design=dict(eta=result.eta, clearance_m=result.clearance_m, tmd_eta=result.tmd.eta),
+        cost=cost)
 
 
 def uncertainty(result, parameters, *, samples: int = N_SAMPLES_DEFAULT, seed: int = 0,
