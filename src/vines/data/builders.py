@@ -620,8 +620,8 @@ def design_dataset(result, attrs: dict) -> xr.Dataset:
 
 def _uv(name, dims, data, dtype="f8") -> xr.Variable:
     long_name, units = UNCERTAINTY_ATTRS[name]
-    attrs = {"long_name": long_name} | ({"units": units} if units else {})
-    return xr.Variable(dims, np.asarray(data, dtype=dtype), attrs)
+    return xr.Variable(dims, np.asarray(data, dtype=dtype),
+                       {"long_name": long_name, "units": units})
 
 
 def _index_vars(key: str, sens: dict | None, names: list) -> dict:

@@ -20,8 +20,10 @@ SYSTEMS = (("vines", "VI NES", C_VINES), ("tmd", "TMD", C_TMD))
 
 def study(path):
     ds = P.load(path)
-    P.require(ds, coords=("parameter", "point", "regime_group"), min_size=1,
-              finite=("vines_worst_ratio", "tmd_worst_ratio", "regime_share"))
+    P.require(ds, variables=("parameter", "regime_group", "vines_first_order",
+                             "vines_total_order", "tmd_first_order", "tmd_total_order"),
+              finite=("vines_worst_ratio", "tmd_worst_ratio", "regime_share", "vines_mean",
+                      "vines_q95", "vines_nominal", "tmd_mean", "tmd_q95", "tmd_nominal"))
     return ds
 
 
