@@ -24,7 +24,7 @@ def _first(section):
 SW, BR, SM, TH = _first("sweeps"), _first("branches"), _first("stability_maps"), _first("timehistories")
 WP = sorted(SMOKE["work_precision"]["cases"])[0]
 GR, BD = _first("grids"), _first("boundaries")
-DZ, OA = _first("designs"), _first("orbit_atlases")
+DZ, OA, UN = _first("designs"), _first("orbit_atlases"), _first("uncertainty")
 
 BAD = [  # (path to set, keys joined by '/', value, expected key in the message, expected words)
     ("simulation/t_end", math.nan, "t_end", "finite"),
@@ -80,6 +80,15 @@ BAD = [  # (path to set, keys joined by '/', value, expected key in the message,
     (f"designs/{DZ}/t_transient", 1e9, f"designs.{DZ}.t_transient", ""),
     (f"designs/{DZ}/n_eta", 10**6, f"designs.{DZ}.n_eta", ""),
     (f"designs/{DZ}/census_n", 10**6, f"designs.{DZ}", "limits.max_grid_points"),
+    # uncertainty: its design as a designs entry, its parts and samples by their validators
+    (f"uncertainty/{UN}/parameters/r", ["uniform", 0.8, 0.5], f"uncertainty.{UN}.parameters",
+     "empty"),
+    (f"uncertainty/{UN}/parameters/frequency", ["normal", 0.0, -0.1],
+     f"uncertainty.{UN}.parameters", "standard deviation"),
+    (f"uncertainty/{UN}/samples", 6, f"uncertainty.{UN}.samples", "power of 2"),
+    (f"uncertainty/{UN}/design/amplitudes_m", [-0.003], f"uncertainty.{UN}.design.amplitudes_m",
+     ""),
+    (f"uncertainty/{UN}/samples", 2 ** 16, f"uncertainty.{UN}", "limits.max_grid_points"),
     # orbit atlases: a stability map that exists, or a whole grid the model accepts
     ("orbit_atlases/ref", {"stability_map": "nope"}, "orbit_atlases.ref.stability_map",
      "not a stability_maps entry"),
