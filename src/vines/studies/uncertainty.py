@@ -42,7 +42,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from .. import progress
-from ..core.params import check_int
+from ..core.params import ParameterError, check_int
 from .uncertainty_checks import (
     N_SAMPLES_DEFAULT,
     PARAMETERS,
@@ -307,6 +307,9 @@ def uncertainty(result, parameters, *, samples: int = N_SAMPLES_DEFAULT, seed: i
     'NAME=SPEC' strings; names and meanings in ``PARAMETERS`` (module docstring);
     samples: the Sobol base size n (a power of 2; n (k + 2) points for k parameters);
     seed: the scrambling's seed. Raises ParameterError naming the bad argument."""
+    from .design import DesignResult
+    if not isinstance(result, DesignResult):
+        raise ParameterError("result", result, "must be the DesignResult of vines.design")
     pb = result.problem
     params = check_parameters(parameters, amplitudes_m=pb.amplitudes_m,
                               clearance_m=result.clearance_m, eta=result.eta)

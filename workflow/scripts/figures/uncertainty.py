@@ -51,7 +51,7 @@ def indices_panel(ax, ds, k):
     names = list(ds["parameter"].values)
     x = np.arange(len(names))
     width = 0.2
-    for s, (key, label, colour) in enumerate(SYSTEMS):
+    for s, (key, _, colour) in enumerate(SYSTEMS):
         reliable = ds[f"{key}_index_reliable"].values.astype(bool)
         for o, order in enumerate(("first_order", "total_order")):
             v = ds[f"{key}_{order}"].values
