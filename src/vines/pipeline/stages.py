@@ -431,24 +431,35 @@ def convergence(study: str, spec: dict, *, model: dict, simulation: dict, code: 
 DESIGN_SETTINGS = ("v_stick", "max_impacts", "root_tol")
 
 
+def _run_design(spec: dict, model: dict, simulation: dict, n_workers: int, **override):
+    """``vines.design`` of a ``designs`` entry (keywords ``override`` replacing its own),
+    and the solver settings it took from ``simulation``."""
+    from ..studies.design import design as solve_design
+    kw = {k: v for k, v in spec.items() if k != "description" and v is not None}
+    settings = {k: simulation[k] for k in DESIGN_SETTINGS}
+    res = solve_design(**{**kw, **override}, r=model["r"], **settings,
+                       n_threads=max(1, int(n_workers)))
+    return res, settings
+
+
+def _design_attrs(spec: dict, model: dict, settings: dict, title: str, code: str) -> dict:
+    return provenance_attrs(title=title, config_subset={"spec": spec, "model": model,
+                                                        "settings": settings},
+                            settings={"r": model["r"], **settings}, code_version=code)
+
+
 def design(spec: dict, *, model: dict, simulation: dict, code: str, title: str,
            n_workers: int = 1):
     """Dataset of one ``designs`` entry: ``vines.design`` with the entry's keywords, the
     model's r and the simulation section's v_stick, max_impacts, root_tol (the structure's
     damping is the entry's: M, k, c or d, Table 1 by default)."""
-    from ..studies.design import design as solve_design
-    kw = {k: v for k, v in spec.items() if k != "description" and v is not None}
-    settings = {k: simulation[k] for k in DESIGN_SETTINGS}
-    res = solve_design(**kw, r=model["r"], **settings, n_threads=max(1, int(n_workers)))
+    res, settings = _run_design(spec, model, simulation, n_workers)
     cost = res.cost
     print(f"design: {cost['n_designs']} designs, {cost['n_runs_from_rest']} runs from rest, "
           f"{cost['n_runs_census']} census runs; wall {cost['wall_s']:.1f} s "
           f"(search {cost['search_s']:.1f} s, census {cost['census_s']:.1f} s), "
           f"CPU {cost['cpu_s']:.1f} s")
-    attrs = provenance_attrs(title=title, config_subset={"spec": spec, "model": model,
-                                                         "settings": settings},
-                             settings={"r": model["r"], **settings}, code_version=code)
-    return builders.design_dataset(res, attrs)
+    return builders.design_dataset(res, _design_attrs(spec, model, settings, title, code))
 
 
 # ------------------------------------------------------------------ uncertainty
@@ -458,22 +469,16 @@ def uncertainty(spec: dict, *, model: dict, simulation: dict, code: str, title: 
     """Dataset of one ``uncertainty`` entry: the design of its ``design`` keywords (as a
     ``designs`` entry, from rest: census_n = 0), then ``studies.uncertainty`` with its
     ``parameters``, ``samples`` and ``seed``."""
-    from ..studies.design import design as solve_design
     from ..studies.uncertainty import uncertainty as solve
-    kw = {k: v for k, v in spec["design"].items() if k != "description" and v is not None}
-    settings = {k: simulation[k] for k in DESIGN_SETTINGS}
-    n = max(1, int(n_workers))
-    res = solve_design(**{**kw, "census_n": 0}, r=model["r"], **settings, n_threads=n)
+    res, settings = _run_design(spec["design"], model, simulation, n_workers, census_n=0)
     unc = solve(res, spec["parameters"], samples=spec["samples"], seed=spec["seed"],
-                n_threads=n)
+                n_threads=max(1, int(n_workers)))
     cost = unc.cost
     print(f"uncertainty: design eta {res.eta:.4g}, L {res.clearance_m:.4g} m; "
           f"{cost['n_distinct_points']} points, wall {cost['wall_s']:.1f} s, "
           f"CPU {cost['cpu_s']:.1f} s")
-    attrs = provenance_attrs(title=title, config_subset={"spec": spec, "model": model,
-                                                         "settings": settings},
-                             settings={"r": model["r"], **settings}, code_version=code)
-    return builders.uncertainty_dataset(unc, attrs)
+    return builders.uncertainty_dataset(unc, _design_attrs(spec, model, settings, title,
+                                                           code))
 
 
 # ------------------------------------------------------------------ orbit-atlas
