@@ -33,7 +33,7 @@ ISHIGAMI_TOTAL = (0.55758, 0.44241, 0.24368)
 
 def _ishigami_indices(n, seed, a=7.0):
     params = [Uncertain(f"x{i}", "uniform", -math.pi, math.pi) for i in range(3)]
-    units = unc.saltelli_points(*unc.sobol_blocks(3, n, seed))
+    units = unc.pick_freeze_points(*unc.sobol_blocks(3, n, seed))
     x = np.stack([p.ppf(units[i]) for i, p in enumerate(params)])
     y = np.sin(x[0]) + a * np.sin(x[1]) ** 2 + 0.1 * x[2] ** 4 * np.sin(x[0])
     return unc.sobol_analysis(y, 3, n, seed, ["x1", "x2", "x3"], n_bootstrap=199)
@@ -56,7 +56,7 @@ def test_ishigami_closed_form_is_the_published_one():
 
 
 def test_sobol_machinery_reproduces_ishigami_indices():
-    """Our seeded Sobol blocks, Saltelli points and scipy's estimators: every exact index
+    """Our seeded Sobol blocks, pick-freeze points and scipy's estimators: every exact index
     inside its 95 % bootstrap interval, each interval narrower than CI_WIDTH_MAX (the
     estimator's own error at n = 4096 sets the tolerance)."""
     s = _ishigami_indices(4096, seed=0)
@@ -79,7 +79,7 @@ def test_small_samples_are_flagged_unreliable_and_no_effect_is_exactly_zero():
     s = _ishigami_indices(32, seed=0)
     assert not all(v["reliable"] for v in s.values())
     n = 64
-    units = unc.saltelli_points(*unc.sobol_blocks(2, n, 1))
+    units = unc.pick_freeze_points(*unc.sobol_blocks(2, n, 1))
     y = np.sin(units[0] * 6)              # x2 has no effect at all
     s = unc.sobol_analysis(y, 2, n, 1, ["x1", "x2"], n_bootstrap=99)
     assert s["x2"]["first_order"] == s["x2"]["total_order"] == 0.0

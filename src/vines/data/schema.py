@@ -316,7 +316,7 @@ UNCERTAINTY_ATTRS = {
                   "restitution)", ""),
     "bound": ("end of a 95 % bootstrap confidence interval", ""),
     "regime_group": ("regime of the VI NES at a point's worst (omega, amplitude), grouped", ""),
-    "block": ("Saltelli block of the point (A, B, or AB_<parameter>)", ""),
+    "block": ("pick-freeze block of the point (A, B, or AB_<parameter>)", ""),
     "value": ("value of the uncertain part at the point", "1"),
     "vines_worst_ratio": ("worst-case transmissibility x_max/A of the VI NES from rest", "1"),
     "vines_regime": ("regime of the run from rest at the VI NES's worst point", ""),

@@ -16,14 +16,14 @@ band) is built once; its parts are then not exact. Four parameters may be uncert
 Each is ``uniform`` on [LO, HI] or ``normal`` (MEAN, SD) truncated at +-3 SD
 (``Uncertain``). LO = HI (SD = 0) is a part known exactly: the nominal value, bit for bit.
 
-Sampling (``sobol_blocks``): Saltelli's design on a scrambled, seeded Sobol sequence
+Sampling (``sobol_blocks``): the pick-freeze design on a scrambled, seeded Sobol sequence
 (``scipy.stats.qmc.Sobol`` in 2k dimensions, n points, n a power of 2): A = its first k
 coordinates, B the last k, AB_i = A with column i from B; the design is evaluated at the
 n (k + 2) points (distinct points once). Every block is a low-discrepancy sample of the
 joint distribution, so the statistics (mean, 95 % quantile, regime shares) are over all
 n (k + 2) points; the first-order and total Sobol indices come from
-``scipy.stats.sobol_indices`` on these evaluations (Saltelli 2010 estimators) with
-bootstrap confidence intervals (``sobol_analysis``). The numbers depend on the seed only,
+``scipy.stats.sobol_indices`` on these evaluations (its default method,
+``saltelli_2010``) with bootstrap confidence intervals (``sobol_analysis``). The numbers depend on the seed only,
 not on the threads.
 
 Per point the VI NES's worst ratio is ``design.Evaluator``'s (from rest, over the band's
@@ -81,7 +81,7 @@ def sobol_blocks(k: int, n: int, seed: int) -> tuple[np.ndarray, np.ndarray]:
     return u[:, :k].T, u[:, k:].T
 
 
-def saltelli_points(A: np.ndarray, B: np.ndarray) -> np.ndarray:
+def pick_freeze_points(A: np.ndarray, B: np.ndarray) -> np.ndarray:
     """Points (k, n (k + 2)): the blocks A, B, AB_1 .. AB_k (AB_i: A with row i of B)."""
     k = A.shape[0]
     blocks = [A, B]
@@ -95,7 +95,7 @@ def saltelli_points(A: np.ndarray, B: np.ndarray) -> np.ndarray:
 def sobol_analysis(values: np.ndarray, k: int, n: int, seed: int, names: Sequence[str],
                    n_bootstrap: int = N_BOOTSTRAP) -> dict | None:
     """First-order and total Sobol indices of ``values`` (n (k + 2), in the block order of
-    ``saltelli_points``) by ``scipy.stats.sobol_indices``, with bootstrap intervals
+    ``pick_freeze_points``) by ``scipy.stats.sobol_indices``, with bootstrap intervals
     (CONFIDENCE, n_bootstrap resamples seeded by ``seed``); an index is ``reliable`` when
     both its intervals are at most CI_WIDTH_MAX wide; a parameter that changes no value
     (AB_i's values are A's) gets exactly 0 and [0, 0]. None when the values do not vary
@@ -200,7 +200,7 @@ class UncertaintyResult:
     parameters: tuple
     n: int
     seed: int
-    points: np.ndarray            # (k, n (k + 2)) parameter values, Saltelli's blocks
+    points: np.ndarray            # (k, n (k + 2)) parameter values, pick-freeze blocks
     vines_worst: np.ndarray
     vines_regime: list
     tmd_worst: np.ndarray
@@ -229,7 +229,7 @@ class UncertaintyResult:
             design=self.design,
             parameters=[p.to_dict() for p in self.parameters], n_base=self.n,
             n_points=int(self.points.shape[1]), seed=self.seed,
-            sampler="scrambled Sobol (scipy.stats.qmc.Sobol), Saltelli's blocks A, B, AB_i",
+            sampler="scrambled Sobol (scipy.stats.qmc.Sobol), pick-freeze blocks A, B, AB_i",
             samples={name: self.points[i].tolist() for i, name in enumerate(self.names)},
             vines=dict(**_summary(self.vines_worst, self.nominal["vines"]),
                        worst_ratio=self.vines_worst.tolist(), regime=list(self.vines_regime),
@@ -262,7 +262,7 @@ def _notes(sens: dict, mixed: bool) -> list[str]:
 def evaluate(result, parameters: Sequence[Uncertain], n: int, seed: int,
              n_threads=None) -> UncertaintyResult:
     """The design of ``result`` (a ``design.DesignResult``) at the n (k + 2) points of
-    ``sobol_blocks``/``saltelli_points`` for validated ``parameters``; each distinct point
+    ``sobol_blocks``/``pick_freeze_points`` for validated ``parameters``; each distinct point
     is evaluated once, the points spread over ``n_threads`` threads (each point's runs on
     one), kept by point: the numbers do not depend on the threads."""
     import os
@@ -271,7 +271,7 @@ def evaluate(result, parameters: Sequence[Uncertain], n: int, seed: int,
     t0, c0 = time.perf_counter(), time.process_time()
     names = [p.name for p in parameters]
     A, B = sobol_blocks(len(parameters), n, seed)
-    units = saltelli_points(A, B)
+    units = pick_freeze_points(A, B)
     points = np.stack([p.ppf(units[i]) for i, p in enumerate(parameters)])
     pb = result.problem
     keys = [tuple(points[:, j]) for j in range(points.shape[1])]
