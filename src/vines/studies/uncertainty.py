@@ -23,8 +23,8 @@ n (k + 2) points (distinct points once). Every block is a low-discrepancy sample
 joint distribution, so the statistics (mean, 95 % quantile, regime shares) are over all
 n (k + 2) points; the first-order and total Sobol indices come from
 ``scipy.stats.sobol_indices`` on these evaluations (its default method,
-``saltelli_2010``) with bootstrap confidence intervals (``sobol_analysis``). The numbers depend on the seed only,
-not on the threads.
+``saltelli_2010``) with bootstrap confidence intervals (``sobol_analysis``). The numbers
+depend on the seed only, not on the threads.
 
 Per point the VI NES's worst ratio is ``design.Evaluator``'s (from rest, over the band's
 grid and the amplitudes, peaks refined) and its regime the one of the run from rest at
