@@ -14,8 +14,8 @@ rule uncertainty:
         "../../environment.yml"
     threads: config["threads"]
     resources:
-        mem_mb=per_attempt(500),
-        runtime=per_attempt(10),
+        mem_mb=per_attempt(600),
+        runtime=per_attempt(13),
     params:
         spec=lambda w: UNCERTAINTY[w.name],
         model=MODEL,

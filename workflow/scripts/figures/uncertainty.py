@@ -61,10 +61,16 @@ def indices_panel(ax, ds, k):
             bars = ax.bar(pos, np.nan_to_num(v), width, color=colour,
                           alpha=1.0 if o else 0.55, edgecolor="black", lw=0.5,
                           yerr=np.nan_to_num(err), capsize=2, error_kw={"lw": 0.8})
-            for b, ok in zip(bars, reliable, strict=True):
+            for b, ok, val in zip(bars, reliable, v, strict=True):
                 if not ok:
                     b.set_hatch("////")
+                if val == 0.0:          # a part without any effect: exactly 0
+                    ax.text(b.get_x() + b.get_width() / 2, 0.02, "0", ha="center",
+                            va="bottom", fontsize=7, color=colour)
     ax.axhline(0, color="black", lw=0.6)
+    top = max(1.0, float(np.nanmax([ds[f"{key}_{o}_ci"].values for key, _, _ in SYSTEMS
+                                    for o in ("first_order", "total_order")])))
+    ax.set_ylim(top=1.45 * top)
     ax.set_xticks(x, names)
     ax.set_ylabel("Sobol index")
     handles = [Patch(color=C_VINES, alpha=0.55, label="VI NES first order"),
@@ -73,7 +79,7 @@ def indices_panel(ax, ds, k):
                Patch(color=C_TMD, label="TMD total"),
                Patch(facecolor="white", edgecolor="black", hatch="////",
                      label="unreliable (wide interval)")]
-    ax.legend(handles=handles, fontsize=7, frameon=False, loc="upper left")
+    ax.legend(handles=handles, fontsize=7, frameon=False, loc="upper center", ncol=3)
     P.panel_label(ax, k, "Sobol indices, 95 % bootstrap intervals")
 
 
