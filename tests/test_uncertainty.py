@@ -86,6 +86,18 @@ def test_small_samples_are_flagged_unreliable_and_no_effect_is_exactly_zero():
     assert unc.sobol_analysis(np.ones(4 * n), 2, n, 1, ["x1", "x2"]) is None
 
 
+def test_our_estimators_are_scipys_default():
+    """The estimators the bootstrap uses are those of scipy's default method."""
+    from scipy.stats import sobol_indices
+    rng = np.random.default_rng(5)
+    f = dict(f_A=rng.normal(3, 1, (1, 64)), f_B=rng.normal(3, 1, (1, 64)),
+             f_AB=rng.normal(3, 1, (3, 1, 64)))
+    ours = sobol_indices(func=f, n=64, method=unc.pick_freeze_estimators)
+    theirs = sobol_indices(func=f, n=64)
+    assert np.allclose(ours.first_order, theirs.first_order, rtol=0, atol=1e-12)
+    assert np.allclose(ours.total_order, theirs.total_order, rtol=0, atol=1e-12)
+
+
 def test_sampling_is_seeded_and_within_the_support():
     a1, b1 = unc.sobol_blocks(2, 16, 3)
     a2, b2 = unc.sobol_blocks(2, 16, 3)

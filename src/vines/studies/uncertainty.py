@@ -92,46 +92,73 @@ def pick_freeze_points(A: np.ndarray, B: np.ndarray) -> np.ndarray:
     return np.concatenate(blocks, axis=1)
 
 
+def pick_freeze_estimators(f_A, f_B, f_AB) -> tuple[np.ndarray, np.ndarray]:
+    """First-order and total indices (s, k) from f_A, f_B (s, n) and f_AB (k, s, n): the
+    estimators of ``scipy.stats.sobol_indices``'s default method ``saltelli_2010``
+    (variance from A and B; S_i = mean(f_B (f_AB_i - f_A)) / var,
+    S_Ti = mean((f_A - f_AB_i)^2) / (2 var)), written out so that the bootstrap can be
+    seeded (scipy's own bootstrap of the indices is not). Centre the values first."""
+    var = np.var([f_A, f_B], axis=(0, -1))
+    first = np.mean(f_B * (f_AB - f_A), axis=-1) / var
+    total = 0.5 * np.mean((f_A - f_AB) ** 2, axis=-1) / var
+    return first.T, total.T
+
+
+def _bootstrap(f: dict, n: int, seed: int, n_resamples: int):
+    """BCa bootstrap intervals (low, high), each (2, k) for (first, total), of the indices
+    over resamples of the n rows, seeded."""
+    from scipy.stats import bootstrap
+
+    def statistic(idx):
+        s1, sT = pick_freeze_estimators(f["f_A"][:, idx], f["f_B"][:, idx],
+                                        f["f_AB"][..., idx])
+        return np.concatenate([s1[0], sT[0]])
+
+    with warnings.catch_warnings(), np.errstate(all="ignore"):
+        warnings.simplefilter("ignore")     # degenerate resamples (a part without effect)
+        res = bootstrap([np.arange(n)], statistic, vectorized=False, method="BCa",
+                        n_resamples=n_resamples, confidence_level=CONFIDENCE,
+                        **{_rng_keyword(bootstrap): np.random.default_rng(seed)})
+    ci = res.confidence_interval
+    return np.reshape(ci.low, (2, -1)), np.reshape(ci.high, (2, -1))
+
+
 def sobol_analysis(values: np.ndarray, k: int, n: int, seed: int, names: Sequence[str],
                    n_bootstrap: int = N_BOOTSTRAP) -> dict | None:
     """First-order and total Sobol indices of ``values`` (n (k + 2), in the block order of
-    ``pick_freeze_points``) by ``scipy.stats.sobol_indices``, with bootstrap intervals
-    (CONFIDENCE, n_bootstrap resamples seeded by ``seed``); an index is ``reliable`` when
-    both its intervals are at most CI_WIDTH_MAX wide; a parameter that changes no value
-    (AB_i's values are A's) gets exactly 0 and [0, 0]. None when the values do not vary
-    or are not all finite (the indices are then undefined)."""
+    ``pick_freeze_points``) by ``scipy.stats.sobol_indices`` (``pick_freeze_estimators``),
+    with BCa bootstrap intervals (CONFIDENCE, n_bootstrap resamples seeded by ``seed``);
+    an index is ``reliable`` when both its intervals are at most CI_WIDTH_MAX wide; a
+    parameter that changes no value (AB_i's values are A's) gets exactly 0 and [0, 0].
+    None when the values do not vary or are not all finite (the indices are then
+    undefined)."""
     from scipy.stats import sobol_indices
     v = np.asarray(values, dtype=float)
     if not np.all(np.isfinite(v)) or np.ptp(v) == 0.0:
         return None
-    f = dict(f_A=v[:n][None], f_B=v[n:2 * n][None],
-             f_AB=v[2 * n:].reshape(k, 1, n))
+    v = v - np.mean(v[:2 * n])      # centred by the mean of A and B, as scipy does: the
+    f = dict(f_A=v[:n][None], f_B=v[n:2 * n][None],   # first-order estimator is not
+             f_AB=v[2 * n:].reshape(k, 1, n))        # shift-invariant under resampling
     if k == 1:      # scipy cannot take one parameter: a second one without effect
         f["f_AB"] = np.concatenate([f["f_AB"], f["f_A"][None]])
-    res = sobol_indices(func=f, n=n, **{_rng_keyword(sobol_indices): seed})
-    with warnings.catch_warnings():     # degenerate resamples (a part without effect)
-        warnings.simplefilter("ignore")
-        boot = res.bootstrap(confidence_level=CONFIDENCE, n_resamples=n_bootstrap)
-    flat = [np.ravel(a) for a in (res.first_order, res.total_order,
-                                  boot.first_order.confidence_interval.low,
-                                  boot.first_order.confidence_interval.high,
-                                  boot.total_order.confidence_interval.low,
-                                  boot.total_order.confidence_interval.high)]
+    res = sobol_indices(func=f, n=n, method=pick_freeze_estimators)
+    low, high = _bootstrap(f, n, seed, n_bootstrap)
     out = {}
     for i, name in enumerate(names):
-        s1, sT, lo1, hi1, loT, hiT = (float(a[i]) for a in flat)
-        c1, cT = [_finite(lo1), _finite(hi1)], [_finite(loT), _finite(hiT)]
+        c1 = [_finite(low[0, i]), _finite(high[0, i])]
+        cT = [_finite(low[1, i]), _finite(high[1, i])]
+        s1, sT = float(np.ravel(res.first_order)[i]), float(np.ravel(res.total_order)[i])
         if np.array_equal(f["f_AB"][i, 0], f["f_A"][0]):    # no effect at all: exactly 0
             s1 = sT = 0.0
             c1, cT = [0.0, 0.0], [0.0, 0.0]
-        out[name] = dict(first_order=s1, total_order=sT,
-                         first_order_ci=c1, total_order_ci=cT,
-                         reliable=None not in c1 + cT and bool(
+        out[name] = dict(first_order=s1, total_order=sT, first_order_ci=c1,
+                         total_order_ci=cT, reliable=None not in c1 + cT and bool(
                              c1[1] - c1[0] <= CI_WIDTH_MAX and cT[1] - cT[0] <= CI_WIDTH_MAX))
     return out
 
 
-def _finite(x: float) -> float | None:
+def _finite(x) -> float | None:
+    x = float(x)
     return x if math.isfinite(x) else None
 
 
