@@ -42,12 +42,33 @@ The contract of every command:
 """
 
 
+#: text after a command's help (JSON keys that are not documented elsewhere)
+NOTES = {"design": """JSON key `uncertainty` (with `--uncertainty`; the design's other keys:
+[design.md](design.md)): `design` (`eta`, `clearance_m` of the VI NES, `tmd_eta`: the
+design with exact parts); `parameters` (per part: `name`, `kind` relative or value,
+`distribution`, `lo`/`hi` or `mean`/`sd`, `support`); `n_base` (n), `n_points`
+(n (k + 2)), `seed`, `sampler`; `samples` (per part, its value at every point, in the
+order A, B, AB_1 .. AB_k); `vines` and `tmd`: `nominal` (exact parts), `mean`, `q95`
+(95 % quantile), `min`, `max` of the worst x_max/A and `worst_ratio` at every point; for
+the VI NES also `regime` (of its run from rest at its worst omega and amplitude, at every
+point), `regime_shares` (no-impact, 1:1, other periodic, chatter, irregular) and
+`efficient_probability` (the 1:1 share); `vines_better_probability` (share of the points
+where the VI NES's worst ratio is below the TMD's); `sensitivity`: `vines` and `tmd`, per
+part `first_order`, `total_order`, their 95 % bootstrap intervals `first_order_ci`,
+`total_order_ci` and `reliable` (both intervals at most 0.1 wide), or null when the worst
+ratio does not vary; `sensitivity_notes` (where the indices are unreliable: wide
+intervals, or the worst point changing regime between points); `cost`.
+"""}
+
+
 def reference() -> str:
     from vines.cli import build_parser
     parser, commands = build_parser()
     out = [HEADER, "## `vines`\n", "```", parser.format_help().rstrip(), "```\n"]
     for name, sub in commands.items():
         out += [f"## `vines {name}`\n", "```", sub.format_help().rstrip(), "```\n"]
+        if name in NOTES:
+            out.append(NOTES[name])
     return "\n".join(out)
 
 

@@ -26,7 +26,7 @@ WP = sorted(SMOKE["work_precision"]["cases"])[0]
 GR, BD = _first("grids"), _first("boundaries")
 DZ, OA, SH = _first("designs"), _first("orbit_atlases"), _first("shocks")
 ML = _first("model_ladders")
-DR = _first("design_robust")
+DR, UN = _first("design_robust"), _first("uncertainty")
 
 BAD = [  # (path to set, keys joined by '/', value, expected key in the message, expected words)
     ("simulation/t_end", math.nan, "t_end", "finite"),
@@ -87,6 +87,15 @@ BAD = [  # (path to set, keys joined by '/', value, expected key in the message,
     (f"design_robust/{DR}/n_delta", 4, f"design_robust.{DR}.n_delta", "odd"),
     (f"design_robust/{DR}/omega_band", [1.2, 0.8], f"design_robust.{DR}.omega_band", ""),
     (f"design_robust/{DR}/eta", 0.1, f"design_robust.{DR}.eta_max", "do not give eta"),
+    # uncertainty: its design as a designs entry, its parts and samples by their validators
+    (f"uncertainty/{UN}/parameters/r", ["uniform", 0.8, 0.5], f"uncertainty.{UN}.parameters",
+     "empty"),
+    (f"uncertainty/{UN}/parameters/frequency", ["normal", 0.0, -0.1],
+     f"uncertainty.{UN}.parameters", "standard deviation"),
+    (f"uncertainty/{UN}/samples", 6, f"uncertainty.{UN}.samples", "power of 2"),
+    (f"uncertainty/{UN}/design/amplitudes_m", [-0.003], f"uncertainty.{UN}.design.amplitudes_m",
+     ""),
+    (f"uncertainty/{UN}/samples", 2 ** 16, f"uncertainty.{UN}", "limits.max_grid_points"),
     # orbit atlases: a stability map that exists, or a whole grid the model accepts
     ("orbit_atlases/ref", {"stability_map": "nope"}, "orbit_atlases.ref.stability_map",
      "not a stability_maps entry"),

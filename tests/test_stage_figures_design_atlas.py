@@ -1,4 +1,4 @@
-"""The design and orbit_atlas stages' figures and the atlas stage's independence of the
+"""The design, uncertainty and orbit_atlas stages' figures and the atlas stage's independence of the
 number of workers: atlas categories and agreement on hand-made atlases, the figure scripts
 on tiny datasets, the same atlas with 1 or 2 workers and any rows per task."""
 import runpy
@@ -130,6 +130,27 @@ def test_design_figure_from_a_tiny_design(tmp_path):
     assert np.all(ds["vines_ratio_any_attractor"].values >= ds["vines_ratio"].values)
     path = write_dataset(ds, tmp_path / "design_x.nc")
     png = _run("design", tmp_path, "design", designs=[str(path)])
+    assert png.read_bytes()[:4] == b"\x89PNG"
+
+
+def test_uncertainty_stage_and_figure_from_a_tiny_entry(tmp_path):
+    """The stage's dataset holds the study's numbers (CF-complete: written), the nominal
+    design's from rest, and its figure draws."""
+    from vines.data.netcdf import write_dataset
+    spec = {"design": {"omega_band": [0.9, 1.1], "n_omega": 3, "amplitudes_m": [0.003],
+                       "eta": 0.1, "clearance_m": 0.0424, "census_n": 64, "t_end": 200.0,
+                       "t_transient": 100.0},
+            "parameters": {"frequency": ["uniform", -0.05, 0.05], "r": ["uniform", 0.6, 0.6]},
+            "samples": 2, "seed": 0}
+    ds = stages.uncertainty(spec, model=MODEL, simulation={"v_stick": 1e-6, "max_impacts":
+                            10**6, "root_tol": 1e-13}, code="test", title="t")
+    assert ds.sizes == {"parameter": 2, "point": 8, "regime_group": 5, "bound": 2}
+    assert list(ds["block"].values[:2]) == ["A", "A"] and ds["block"].values[-1] == "AB_r"
+    assert np.all(ds["value"].sel(parameter="r").values == 0.6)
+    assert float(ds["regime_share"].sum()) == pytest.approx(1.0)
+    assert float(ds["tmd_first_order"].sel(parameter="r")) == 0.0     # r: no effect on it
+    path = write_dataset(ds, tmp_path / "uncertainty_x.nc")
+    png = _run("uncertainty", tmp_path, "uncertainty", studies=[str(path)])
     assert png.read_bytes()[:4] == b"\x89PNG"
 
 

@@ -100,6 +100,7 @@ WORK_PRECISION_SETTINGS = {k: v for k, v in WORK_PRECISION.items() if k != "case
 CONVERGENCE = config["convergence"]
 DESIGNS = config["designs"]
 DESIGN_ROBUST = config["design_robust"]
+UNCERTAINTY = config["uncertainty"]
 ORBIT_ATLASES = config["orbit_atlases"]
 SHOCKS = config["shocks"]
 MODEL_LADDERS = config["model_ladders"]
@@ -191,6 +192,7 @@ STAGE_ENTRIES = {
     "convergence": CONVERGENCE,
     "design": DESIGNS,
     "design_robust": DESIGN_ROBUST,
+    "uncertainty": UNCERTAINTY,
     "orbit_atlas": ORBIT_ATLASES,
     "shock": SHOCKS,
     "model_ladder": MODEL_LADDERS,
@@ -198,8 +200,8 @@ STAGE_ENTRIES = {
 
 
 #: the stages behind the paper's figures (rule `paper`, the default target); the others
-#: (Lyapunov exponents, attractor censuses, solver studies, design, orbit atlas, shock,
-#: model ladder) go beyond the paper and run with rule `all`
+#: (Lyapunov exponents, attractor censuses, solver studies, design, design_robust,
+#: uncertainty, orbit atlas, shock, model ladder) go beyond the paper and run with rule `all`
 PAPER_STAGES = (
     "extract_measures",
     "bifurcation_sweep",

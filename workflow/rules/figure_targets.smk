@@ -108,6 +108,7 @@ FIG_INPUTS = {
     "design_robust": {
         "robust": [dataset("design_robust", n) for n in sorted(DESIGN_ROBUST)]
     },
+    "uncertainty": {"studies": _named("uncertainty", "uncertainty")},
     "atlas": {"atlases": _atlases("atlas"), "measures": _measures("fig12")},
     # beyond the paper: free decay after a shock against the TMD
     "shock": {"shocks": _shocks("shock")},

@@ -17,6 +17,7 @@ from ..studies.design_checks import (
     N_ETA_DEFAULT,
     VIEW_NAMES,
 )
+from . import design_uncertainty
 from .common import VinesArgumentParser, add_structure_args, emit, quiet_stdout
 
 NAME = "design"
@@ -82,9 +83,11 @@ def add_parser(subparsers) -> VinesArgumentParser:
     run.add_argument("--threads", metavar="N", default=None,
                      help="threads [an integer >= 1; default: all cores]")
     add_mistuning_args(p)
+    design_uncertainty.add_args(p)
     p.add_argument("--json", action="store_true",
                    help="print one JSON object on stdout (keys: inputs, curves, lo_alone, "
-                        "tmd, vines, search, worst_case, cost, mistuning)")
+                        "tmd, vines, search, worst_case, cost, mistuning; with "
+                        "--uncertainty: uncertainty)")
     add_model_choice(p)
     return p
 
@@ -188,6 +191,7 @@ def compute(args: argparse.Namespace) -> dict:
     """The design's JSON object (``DesignResult.to_dict``); ParameterError on bad input."""
     from ..studies.design import design
     mis = checked_mistuning(args)
+    design_uncertainty.precheck(args)
     with quiet_stdout():
         res = design(omega_band=args.omega_band, n_omega=args.n_omega,
                      amplitudes_m=args.amplitude, M_kg=args.M, k_N_per_m=args.k,
@@ -196,7 +200,12 @@ def compute(args: argparse.Namespace) -> dict:
                      clearance_range_m=args.clearance_range, n_eta=args.n_eta,
                      n_clearance=args.n_clearance, view=args.view, census_n=args.census_n,
                      t_end=args.t_end, t_transient=args.t_transient, n_threads=args.threads)
-    return add_mistuning(res.to_dict(), res, args, mis)
+        out = res.to_dict()
+        # uncertain parts (studies.uncertainty)
+        uncertain = design_uncertainty.compute(args, res)
+    if uncertain is not None:
+        out["uncertainty"] = uncertain
+    return add_mistuning(out, res, args, mis)
 
 
 def _fmt(x) -> str:
@@ -229,6 +238,7 @@ def text(d: dict) -> str:
                      f"{_fmt(a)} over attractors")
     lines.append(f"  cost {d['cost']['wall_s']:.1f} s, {d['cost']['n_runs_from_rest']} runs "
                  f"from rest, {d['cost']['n_runs_census']} census runs")
+    lines += design_uncertainty.text(d.get("uncertainty"))
     return "\n".join(lines + mistuning_text(d.get("mistuning")))
 
 

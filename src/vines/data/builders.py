@@ -55,6 +55,7 @@ from .schema import (
     SWEEP_SAMPLE_ATTRS,
     TIMEHISTORY_ATTRS,
     TITLES,
+    UNCERTAINTY_ATTRS,
     WORK_PRECISION_ATTRS,
 )
 from .schema import attrs as cf
@@ -665,6 +666,69 @@ def design_robust_dataset(result, mistuning: dict, attrs: dict) -> xr.Dataset:
            "M_kg": pb.M_kg, "k_N_per_m": pb.k_N_per_m, "census_n": pb.census_n,
            "robust_search_delta": rob["search"]["delta"],
            "t_end": pb.settings.t_end, "t_transient": pb.settings.t_transient}
+    return xr.Dataset(data, coords=coords, attrs={**own, **attrs})
+
+
+def _uv(name, dims, data, dtype="f8") -> xr.Variable:
+    long_name, units = UNCERTAINTY_ATTRS[name]
+    return xr.Variable(dims, np.asarray(data, dtype=dtype),
+                       {"long_name": long_name, "units": units})
+
+
+def _index_vars(key: str, sens: dict | None, names: list) -> dict:
+    """The Sobol indices of one absorber over ``parameter`` (NaN when undefined)."""
+    P = ("parameter",)
+    rows = [sens[n] if sens else None for n in names]
+    nan2 = [np.nan, np.nan]
+
+    def col(field, empty=np.nan):
+        return [empty if r is None else r[field] for r in rows]
+    return {f"{key}_first_order": _uv(f"{key}_first_order", P, col("first_order")),
+            f"{key}_total_order": _uv(f"{key}_total_order", P, col("total_order")),
+            f"{key}_first_order_ci": _uv(f"{key}_first_order_ci", P + ("bound",),
+                                         col("first_order_ci", nan2)),
+            f"{key}_total_order_ci": _uv(f"{key}_total_order_ci", P + ("bound",),
+                                         col("total_order_ci", nan2)),
+            f"{key}_index_reliable": _uv(f"{key}_index_reliable", P, col("reliable", 0),
+                                         "i1")}
+
+
+def uncertainty_dataset(result, attrs: dict) -> xr.Dataset:
+    """A design with uncertain parts (``studies.uncertainty.UncertaintyResult``): the
+    parameter values, worst ratios and regimes at every point, the regime shares, the
+    Sobol indices of both absorbers and their statistics. ``attrs`` (provenance) are merged
+    over its own (distributions, sampler, notes)."""
+    out = result.to_dict()
+    names, k, n = result.names, len(result.names), result.n
+    blocks = ["A"] * n + ["B"] * n + [f"AB_{x}" for x in names for _ in range(n)]
+    X, P, G = ("point",), ("parameter",), ("regime_group",)
+    shares = out["vines"]["regime_shares"]
+    coords = {"parameter": _uv("parameter", P, names, "U"),
+              "regime_group": _uv("regime_group", G, list(shares), "U"),
+              "bound": _uv("bound", ("bound",), ["low", "high"], "U"),
+              "block": _uv("block", X, blocks, "U")}
+    data = {"value": _uv("value", P + X, result.points),
+            "vines_worst_ratio": _uv("vines_worst_ratio", X, result.vines_worst),
+            "vines_regime": _uv("vines_regime", X, result.vines_regime, "U"),
+            "tmd_worst_ratio": _uv("tmd_worst_ratio", X, result.tmd_worst),
+            "regime_share": _uv("regime_share", G, list(shares.values()))}
+    for key in ("vines", "tmd"):
+        data.update(_index_vars(key, out["sensitivity"][key], names))
+        for stat in ("nominal", "mean", "q95"):
+            data[f"{key}_{stat}"] = _uv(f"{key}_{stat}", (), out[key][stat])
+    scalars = {"efficient_probability": out["vines"]["efficient_probability"],
+               "vines_better_probability": out["vines_better_probability"],
+               "vines_eta": out["design"]["eta"],
+               "vines_clearance": out["design"]["clearance_m"],
+               "tmd_eta": out["design"]["tmd_eta"]}
+    data.update({name: _uv(name, (), v) for name, v in scalars.items()})
+    dists = {f"distribution_{p['name']}": ":".join(
+        str(p[x]) for x in ("distribution", *[y for y in p if y in ("lo", "hi", "mean", "sd")]))
+        + f" ({p['kind']})" for p in out["parameters"]}
+    own = {"Conventions": CONVENTIONS, "n_base": n, "n_parameters": k,
+           "n_points": out["n_points"], "seed": out["seed"], "sampler": out["sampler"],
+           "efficient_regime": "1:1", **dists,
+           "sensitivity_notes": "; ".join(out["sensitivity_notes"]) or "none"}
     return xr.Dataset(data, coords=coords, attrs={**own, **attrs})
 
 

@@ -335,6 +335,43 @@ DESIGN_ROBUST_ATTRS = {
                                  "VI NES over attractors",
 }
 DESIGN_ROBUST_UNITS = {"vines_clearance": "m"}
+#: uncertain parts of a design (``vines.studies.uncertainty``): name -> (long_name, units);
+#: per point, per parameter, per regime group and the scalars of the two absorbers
+UNCERTAINTY_ATTRS = {
+    "parameter": ("uncertain part (frequency, clearance, mass: relative deviations; r: the "
+                  "restitution)", ""),
+    "bound": ("end of a 95 % bootstrap confidence interval", ""),
+    "regime_group": ("regime of the VI NES at a point's worst (omega, amplitude), grouped", ""),
+    "block": ("pick-freeze block of the point (A, B, or AB_<parameter>)", ""),
+    "value": ("value of the uncertain part at the point", "1"),
+    "vines_worst_ratio": ("worst-case transmissibility x_max/A of the VI NES from rest", "1"),
+    "vines_regime": ("regime of the run from rest at the VI NES's worst point", ""),
+    "tmd_worst_ratio": ("worst-case transmissibility x_max/A with the TMD (closed form)", "1"),
+    "regime_share": ("share of the points whose worst point is in the regime group", "1"),
+    "vines_first_order": ("first-order Sobol index of the VI NES's worst ratio", "1"),
+    "vines_total_order": ("total Sobol index of the VI NES's worst ratio", "1"),
+    "vines_first_order_ci": ("95 % bootstrap interval of vines_first_order", "1"),
+    "vines_total_order_ci": ("95 % bootstrap interval of vines_total_order", "1"),
+    "vines_index_reliable": ("1 where both intervals of the VI NES's indices are narrow", "1"),
+    "tmd_first_order": ("first-order Sobol index of the TMD's worst ratio", "1"),
+    "tmd_total_order": ("total Sobol index of the TMD's worst ratio", "1"),
+    "tmd_first_order_ci": ("95 % bootstrap interval of tmd_first_order", "1"),
+    "tmd_total_order_ci": ("95 % bootstrap interval of tmd_total_order", "1"),
+    "tmd_index_reliable": ("1 where both intervals of the TMD's indices are narrow", "1"),
+    "vines_nominal": ("worst-case transmissibility of the VI NES with exact parts", "1"),
+    "vines_mean": ("mean of vines_worst_ratio over the points", "1"),
+    "vines_q95": ("95 % quantile of vines_worst_ratio over the points", "1"),
+    "tmd_nominal": ("worst-case transmissibility of the TMD with exact parts", "1"),
+    "tmd_mean": ("mean of tmd_worst_ratio over the points", "1"),
+    "tmd_q95": ("95 % quantile of tmd_worst_ratio over the points", "1"),
+    "efficient_probability": ("share of the points whose worst point is in the efficient "
+                              "1:1 regime", "1"),
+    "vines_better_probability": ("share of the points where the VI NES's worst ratio is "
+                                 "below the TMD's", "1"),
+    "vines_eta": ("ball-to-LO mass ratio m/M of the VI NES design (exact parts)", "1"),
+    "vines_clearance": ("clearance L of the VI NES design (exact parts)", "m"),
+    "tmd_eta": ("TMD mass ratio m_a/M (exact parts)", "1"),
+}
 
 #: orbit atlases (``vines.orbits.atlas``): per family, and per family and grid point
 ATLAS_FAMILY_ATTRS = {

@@ -416,6 +416,8 @@ def _check_model_ladder(key: str, ml: dict, model: dict, limits: dict) -> None:
 def check_model_ladders(config: dict, model: dict, limits: dict) -> None:
     for name, ml in config["model_ladders"].items():
         _check_model_ladder(f"model_ladders.{name}", ml, model, limits)
+
+
 def check_design_robust(config: dict, model: dict, limits: dict) -> None:
     """A ``design_robust`` entry: its design keys as a ``designs`` entry's (an
     optimisation), its mistuning keys through ``studies.mistuning.check_mistuning``, and
@@ -434,6 +436,30 @@ def check_design_robust(config: dict, model: dict, limits: dict) -> None:
                   * (ds["n_eta"] * ds["n_clearance"] + ds["census_n"]) * (1 + ds["n_search"]))
         _check_size(key, n_runs, limits, "runs (omega x amplitudes x (grid designs + "
                     "census_n) x (1 + n_search))")
+
+
+def check_uncertainty(config: dict, model: dict, limits: dict) -> None:
+    """Each ``uncertainty`` entry: its design as a ``designs`` entry, its parameters and
+    samples through the validators of ``studies.uncertainty_checks``, its runs (points x
+    the design's runs from rest) within limits.max_grid_points."""
+    from ..studies import uncertainty_checks as chk
+    from ..studies.design import N_REFINE
+    for name, entry in config["uncertainty"].items():
+        key, ds = f"uncertainty.{name}", entry["design"]
+        _check_design(f"{key}.design", {**ds, "census_n": 0}, model, config["simulation"],
+                      limits)
+        where = "parameters"
+        try:
+            chk.check_parameters(entry["parameters"], amplitudes_m=ds["amplitudes_m"],
+                                 clearance_m=ds.get("clearance_m"), eta=ds.get("eta"))
+            where = "samples"
+            n = chk.check_samples(entry["samples"])
+        except ParameterError as err:
+            raise ConfigError(f"{key}.{where}", f"{err.value!r}: {err.allowed}") from None
+        n_points = n * (len(entry["parameters"]) + 2)
+        runs = len(ds["amplitudes_m"]) * (ds["n_omega"] + 2 * N_REFINE + 1)
+        _check_size(key, n_points * runs, limits,
+                    "runs (samples x (parameters + 2) x the design's runs from rest)")
 
 
 def atlas_grid(config: dict, name: str) -> dict:
@@ -488,5 +514,5 @@ def check_physical(config: dict) -> None:
     for check in (check_grids, check_sweeps, check_lyapunov_sweeps, check_branches,
                   check_maps_and_points, check_attractor_maps, check_boundaries, check_studies,
                   check_designs, check_orbit_atlases, check_shocks,
-                  check_model_ladders, check_design_robust):
+                  check_model_ladders, check_design_robust, check_uncertainty):
         check(config, model, limits)

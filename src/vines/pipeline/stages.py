@@ -4,7 +4,8 @@ One function per stage, named as the rule, the rule file, the workflow script an
 output folder: ``simulate_grid``, ``extract_measures``, ``bifurcation_sweep``,
 ``lyapunov``, ``map_solve``, ``stability_map``, ``boundaries``, ``timehistory``,
 ``robust_map``, ``basin_slice``, ``work_precision``, ``convergence``, ``design``,
-``design_robust``, ``orbit_atlas``. Each calls the numerics
+``design_robust``, ``uncertainty``, ``orbit_atlas``, ``shock``, ``model_ladder``. Each
+calls the numerics
 (``vines.core``, ``vines.orbits``, ``vines.attractors``, ``vines.studies``), lets
 ``vines.pipeline.execution`` spread independent tasks over dask, and hands plain arrays to
 ``vines.data.builders``. Results are assembled by index, so the
@@ -584,6 +585,28 @@ def design_robust(spec: dict, *, model: dict, simulation: dict, code: str, title
           f"TMD {mis['worst']['tmd']:.3g} -> {rob['worst']['tmd']:.3g}, VI NES "
           f"{mis['worst']['vines']:.3g} -> {rob['worst']['vines']:.3g}")
     return builders.design_robust_dataset(res, mis, attrs)
+
+
+# ------------------------------------------------------------------ uncertainty
+
+def uncertainty(spec: dict, *, model: dict, simulation: dict, code: str, title: str,
+                n_workers: int = 1):
+    """Dataset of one ``uncertainty`` entry: the design of its ``design`` keywords (as a
+    ``designs`` entry, from rest: census_n = 0), then ``studies.uncertainty`` with its
+    ``parameters``, ``samples`` and ``seed``."""
+    from ..studies.design import design as solve_design
+    from ..studies.uncertainty import uncertainty as solve
+    kw, settings = _design_kw(spec["design"], model, simulation)
+    n = max(1, int(n_workers))
+    res = solve_design(**{**kw, "census_n": 0}, n_threads=n)
+    unc = solve(res, spec["parameters"], samples=spec["samples"], seed=spec["seed"],
+                n_threads=n)
+    cost = unc.cost
+    print(f"uncertainty: design eta {res.eta:.4g}, L {res.clearance_m:.4g} m; "
+          f"{cost['n_distinct_points']} points, wall {cost['wall_s']:.1f} s, "
+          f"CPU {cost['cpu_s']:.1f} s")
+    return builders.uncertainty_dataset(unc, _design_attrs(spec, model, settings, code,
+                                                           title))
 
 
 # ------------------------------------------------------------------ orbit-atlas
