@@ -1,0 +1,199 @@
+"""How a finished run's jobs would pack on more cores: total CPU, the critical path of its
+DAG and a simulated list schedule per core count, from the jobs' benchmark files.
+
+Run from the repository root: python benchmarks/bench_schedule.py RUN [--cores 2 4 8 16 64]
+    [--configfile config/config.yaml] [--target all] [--model cpu|wall]
+    [--split RULE=N ...] [--overhead S] [--other-seconds S]
+RUN: a finished run's results folder (``results/<run>``, holding ``benchmarks/<rule>/...tsv``,
+written by every compute rule's ``benchmark:``), read only.
+
+The DAG is Snakemake's: ``snakemake -n -F TARGET --cores C`` on this checkout's Snakefile and
+CONFIGFILE (with ``run`` set to a name of its own, so nothing of RUN is touched), once per
+core count (a job's threads are capped at the cores); a job waits for the jobs that write its
+inputs. A job's seconds: ``--model cpu`` (default) its measured ``cpu_time`` spread over its
+threads, as on a machine where every job has its cores to itself; ``--model wall`` its
+measured wall time ``s`` as it was (on the measuring machine, under its load). Jobs without
+a benchmark file (the figures) take ``--other-seconds`` on one thread (default: the mean
+figure job shipped for the run's name in ``snakemake_logger_plugin_vines.measured``).
+``--split RULE=N`` is a model, not a measurement: every job of RULE becomes N equal chunk
+jobs plus a gather, each ``--overhead`` seconds longer (a job's start-up), to see what
+chunking a stage would give before rerunning it. Nothing is asserted; ``uptime`` is printed.
+"""
+from __future__ import annotations
+
+import argparse
+import csv
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "src"))
+
+from snakemake_logger_plugin_vines.measured import FIGURE_SECONDS  # noqa: E402
+from snakemake_logger_plugin_vines.schedule import (  # noqa: E402
+    Job,
+    critical_path,
+    jobs_from_dry_run,
+    list_schedule,
+    split,
+)
+
+#: the run name of the dry runs (their paths are mapped onto RUN)
+DRY_RUN = "bench_schedule_dag"
+
+
+class InputError(Exception):
+    """A bad argument or run folder: one line, exit 2."""
+
+
+def measured(run: Path) -> dict[str, dict[str, float]]:
+    """{path below RUN: last row of the benchmark file} of every ``benchmarks/**/*.tsv``."""
+    out = {}
+    for tsv in sorted((run / "benchmarks").rglob("*.tsv")):
+        with open(tsv) as fh:
+            rows = list(csv.DictReader(fh, delimiter="\t"))
+        if rows:
+            out[str(tsv.relative_to(run))] = {k: float(rows[-1][k]) for k in ("s", "cpu_time")}
+    return out
+
+
+def dry_run(configfile: str, target: str, cores: int) -> str:
+    """Snakemake's plan of every job of ``target`` (forced: as if nothing existed)."""
+    cmd = [sys.executable, "-m", "snakemake", "-n", "-F", target, "--cores", str(cores),
+           "--workflow-profile", "none", "--configfile", configfile,
+           "--config", f"run={DRY_RUN}"]
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join(
+        [str(ROOT / "src")] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep)
+                               if p]))
+    r = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True, env=env)
+    if r.returncode != 0:
+        raise InputError(f"snakemake -n failed ({' '.join(cmd[1:])}): "
+                         f"{(r.stderr or r.stdout).strip().splitlines()[-1:]}")
+    return r.stdout + r.stderr
+
+
+def run_jobs(text: str, bench: dict, model: str, other: float) -> tuple[list[Job], dict]:
+    """Jobs with measured seconds, and counts of where the seconds came from."""
+    prefix = f"results/{DRY_RUN}/"
+    jobs, found, missing = [], {"benchmark": 0, "other": 0}, []
+    for p in jobs_from_dry_run(text):
+        if not p.outputs:               # a target rule (all, paper): no work of its own
+            continue
+        name = f"{p.rule} {p.wildcards}".strip()
+        if p.benchmark:
+            row = bench.get(p.benchmark.removeprefix(prefix))
+            if row is None:
+                missing.append(p.benchmark.removeprefix(prefix))
+                continue
+            seconds = row["cpu_time"] / p.threads if model == "cpu" else row["s"]
+            found["benchmark"] += 1
+        else:
+            seconds = other
+            found["other"] += 1
+        jobs.append(Job(name, p.rule, seconds, p.threads, p.deps))
+    if missing:
+        raise InputError(f"no benchmark file for {len(missing)} planned jobs (first: "
+                         f"{missing[0]}): was RUN made with this config and target?")
+    ids = {p.jobid: f"{p.rule} {p.wildcards}".strip() for p in jobs_from_dry_run(text)}
+    keep = {j.name for j in jobs}
+    jobs = [Job(j.name, j.rule, j.seconds, j.threads,
+                tuple(ids[d] for d in j.deps if ids[d] in keep)) for j in jobs]
+    return jobs, found
+
+
+def parse_splits(items: list[str]) -> list[tuple[str, int]]:
+    out = []
+    for item in items:
+        rule, _, n = item.partition("=")
+        if not rule or not n.isdigit() or int(n) < 1:
+            raise InputError(f"--split {item!r}: expected RULE=N with N a whole number >= 1")
+        out.append((rule, int(n)))
+    return out
+
+
+def _minutes(seconds: float) -> str:
+    return f"{int(seconds // 60)} min {seconds % 60:4.1f} s" if seconds >= 60 else \
+        f"{seconds:.1f} s"
+
+
+def report(args) -> None:
+    run = Path(args.run)
+    if not (run / "benchmarks").is_dir():
+        raise InputError(f"RUN {run}: no benchmarks/ folder (expected a finished run's "
+                         "results/<run>)")
+    bench = measured(run)
+    splits = parse_splits(args.split)
+    other = args.other_seconds
+    if other is None:
+        other = FIGURE_SECONDS.get(run.name, sum(FIGURE_SECONDS.values()) / len(FIGURE_SECONDS))
+    print(f"run {run}: {len(bench)} benchmark files; DAG of `{args.target}` "
+          f"({args.configfile}) from snakemake -n; job seconds: --model {args.model}")
+    print(f"load: {os.getloadavg()[0]:.2f} {os.getloadavg()[1]:.2f} {os.getloadavg()[2]:.2f}"
+          " (uptime; the schedule itself is a computation, not a timing)")
+    if splits:
+        print("MODEL, not a measurement: " + ", ".join(f"{r} as {n} chunks" for r, n in splits)
+              + f" (+{args.overhead:g} s start-up a chunk, a gather of {args.overhead:g} s)")
+    rows = []
+    for cores in args.cores:
+        jobs, found = run_jobs(dry_run(args.configfile, args.target, cores), bench,
+                               args.model, other)
+        for rule, n in splits:
+            if not any(j.rule == rule for j in jobs):
+                raise InputError(f"--split {rule}={n}: no job of rule {rule!r} in the DAG")
+            jobs = split(jobs, rule, n, args.overhead)
+        rows.append((cores, jobs, list_schedule(jobs, cores)))
+    _print(rows, found, other)
+
+
+def _print(rows, found, other) -> None:
+    cores, jobs, _ = rows[-1]
+    cpu = sum(j.cpu for j in jobs)
+    path = critical_path(jobs)
+    length = sum(j.seconds for j in path)
+    print(f"jobs: {len(jobs)} ({found['benchmark']} with a benchmark file, {found['other']} "
+          f"without, at {other:g} s on one thread)")
+    print(f"total CPU: {cpu:.0f} s ({cpu / 60:.1f} min)")
+    print(f"critical path on {cores} cores: {_minutes(length)} through {len(path)} jobs:")
+    for job in path:
+        print(f"    {job.seconds:8.1f} s  {job.threads:2d} threads  {job.name}")
+    print("| cores | predicted wall | efficiency | lower bound max(CPU/cores, path) |")
+    print("|---|---|---|---|")
+    for cores, jobs, sched in rows:
+        bound = max(sched.cpu / cores, sum(j.seconds for j in critical_path(jobs)))
+        print(f"| {cores} | {_minutes(sched.wall)} | {100 * sched.efficiency:.0f} % | "
+              f"{_minutes(bound)} |")
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("run", help="a finished run's results/<run> folder (read only)")
+    ap.add_argument("--cores", type=int, nargs="+", default=[2, 4, 8, 16, 64])
+    ap.add_argument("--configfile", default="config/config.yaml",
+                    help="the config the run was made with (default config/config.yaml)")
+    ap.add_argument("--target", default="all", help="the run's target (default all)")
+    ap.add_argument("--model", choices=("cpu", "wall"), default="cpu")
+    ap.add_argument("--split", nargs="*", default=[], metavar="RULE=N")
+    ap.add_argument("--overhead", type=float, default=2.0,
+                    help="start-up seconds of a chunk or gather job (--split; default 2)")
+    ap.add_argument("--other-seconds", type=float, default=None,
+                    help="seconds of a job without a benchmark file (figures)")
+    args = ap.parse_args(argv)
+    try:
+        if any(c < 1 for c in args.cores):
+            raise InputError(f"--cores {args.cores}: every core count must be >= 1")
+        if args.overhead < 0 or (args.other_seconds is not None and args.other_seconds < 0):
+            raise InputError("--overhead and --other-seconds must be >= 0")
+        report(args)
+    except InputError as err:
+        print(f"bench_schedule: {err}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        print("bench_schedule: interrupted", file=sys.stderr)
+        return 130
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
