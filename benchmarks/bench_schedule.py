@@ -2,22 +2,26 @@
 DAG and a simulated list schedule per core count, from the jobs' benchmark files.
 
 Run from the repository root: python benchmarks/bench_schedule.py RUN [--cores 2 4 8 16 64]
-    [--configfile config/config.yaml] [--target all] [--model cpu|wall]
-    [--split RULE=N ...] [--overhead S] [--other-seconds S]
+    [--configfile config/config.yaml] [--target all] [--split RULE=N ...] [--overhead S]
+    [--other-seconds S]
 RUN: a finished run's results folder (``results/<run>``, holding ``benchmarks/<rule>/...tsv``,
 written by every compute rule's ``benchmark:``), read only.
 
 The DAG is Snakemake's: ``snakemake -n -F TARGET --cores C`` on this checkout's Snakefile and
 CONFIGFILE (with ``run`` set to a name of its own, so nothing of RUN is touched), once per
 core count (a job's threads are capped at the cores); a job waits for the jobs that write its
-inputs. A job's seconds: ``--model cpu`` (default) its measured ``cpu_time`` spread over its
-threads, as on a machine where every job has its cores to itself; ``--model wall`` its
-measured wall time ``s`` as it was (on the measuring machine, under its load). Jobs without
-a benchmark file (the figures) take ``--other-seconds`` on one thread (default: the mean
-figure job shipped for the run's name in ``snakemake_logger_plugin_vines.measured``).
-``--split RULE=N`` is a model, not a measurement: every job of RULE becomes N equal chunk
-jobs plus a gather, each ``--overhead`` seconds longer (a job's start-up), to see what
-chunking a stage would give before rerunning it. Nothing is asserted; ``uptime`` is printed.
+inputs. The schedule (snakemake_logger_plugin_vines.schedule) is greedy, longest path first,
+each job holding its threads' cores; Snakemake's own start-up, the numba warm-up and the
+waits of a loaded machine are not in it. A job's seconds, three models side by side:
+``ideal threads`` its measured ``cpu_time`` / threads (every thread busy: a lower bound),
+``no thread speed-up`` its ``cpu_time`` (threads that do not help), ``as measured`` its wall
+time ``s`` (on the measuring machine, under its load). Jobs without a benchmark file (the
+figures) take ``--other-seconds`` on one thread (default: the mean figure job shipped for the
+run's name in ``snakemake_logger_plugin_vines.measured``). ``--split RULE=N`` is a MODEL, not
+a measurement: every job of RULE becomes N equal chunk jobs (same threads) and a one-thread
+gather, each ``--overhead`` seconds longer (a job's start-up; default 1 s, about the CPU time
+of the shortest jobs that load the compiled kernels), to see what chunking a stage would
+give before rerunning it. Nothing is asserted.
 """
 from __future__ import annotations
 
@@ -74,32 +78,40 @@ def dry_run(configfile: str, target: str, cores: int) -> str:
     return r.stdout + r.stderr
 
 
-def run_jobs(text: str, bench: dict, model: str, other: float) -> tuple[list[Job], dict]:
-    """Jobs with measured seconds, and counts of where the seconds came from."""
+#: job seconds of each model from a job's measured (cpu_time, wall s) and its threads
+MODELS = {
+    "ideal threads": lambda cpu, wall, threads: cpu / threads,
+    "no thread speed-up": lambda cpu, wall, threads: cpu,
+    "as measured": lambda cpu, wall, threads: wall,
+}
+
+
+def run_jobs(text: str, bench: dict, other: float) -> tuple[dict, dict]:
+    """{model: jobs with its seconds}, and counts of where the seconds came from."""
     prefix = f"results/{DRY_RUN}/"
-    jobs, found, missing = [], {"benchmark": 0, "other": 0}, []
-    for p in jobs_from_dry_run(text):
-        if not p.outputs:               # a target rule (all, paper): no work of its own
-            continue
-        name = f"{p.rule} {p.wildcards}".strip()
+    planned = jobs_from_dry_run(text)
+    ids = {p.jobid: f"{p.rule} {p.wildcards}".strip() for p in planned}
+    work = [p for p in planned if p.outputs]    # a target rule (all, paper): no work of its own
+    keep = {p.jobid for p in work}
+    found, missing, rows = {"benchmark": 0, "other": 0}, [], []
+    for p in work:
         if p.benchmark:
             row = bench.get(p.benchmark.removeprefix(prefix))
             if row is None:
                 missing.append(p.benchmark.removeprefix(prefix))
                 continue
-            seconds = row["cpu_time"] / p.threads if model == "cpu" else row["s"]
             found["benchmark"] += 1
+            cpu, wall = row["cpu_time"], row["s"]
         else:
-            seconds = other
             found["other"] += 1
-        jobs.append(Job(name, p.rule, seconds, p.threads, p.deps))
+            cpu = wall = other
+        rows.append((p, cpu, wall))
     if missing:
         raise InputError(f"no benchmark file for {len(missing)} planned jobs (first: "
                          f"{missing[0]}): was RUN made with this config and target?")
-    ids = {p.jobid: f"{p.rule} {p.wildcards}".strip() for p in jobs_from_dry_run(text)}
-    keep = {j.name for j in jobs}
-    jobs = [Job(j.name, j.rule, j.seconds, j.threads,
-                tuple(ids[d] for d in j.deps if ids[d] in keep)) for j in jobs]
+    jobs = {model: [Job(ids[p.jobid], p.rule, seconds(cpu, wall, p.threads), p.threads,
+                        tuple(ids[d] for d in p.deps if d in keep)) for p, cpu, wall in rows]
+            for model, seconds in MODELS.items()}
     return jobs, found
 
 
@@ -128,42 +140,40 @@ def report(args) -> None:
     other = args.other_seconds
     if other is None:
         other = FIGURE_SECONDS.get(run.name, sum(FIGURE_SECONDS.values()) / len(FIGURE_SECONDS))
+    load = " ".join(f"{x:.2f}" for x in os.getloadavg())
     print(f"run {run}: {len(bench)} benchmark files; DAG of `{args.target}` "
-          f"({args.configfile}) from snakemake -n; job seconds: --model {args.model}")
-    print(f"load: {os.getloadavg()[0]:.2f} {os.getloadavg()[1]:.2f} {os.getloadavg()[2]:.2f}"
-          " (uptime; the schedule itself is a computation, not a timing)")
+          f"({args.configfile}) from snakemake -n; load {load} (a computation, not a timing)")
     if splits:
         print("MODEL, not a measurement: " + ", ".join(f"{r} as {n} chunks" for r, n in splits)
-              + f" (+{args.overhead:g} s start-up a chunk, a gather of {args.overhead:g} s)")
+              + f" (+{args.overhead:g} s start-up a chunk; a gather of {args.overhead:g} s)")
     rows = []
     for cores in args.cores:
-        jobs, found = run_jobs(dry_run(args.configfile, args.target, cores), bench,
-                               args.model, other)
+        jobs, found = run_jobs(dry_run(args.configfile, args.target, cores), bench, other)
         for rule, n in splits:
-            if not any(j.rule == rule for j in jobs):
+            if not any(j.rule == rule for j in jobs[next(iter(MODELS))]):
                 raise InputError(f"--split {rule}={n}: no job of rule {rule!r} in the DAG")
-            jobs = split(jobs, rule, n, args.overhead)
-        rows.append((cores, jobs, list_schedule(jobs, cores)))
+            jobs = {m: split(js, rule, n, args.overhead) for m, js in jobs.items()}
+        rows.append((cores, {m: (js, list_schedule(js, cores)) for m, js in jobs.items()}))
     _print(rows, found, other)
 
 
 def _print(rows, found, other) -> None:
-    cores, jobs, _ = rows[-1]
-    cpu = sum(j.cpu for j in jobs)
-    path = critical_path(jobs)
-    length = sum(j.seconds for j in path)
+    cores, by_model = rows[-1]
+    jobs, sched = by_model["ideal threads"]   # its core-seconds: the measured cpu_time
     print(f"jobs: {len(jobs)} ({found['benchmark']} with a benchmark file, {found['other']} "
           f"without, at {other:g} s on one thread)")
-    print(f"total CPU: {cpu:.0f} s ({cpu / 60:.1f} min)")
-    print(f"critical path on {cores} cores: {_minutes(length)} through {len(path)} jobs:")
-    for job in path:
-        print(f"    {job.seconds:8.1f} s  {job.threads:2d} threads  {job.name}")
-    print("| cores | predicted wall | efficiency | lower bound max(CPU/cores, path) |")
-    print("|---|---|---|---|")
-    for cores, jobs, sched in rows:
-        bound = max(sched.cpu / cores, sum(j.seconds for j in critical_path(jobs)))
-        print(f"| {cores} | {_minutes(sched.wall)} | {100 * sched.efficiency:.0f} % | "
-              f"{_minutes(bound)} |")
+    print(f"total CPU: {sched.cpu:.0f} s ({sched.cpu / 60:.1f} min)")
+    for model, (jobs, _) in by_model.items():
+        path = critical_path(jobs)
+        print(f"critical path ({model}, {cores} cores): "
+              f"{_minutes(sum(j.seconds for j in path))}: "
+              + ", ".join(f"{j.name} ({j.seconds:.0f} s on {j.threads})" for j in path))
+    print("| cores | " + " | ".join(f"{m}: wall, efficiency" for m in MODELS) + " |")
+    print("|---|" + "---|" * len(MODELS))
+    for cores, by_model in rows:
+        print(f"| {cores} | " + " | ".join(
+            f"{_minutes(s.wall)}, {100 * s.efficiency:.0f} %" for _, s in by_model.values())
+            + " |")
 
 
 def main(argv=None) -> int:
@@ -173,10 +183,9 @@ def main(argv=None) -> int:
     ap.add_argument("--configfile", default="config/config.yaml",
                     help="the config the run was made with (default config/config.yaml)")
     ap.add_argument("--target", default="all", help="the run's target (default all)")
-    ap.add_argument("--model", choices=("cpu", "wall"), default="cpu")
     ap.add_argument("--split", nargs="*", default=[], metavar="RULE=N")
-    ap.add_argument("--overhead", type=float, default=2.0,
-                    help="start-up seconds of a chunk or gather job (--split; default 2)")
+    ap.add_argument("--overhead", type=float, default=1.0,
+                    help="start-up seconds of a chunk or gather job (--split; default 1)")
     ap.add_argument("--other-seconds", type=float, default=None,
                     help="seconds of a job without a benchmark file (figures)")
     args = ap.parse_args(argv)
