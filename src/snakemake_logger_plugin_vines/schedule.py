@@ -62,6 +62,15 @@ def _check(jobs: list[Job]) -> dict[str, Job]:
     return by_name
 
 
+def _waiting(jobs: list[Job]) -> dict[str, list]:
+    """{name: names of the jobs that wait for it}."""
+    waiting = {job.name: [] for job in jobs}
+    for job in jobs:
+        for dep in job.deps:
+            waiting[dep].append(job.name)
+    return waiting
+
+
 def _topological(by_name: dict[str, Job]) -> list[str]:
     """Names in an order where every job comes after its deps; ValueError on a cycle."""
     order, state = [], {}
@@ -92,10 +101,7 @@ def _topological(by_name: dict[str, Job]) -> list[str]:
 def path_lengths(jobs: list[Job]) -> dict[str, float]:
     """{name: seconds of the longest path from the job's start to the end of the DAG}."""
     by_name = _check(jobs)
-    waiting = {name: [] for name in by_name}
-    for job in jobs:
-        for dep in job.deps:
-            waiting[dep].append(job.name)
+    waiting = _waiting(jobs)
     length = {}
     for name in reversed(_topological(by_name)):
         length[name] = by_name[name].seconds + max((length[w] for w in waiting[name]),
@@ -107,10 +113,7 @@ def critical_path(jobs: list[Job]) -> list[Job]:
     """The jobs of the longest path through the DAG, in order (no job: ``[]``)."""
     by_name = _check(jobs)
     length = path_lengths(jobs)
-    waiting = {name: [] for name in by_name}
-    for job in jobs:
-        for dep in job.deps:
-            waiting[dep].append(job.name)
+    waiting = _waiting(jobs)
     roots = [j.name for j in jobs if not j.deps]
     path, nxt = [], max(roots, key=lambda n: (length[n], n), default=None)
     while nxt is not None:
@@ -128,10 +131,7 @@ def list_schedule(jobs: list[Job], cores: int) -> Schedule:
             raise ValueError(f"job {job.name!r} asks for {job.threads} threads on "
                              f"{cores} cores")
     length = path_lengths(jobs)
-    waiting = {name: [] for name in by_name}
-    for job in jobs:
-        for dep in job.deps:
-            waiting[dep].append(job.name)
+    waiting = _waiting(jobs)
     missing = {j.name: len(set(j.deps)) for j in jobs}
     ready = [n for n, k in missing.items() if k == 0]
     running, start, now, free = [], {}, 0.0, cores
