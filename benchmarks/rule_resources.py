@@ -6,7 +6,11 @@ RESULTS: a run's results folder (``results/<run>``, holding ``benchmarks/<rule>/
 Prints per rule: jobs, the largest ``max_rss`` (MB) and ``s`` (wall seconds) of its jobs,
 and ``mem_mb`` = MEM_MARGIN x max_rss rounded up to 100 MB, ``runtime`` = TIME_MARGIN x s
 in whole minutes, at least MIN_RUNTIME: the values of the rules' ``resources:``
-(docs/performance.md says why these margins). Nothing is asserted.
+(docs/performance.md says why these margins). Nothing is asserted. The chunk jobs of a
+chunked stage are a rule of their own (``<stage>_chunk``, files under
+``benchmarks/<stage>_chunk/<entry>/``), its gather the stage's rule; a run from before the
+split measured the stage as whole entries under the stage's rule (the ``WHOLE`` runs of
+``snakemake_logger_plugin_vines.measured``).
 """
 import argparse
 import csv

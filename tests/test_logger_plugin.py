@@ -183,6 +183,27 @@ def test_estimate_without_benchmark_files_uses_shipped_costs_or_says_none(tmp_pa
     assert "about 10 min on 4 cores" in cost.estimate(jobs[:1], 4, measured=long, figures={})
 
 
+def test_estimate_spreads_a_stage_measured_whole_over_its_chunk_jobs(tmp_path, monkeypatch):
+    """Shipped costs measured before a stage was split: its chunk jobs share the entry's
+    time, its gather costs a gather of grid chunks (extract_measures)."""
+    monkeypatch.chdir(tmp_path)
+    b = "results/paper/benchmarks"
+    jobs = [("robust_map_chunk", f"{b}/robust_map_chunk/r/{k}.tsv", None, 1) for k in range(3)]
+    jobs += [("robust_map", f"{b}/robust_map/r.tsv", None, 1)]
+    shipped = {"paper": {"robust_map": (3, 600.0, 604.0), "extract_measures": (9, 2.0, 4.4)}}
+    whole = {"paper": ("robust_map",)}
+    # 3 x 200 s + 2 s on one core; on three cores the chunks run side by side: 202 s / 3
+    # cores bounded below by the longest job, 200 s
+    line = cost.estimate(jobs, cores=1, measured=shipped, figures={}, whole=whole)
+    assert line.startswith("Cost estimate: about 10 min on 1 cores for 4 jobs")
+    line = cost.estimate(jobs, cores=3, measured=shipped, figures={}, whole=whole)
+    assert line.startswith("Cost estimate: about 3 min on 3 cores for 4 jobs")
+    # measured after the split (not whole): the shipped rules as they are
+    after = {"paper": {"robust_map_chunk": (63, 30.0, 90.0), "robust_map": (3, 1.0, 1.0)}}
+    line = cost.estimate(jobs, cores=1, measured=after, figures={}, whole={})
+    assert line.startswith("Cost estimate: about 91 s on 1 cores for 4 jobs")
+
+
 def test_shipped_costs_cover_the_rules_with_benchmarks():
     from snakemake_logger_plugin_vines.measured import FIGURE_SECONDS, MEASURED
     for run in ("paper", "smoke"):

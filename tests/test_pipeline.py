@@ -36,6 +36,7 @@ from vines.pipeline.axes import (
     grid_chunks,
 )
 from vines.pipeline.config import load_schema, validate_config
+from vines.pipeline.parts import CHUNKED_STAGES, chunk_plan
 from vines.pipeline.stages import compute_chunk, compute_sweep
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -242,7 +243,7 @@ def test_ragged_round_trip(tmp_path):
 # ------------------------------------------------------------------ snakemake: plans and reruns
 
 TINY = {
-    "run": "tiny", "chunk_size": 3, "block_size": 2, "threads": 1,
+    "run": "tiny", "chunks": {"simulate_grid": 3}, "block_size": 2, "threads": 1,
     "simulation": {"t_end": 120.0, "t_transient": 60.0},
     "grids": {
         "gA": {"axes": {"eta": [0.05, 0.1, 0.2]}, "fixed": {"omega": 1.0, "F": 0.1}},
@@ -308,7 +309,8 @@ def test_dry_run_plans_the_full_study_and_the_smoke_run(tmp_path):
     _copy_workflow(tmp_path)
     full = _planned(_smk(tmp_path, "-n"))
     cfg = _validated(yaml.safe_load((ROOT / "config" / "config.yaml").read_text()))
-    n_chunks = sum(len(chunk_map(grid_axes(g), cfg["chunk_size"])) for g in cfg["grids"].values())
+    size = cfg["chunks"]["simulate_grid"]
+    n_chunks = sum(len(chunk_map(grid_axes(g), size)) for g in cfg["grids"].values())
     assert full["simulate_grid"] == n_chunks
     assert full["extract_measures"] == len(cfg["grids"])
     assert full["bifurcation_sweep"] == len(cfg["sweeps"])
@@ -316,8 +318,8 @@ def test_dry_run_plans_the_full_study_and_the_smoke_run(tmp_path):
     assert full["map_solve"] == len(cfg["branches"])
     assert full["stability_map"] == len(cfg["stability_maps"])
     assert full["boundaries"] == len(cfg["boundaries"])
-    assert all(len(c["eta"]) * len(c["omega"]) * len(c["F"]) <= cfg["chunk_size"]
-               for g in cfg["grids"].values() for c in grid_chunks(grid_axes(g), cfg["chunk_size"]))
+    assert all(len(c["eta"]) * len(c["omega"]) * len(c["F"]) <= size
+               for g in cfg["grids"].values() for c in grid_chunks(grid_axes(g), size))
     smoke = _planned(_smk(tmp_path, "-n", "--configfile", str(tmp_path / "config" / "smoke.yaml")))
     assert set(smoke) == set(full)          # same DAG, tiny grids
     # the default target `paper`: Figs 2-16 and the stages behind them, nothing beyond
@@ -330,6 +332,11 @@ def test_dry_run_plans_the_full_study_and_the_smoke_run(tmp_path):
     assert {"fig3_lyapunov", "fig14_regimes", "fig_robust_tet", "fig_atlas", "fig_design",
             "fig_workprecision", "fig_convergence", "fig_basin_slices"} <= set(everything)
     assert all(everything[rule] == n for rule, n in full.items() if rule != "paper")
+    # the chunked stages: many jobs an entry (config chunks), one gather an entry
+    for stage, section in CHUNKED_STAGES.items():
+        jobs = sum(len(chunk_plan(stage, name, cfg)) for name in cfg[section])
+        assert everything[f"{stage}_chunk"] == jobs > everything[stage], stage
+        assert everything[stage] == len(cfg[section])
 
 
 @needs_snakemake
@@ -424,7 +431,7 @@ def test_distributed_scheduler_gives_identical_numbers():
 @needs_snakemake
 def test_damaged_chunk_is_named_and_recomputed_after_removal(tmp_path):
     _copy_workflow(tmp_path)
-    cfg = {k: v for k, v in TINY.items() if k in ("run", "chunk_size", "block_size", "threads",
+    cfg = {k: v for k, v in TINY.items() if k in ("run", "chunks", "block_size", "threads",
                                                    "simulation")}
     cfg["grids"] = {"gA": TINY["grids"]["gA"]}
     _smk(tmp_path, cfg=cfg)

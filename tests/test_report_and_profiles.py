@@ -76,7 +76,7 @@ def _resources(out: str, rule: str) -> set:
 def test_slurm_profile_sets_threads_of_every_multithreaded_rule():
     profile = yaml.safe_load((ROOT / "profiles" / "slurm" / "config.yaml").read_text())
     rules = _rules_with("threads")
-    assert {"simulate_grid", "robust_map", "basin_slice", "convergence"} <= rules
+    assert {"simulate_grid", "robust_map_chunk", "basin_slice", "convergence"} <= rules
     assert set(profile["set-threads"]) == rules
 
 
@@ -137,9 +137,11 @@ def test_profile_dry_run_without_cores(tmp_path):
              "--executor", "local", "--configfile", smoke, *JOB_BLOCKS)
     assert r.returncode == 0, r.stdout + r.stderr
     assert _threads(r.stdout, "work_precision") == {8}            # profile set-threads
-    for rule in ("simulate_grid", "robust_map", "basin_slice", "convergence"):
+    for rule in ("simulate_grid", "robust_map_chunk", "basin_slice", "convergence"):
         assert _threads(r.stdout, rule) == {8}, rule
-    for rule in ("simulate_grid", "robust_map", "stability_map", "work_precision"):
+    assert _threads(r.stdout, "robust_map") == {1}        # a gather that only assembles
+    for rule in ("simulate_grid", "robust_map_chunk", "robust_map", "stability_map",
+                 "work_precision"):
         d = _declared(rule)                     # the rule's own resources reach its jobs
         assert _resources(r.stdout, rule) == {(d["mem_mb"], d["runtime"])}, rule
     _check_groups(r.stdout)

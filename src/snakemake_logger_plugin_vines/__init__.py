@@ -40,7 +40,9 @@ from .cost import cores_of, estimate
 #: messages without an event that say nothing to a user (prefixes)
 CHATTER = ("Select jobs to execute", "Execute ", "Assuming unrestricted shared filesystem",
            "Using shell:", "Provided cores:", "Rules claiming more threads",
-           "Building DAG of jobs", "host:")
+           "Building DAG of jobs", "host:",
+           # the part files of chunk jobs (temp()), removed once their gather has run
+           "Would remove temporary output", "Removing temporary output")
 #: lines of a failed job's log shown on the console
 LOG_TAIL = 15
 #: references of Snakemake's dry-run messages to the job displays hidden here, and what

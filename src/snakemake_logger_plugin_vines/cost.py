@@ -4,7 +4,10 @@ A planned job's cost is the wall time of a measured run of it, taken in this ord
 own benchmark file in ``results/<run>/benchmarks/`` (the last run of that very job), the
 mean over the benchmark files of its rule in the same run, the costs shipped in
 ``measured.py`` (measured on the named runs); a figure job (no benchmark file) costs the
-mean figure job of ``measured.FIGURE_SECONDS``. A job of k threads takes k of the cores
+mean figure job of ``measured.FIGURE_SECONDS``. Where the shipped costs of a run measured a
+chunked stage as one job per entry (``measured.WHOLE``), each chunk job of an entry
+(rule ``<stage>_chunk``) costs the stage's mean entry over the entry's planned chunk jobs, and
+the stage's gather job the mean gather of grid chunks (rule ``extract_measures``). A job of k threads takes k of the cores
 for its time: the estimate is the sum of time x threads over the cores, at least the
 longest job. An estimate: exact only when the jobs pack perfectly and the machine is as
 fast and as loaded as the measured one.
@@ -21,7 +24,7 @@ import re
 import sys
 from pathlib import Path
 
-from .measured import FIGURE_SECONDS, MEASURED, NOT_COUNTED, SOURCE
+from .measured import FIGURE_SECONDS, MEASURED, NOT_COUNTED, SOURCE, WHOLE
 
 
 def read_benchmark(path) -> float | None:
@@ -74,15 +77,54 @@ def _minutes(seconds: float) -> str:
     return f"{seconds / 60:.0f} min" if seconds >= 120 else f"{seconds:.0f} s"
 
 
-def estimate(jobs, cores: int, measured=None, figures=None) -> str:
+def chunk_counts(jobs) -> dict:
+    """{(stage, entry benchmark folder): planned chunk jobs} of the ``<stage>_chunk`` jobs
+    (benchmark ``.../benchmarks/<stage>_chunk/<entry>/<k>.tsv``)."""
+    out = {}
+    for rule, benchmark, _, _ in jobs:
+        if rule.endswith("_chunk") and benchmark:
+            key = (rule.removesuffix("_chunk"), str(Path(benchmark).parent))
+            out[key] = out.get(key, 0) + 1
+    return out
+
+
+def _entry_chunks(rule, benchmark, chunks) -> int:
+    """Planned chunk jobs of the entry of a chunk job, or of a gather job (0: none)."""
+    if not benchmark:
+        return 0
+    if rule.endswith("_chunk"):
+        return chunks.get((rule.removesuffix("_chunk"), str(Path(benchmark).parent)), 0)
+    entry = Path(benchmark)
+    folder = entry.parent.parent / f"{rule}_chunk" / entry.stem
+    return chunks.get((rule, str(folder)), 0)
+
+
+def _split_whole(shipped: dict, whole, rule, benchmark, chunks) -> dict:
+    """The shipped costs of a run, with those of a stage measured as whole entries
+    (``whole``) split over the planned chunk jobs of the entry of ``rule``'s job."""
+    stage = rule.removesuffix("_chunk")
+    n = _entry_chunks(rule, benchmark, chunks)
+    if stage not in whole or stage not in shipped or not n:
+        return shipped
+    jobs, mean, longest = shipped[stage]
+    if rule.endswith("_chunk"):
+        return {**shipped, rule: (jobs, round(mean / n, 2), round(longest / n, 2))}
+    gather = shipped.get("extract_measures")
+    return {k: v for k, v in shipped.items() if k != stage} | (
+        {stage: gather} if gather else {})
+
+
+def estimate(jobs, cores: int, measured=None, figures=None, whole=None) -> str:
     """The estimate sentence for planned ``jobs``: (rule, benchmark path or None, first
-    output or None, threads) tuples; ``measured``, ``figures``: the shipped costs (default
-    ``MEASURED``, ``FIGURE_SECONDS``)."""
+    output or None, threads) tuples; ``measured``, ``figures``, ``whole``: the shipped
+    costs (default ``MEASURED``, ``FIGURE_SECONDS``, ``WHOLE``)."""
     measured = MEASURED if measured is None else measured
     figures = FIGURE_SECONDS if figures is None else figures
+    whole = WHOLE if whole is None else whole
     found = {"own": 0, "rule": 0, "shipped": 0, "figure": 0}
     core_seconds = longest = 0.0
     runs, own_rules, unknown = set(), {}, 0
+    chunks = chunk_counts(jobs)
     for rule, benchmark, output, threads in jobs:
         run = run_of(benchmark, output)
         if run is None:            # a target rule (all, paper, figures): no work of its own
@@ -90,8 +132,11 @@ def estimate(jobs, cores: int, measured=None, figures=None) -> str:
         runs.add(run)
         if run not in own_rules:
             own_rules[run] = rule_costs(run)
-        seconds, kind = _job_seconds(rule, benchmark, own_rules[run], Path(run).name,
-                                     measured, figures)
+        name = Path(run).name
+        shipped = _split_whole(measured.get(name, {}), whole.get(name, ()), rule, benchmark,
+                               chunks)
+        seconds, kind = _job_seconds(rule, benchmark, own_rules[run], name,
+                                     {**measured, name: shipped}, figures)
         if seconds is None:
             unknown += 1
             continue

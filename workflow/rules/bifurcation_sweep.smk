@@ -12,7 +12,7 @@ rule bifurcation_sweep:
         job_benchmark("bifurcation_sweep")
     conda:
         "../../environment.yml"
-    threads: config["threads"]
+    threads: job_threads
     resources:
         mem_mb=per_attempt(600),
         runtime=per_attempt(5),

@@ -33,13 +33,23 @@ from vines.pipeline.codeversion import (
     code_version,
     script_version,
 )
-from vines.pipeline.config import ConfigError, load_schema, load_yaml, validate_config
+from vines.pipeline.config import (
+    ConfigError,
+    load_schema,
+    load_yaml,
+    move_chunk_size,
+    validate_config,
+)
+from vines.pipeline.parts import CHUNKED_STAGES, chunk_plan
 from vines.pipeline.config_checks import ONE_TO_ONE, atlas_grid, boundary_family
 
 try:
     # Snakemake's YAML reading keeps the last of a key given twice: refuse that first
     for _path in workflow.config_settings.configfiles or ["config/config.yaml"]:
         load_yaml(_path)
+    _NOTE = move_chunk_size(config)
+    if _NOTE:
+        print(_NOTE, file=sys.stderr)
     validate_config(config, load_schema())
 except ConfigError as err:
     sys.exit(f"vines pipeline: {err}")
@@ -72,7 +82,9 @@ def script_of(script):
 
 GRIDS = config["grids"]
 AXES = {name: grid_axes(g, key=f"grids.{name}") for name, g in GRIDS.items()}
-CHUNKS = {name: chunk_map(AXES[name], config["chunk_size"]) for name in GRIDS}
+CHUNKS = {
+    name: chunk_map(AXES[name], config["chunks"]["simulate_grid"]) for name in GRIDS
+}
 SWEEPS = config["sweeps"]
 LYAPUNOV_SWEEPS = config["lyapunov_sweeps"]
 BRANCHES = config["branches"]
@@ -111,6 +123,7 @@ wildcard_constraints:
     grid="[A-Za-z0-9_.-]+",
     key="[0-9a-f]{16}",
     name="[A-Za-z0-9_.-]+",
+    k="[0-9]+",
 
 
 # Result paths: every stage writes results/<run>/<rule>/<entry>.nc (the folder is named
@@ -135,6 +148,14 @@ def job_benchmark(stage, name="{name}"):
 # for running over its memory or time would fail the same way again).
 def per_attempt(value):
     return lambda wildcards, attempt: value * attempt
+
+
+# Threads of a compute job: the config's `threads`, a number or `max` (every core of
+# `-c N`, read per job as work_precision does: commands without a core count give 1).
+def job_threads(wildcards):
+    if config["threads"] == "max":
+        return workflow.resource_settings.cores or 1
+    return config["threads"]
 
 
 def chunk_files(wildcards):
@@ -193,3 +214,28 @@ def all_datasets(stages=tuple(STAGE_ENTRIES)):
     return chunks + [
         dataset(stage, n) for stage in stages for n in STAGE_ENTRIES[stage]
     ]
+
+
+# The chunked stages (vines.pipeline.parts): the item ranges of every entry's chunk jobs
+# (config `chunks`), each job writing results/<run>/<stage>/<entry>/chunk_<k>.pkl (a
+# temporary file, removed once the stage's gather job has written the entry's dataset).
+PARTS = {
+    stage: {name: chunk_plan(stage, name, config) for name in STAGE_ENTRIES[stage]}
+    for stage in CHUNKED_STAGES
+}
+
+
+def part_file(stage, name="{name}", k="{k}"):
+    return f"{RES}/{stage}/{name}/chunk_{k}.pkl"
+
+
+def part_files(stage):
+    """Input function of a gather: the part files of the entry's chunk jobs, in order."""
+    return lambda w: [
+        part_file(stage, w.name, k) for k in range(len(PARTS[stage][w.name]))
+    ]
+
+
+def part_range(stage):
+    """Param function of a chunk job: its (start, stop) items of the entry."""
+    return lambda w: PARTS[stage][w.name][int(w.k)]

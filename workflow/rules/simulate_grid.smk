@@ -13,7 +13,7 @@ rule simulate_grid:
         job_benchmark("simulate_grid", "{grid}/{key}")
     conda:
         "../../environment.yml"
-    threads: config["threads"]
+    threads: job_threads
     resources:
         mem_mb=per_attempt(600),
         runtime=per_attempt(5),

@@ -10,7 +10,7 @@ rule stability_map:
         job_benchmark("stability_map")
     conda:
         "../../environment.yml"
-    threads: config["threads"]
+    threads: job_threads
     resources:
         mem_mb=per_attempt(500),
         runtime=per_attempt(5),

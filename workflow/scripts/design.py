@@ -1,7 +1,9 @@
-"""design: the VI NES design of one ``designs`` entry against the LO alone and the TMD."""
+"""design: the VI NES design of one ``designs`` entry against the LO alone and the TMD, from
+the search-grid responses of the entry's chunk parts."""
 from vines.data.netcdf import write_dataset
 from vines.pipeline import stages
 from vines.pipeline.jobs import run_job
+from vines.pipeline.parts import read_parts
 
 sm = snakemake  # noqa: F821  (injected by Snakemake)
 
@@ -9,7 +11,8 @@ sm = snakemake  # noqa: F821  (injected by Snakemake)
 def main():
     ds = stages.design(dict(sm.params.spec), model=dict(sm.params.model),
                        simulation=dict(sm.params.simulation), code=sm.params.code,
-                       title=f"vines design {sm.wildcards.name}", n_workers=sm.threads)
+                       title=f"vines design {sm.wildcards.name}", n_workers=sm.threads,
+                       parts=read_parts(sm.input))
     write_dataset(ds, sm.output[0])
 
 

@@ -1,7 +1,9 @@
-"""lyapunov: Lyapunov exponents along the points of one bifurcation sweep entry."""
+"""lyapunov: Lyapunov exponents along the points of one bifurcation sweep entry, gathered
+from the entry's chunk parts."""
 from vines.data.netcdf import write_dataset
 from vines.pipeline import stages
 from vines.pipeline.jobs import run_job
+from vines.pipeline.parts import read_parts
 
 sm = snakemake  # noqa: F821  (injected by Snakemake)
 
@@ -11,8 +13,9 @@ def main():
                          model=dict(sm.params.model), code=sm.params.code,
                          periodic_shortcut=bool(sm.params.periodic_shortcut),
                          title=f"vines Lyapunov exponents along sweep {sm.wildcards.name}",
-                         n_workers=sm.threads, scheduler=sm.config["dask_scheduler"])
+                         parts=read_parts(sm.input))
     write_dataset(ds, sm.output[0])
+    print(f"gathered {len(sm.input)} chunks", flush=True)
 
 
 run_job(sm, main)

@@ -1,7 +1,9 @@
-"""robust-map: basin fractions of efficient motion and of the stable 1:1 orbit (eta, omega)."""
+"""robust-map: basin fractions of efficient motion and of the stable 1:1 orbit (eta, omega),
+gathered from the map's chunk parts."""
 from vines.data.netcdf import write_dataset
 from vines.pipeline import stages
 from vines.pipeline.jobs import run_job
+from vines.pipeline.parts import read_parts
 
 sm = snakemake  # noqa: F821  (injected by Snakemake)
 
@@ -10,8 +12,9 @@ def main():
     ds = stages.robust_map(dict(sm.params.spec), model=dict(sm.params.model),
                            simulation=dict(sm.params.simulation), code=sm.params.code,
                            title=f"vines robust-TET map {sm.wildcards.name}",
-                           n_workers=sm.threads, scheduler=sm.config["dask_scheduler"])
+                           parts=read_parts(sm.input))
     write_dataset(ds, sm.output[0])
+    print(f"gathered {len(sm.input)} chunks", flush=True)
 
 
 run_job(sm, main)

@@ -20,6 +20,7 @@ fraction: the fractions of the attractors and the unsettled fraction sum to 1.
 """
 from __future__ import annotations
 
+import inspect
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
@@ -295,16 +296,62 @@ def census(eta: float, omega: float, F: float, *, r: float = R_DEFAULT, d: float
     states escape to), the result ``t_max``, ``from_rest_asymptotic`` and
     ``members_asymptotic``. Without t_max the result is the t_end view alone, unchanged.
     Raises ParameterError for bad input."""
-    p = ModelParams(eta=eta, omega=omega, F=F, r=r, d=d)
-    st = SolverSettings(t_end=t_end, t_transient=t_transient, v_stick=v_stick,
-                        max_impacts=max_impacts, root_tol=root_tol)
+    p, st, t_max, box, seed, states = _inputs(dict(locals()))
+    return _census(p, st, states, settle_states(p, st, states, n_threads), box, seed,
+                   t_max, n_threads)
+
+
+def _inputs(a: dict) -> tuple:
+    """(model, settings, t_max, box, seed, states) of ``census``'s arguments, validated."""
+    p = ModelParams(eta=a["eta"], omega=a["omega"], F=a["F"], r=a["r"], d=a["d"])
+    st = SolverSettings(t_end=a["t_end"], t_transient=a["t_transient"], v_stick=a["v_stick"],
+                        max_impacts=a["max_impacts"], root_tol=a["root_tol"])
+    t_max = a["t_max"]
     if t_max is not None:
         t_max = check_real("t_max", t_max, lo=st.t_end, lo_open=True, hi=T_END_MAX)
-    box = check_box(box)
-    n = check_int("n", n, lo=1, hi=N_MAX)
-    seed = check_int("seed", seed, lo=0, hi=SEED_MAX)
-    states = sample_states(n, seed, box) if states is None else _check_states(states)
-    ends = settle_states(p, st, states, n_threads)
+    box = check_box(a["box"])
+    n = check_int("n", a["n"], lo=1, hi=N_MAX)
+    seed = check_int("seed", a["seed"], lo=0, hi=SEED_MAX)
+    states = sample_states(n, seed, box) if a["states"] is None else _check_states(a["states"])
+    return p, st, t_max, box, seed, states
+
+
+def _arguments(kwargs: dict) -> dict:
+    """``census``'s arguments: its defaults updated by ``kwargs``."""
+    return {k: v.default for k, v in inspect.signature(census).parameters.items()} | kwargs
+
+
+def census_part(eta: float, omega: float, F: float, start: int, stop: int,
+                **kwargs) -> dict:
+    """The runs of the initial states [start, stop) of ``census(eta, omega, F, **kwargs)``:
+    their end states at t_end (``ends``) and, with ``t_max``, the continuations of their
+    motions (``conts``, by index into all states). ``census_of_parts`` makes the census of
+    all parts, the same as ``census`` itself."""
+    a = _arguments(dict(kwargs, eta=eta, omega=omega, F=F))
+    p, st, t_max, _, _, states = _inputs(a)
+    ends = settle_states(p, st, states[start:stop], a["n_threads"])
+    conts = {}
+    if t_max is not None:
+        local = asy.continue_states(p, st, oscillators(p), ends, t_max, a["n_threads"])
+        conts = {start + i: c for i, c in local.items()}
+    return {"ends": ends, "conts": conts}
+
+
+def census_of_parts(eta: float, omega: float, F: float, parts: list, **kwargs) -> Census:
+    """``census(eta, omega, F, **kwargs)`` from the ``census_part`` results ``parts`` that
+    cover its states in order (their runs are not repeated)."""
+    a = _arguments(dict(kwargs, eta=eta, omega=omega, F=F))
+    p, st, t_max, box, seed, states = _inputs(a)
+    ends = [e for part in parts for e in part["ends"]]
+    if len(ends) != len(states):
+        raise ValueError(f"parts hold {len(ends)} runs, the census {len(states)} states")
+    conts = {i: c for part in parts for i, c in part["conts"].items()}
+    return _census(p, st, states, ends, box, seed, t_max, a["n_threads"], conts)
+
+
+def _census(p, st, states, ends, box, seed, t_max, n_threads, conts=None) -> Census:
+    """The census of the runs ``ends`` of ``states`` (``conts``: their continuations to
+    t_max when known, else run here)."""
     groups, n_unsettled = _group(ends, p.period)
     oscs = oscillators(p)
     rest_end = settle(p, st, oscs, (0.0, 0.0, 0.0, 0.0))
@@ -321,7 +368,7 @@ def census(eta: float, omega: float, F: float, *, r: float = R_DEFAULT, d: float
                  unsettled_fraction=n_unsettled / len(ends), members=members)
     if t_max is not None:
         runs = _Runs(p, st, oscs, states, ends, t_max, n_threads)
-        _asymptotic_view(out, runs, groups, (rest, rest_end))
+        _asymptotic_view(out, runs, groups, (rest, rest_end), conts)
     return out
 
 
@@ -352,12 +399,14 @@ class _Runs:
     n_threads: int | None
 
 
-def _asymptotic_view(out: Census, runs: _Runs, groups: list, rest: tuple) -> None:
+def _asymptotic_view(out: Census, runs: _Runs, groups: list, rest: tuple,
+                     conts: dict | None = None) -> None:
     """Add the asymptotic view to ``out`` (``asymptotic`` module docstring); rest = (group,
-    end state) of the start from rest."""
+    end state) of the start from rest; conts: the continuations of the motions, if known."""
     p, st, oscs, ends, t_max = runs.p, runs.st, runs.oscs, runs.ends, runs.t_max
     n, T = len(ends), p.period
-    conts = asy.continue_states(p, st, oscs, ends, t_max, runs.n_threads)
+    if conts is None:
+        conts = asy.continue_states(p, st, oscs, ends, t_max, runs.n_threads)
     n_old = len(groups)
     members = out.members.copy()
     for i, c in sorted(conts.items()):

@@ -16,7 +16,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ..core.params import STATE_MAX, check_real, check_reals
-from .census import census
+from .census import census, census_of_parts, census_part
 
 #: what ``robust_point`` returns, in this order
 ROBUST_FIELDS = ("efficient_fraction", "stable_1to1_fraction", "unsettled_fraction",
@@ -75,16 +75,27 @@ def slice_states(z_m0: ArrayLike, v_m0: ArrayLike) -> np.ndarray:
     return np.stack([zm, vm, zm, np.zeros_like(zm)], axis=1)
 
 
-def basin_slice(eta: float, omega: float, F: float, z_m0: ArrayLike, v_m0: ArrayLike,
-                **census_kw) -> dict:
+def basin_slice_part(eta: float, omega: float, F: float, z_m0: ArrayLike, v_m0: ArrayLike,
+                     start: int, stop: int, **census_kw) -> dict:
+    """The runs of the slice's states [start, stop) (``slice_states`` order): a part for
+    ``basin_slice(..., parts=...)`` (``census.census_part``)."""
+    return census_part(eta, omega, F, start, stop, states=slice_states(z_m0, v_m0),
+                       **census_kw)
+
+
+def basin_slice(eta: float, omega: float, F: float, z_m0: ArrayLike, v_m0: ArrayLike, *,
+                parts: list | None = None, **census_kw) -> dict:
     """Attractor index over the slice (shape (len(z_m0), len(v_m0)), -1: unsettled) and
     the attractor table (regime, period, ke_ratio, xmax_m, basin_fraction within the
     slice), from_rest (index into the table) and the census for further use. With ``t_max``
     in census_kw also the asymptotic view: attractor_asymptotic (the attractor each point
     is on at t_max), from_rest_asymptotic, and in the table basin_fraction_asymptotic and
     status (persistent / transient / unresolved); attractors reached only after t_end are
-    in the table with basin_fraction 0."""
-    c = census(eta, omega, F, states=slice_states(z_m0, v_m0), **census_kw)
+    in the table with basin_fraction 0. ``parts``: the ``basin_slice_part`` results that
+    cover the slice, in order (their runs are not repeated; the same result)."""
+    states = slice_states(z_m0, v_m0)
+    c = (census(eta, omega, F, states=states, **census_kw) if parts is None
+         else census_of_parts(eta, omega, F, parts, states=states, **census_kw))
     shape = (np.size(z_m0), np.size(v_m0))
     table = {k: [getattr(a, k) for a in c.attractors]
              for k in ("regime", "period", "ke_ratio", "xmax_m", "basin_fraction")}

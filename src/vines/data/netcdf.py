@@ -105,9 +105,15 @@ def write_dataset(ds: xr.Dataset, path, encoding: dict | None = None) -> Path:
     enc = default_encoding(ds)
     for k, v in (encoding or {}).items():
         enc.setdefault(k, {}).update(v)
+    return write_atomically(path, lambda tmp: _write_netcdf4(ds, tmp, enc))
+
+
+def write_atomically(path: Path, write) -> Path:
+    """``write(tmp)`` a temporary file beside ``path``, then rename it onto ``path``; the
+    temporary is removed if writing fails (a killed write leaves no partial ``path``)."""
     tmp = temporary_beside(path, ".tmp")
     try:
-        _write_netcdf4(ds, tmp, enc)
+        write(tmp)
         os.replace(tmp, path)
     except BaseException:
         if os.path.exists(tmp):

@@ -194,6 +194,24 @@ def _yaml_number_hint(err) -> str:
     return f" (YAML reads {err.instance} as text: write {written})"
 
 
+def move_chunk_size(config) -> str | None:
+    """Move the deprecated top-level ``chunk_size`` (a valid one; the schema reports any
+    other) to ``chunks.simulate_grid``; the one-line note to show, or None without it.
+    Both keys given with different values: ConfigError."""
+    size = config.get("chunk_size") if isinstance(config, dict) else None
+    if not isinstance(size, int) or isinstance(size, bool) or size < 1:
+        return None
+    chunks = config.setdefault("chunks", {})
+    if not isinstance(chunks, dict):
+        return None
+    if chunks.setdefault("simulate_grid", size) != size:
+        raise ConfigError("chunk_size", f"{size} is deprecated and differs from "
+                          f"chunks.simulate_grid = {chunks['simulate_grid']}: remove it")
+    del config["chunk_size"]
+    return (f"vines pipeline: note: config key chunk_size is deprecated; write chunks: "
+            f"{{simulate_grid: {size}}} instead (read as that now)")
+
+
 def validate_config(config: dict, schema: dict) -> dict:
     """Validate ``config`` in place (filling defaults) and check cross-key rules.
 
@@ -202,6 +220,7 @@ def validate_config(config: dict, schema: dict) -> dict:
     import jsonschema
     if isinstance(config, dict):
         check_names(config, schema)      # before the schema: one clear line for a bad name
+    move_chunk_size(config)              # the deprecated key (its note: the caller's call)
     cls = _with_defaults(jsonschema.validators.validator_for(schema))
     errors = sorted(cls(schema).iter_errors(config), key=lambda e: list(e.absolute_path))
     if errors:

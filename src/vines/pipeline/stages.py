@@ -183,19 +183,36 @@ def _lyapunov_line(param, values, fixed, kw, window):
     return sweep_exponents(SweepLine(param, values, **fixed, **kw), **window)
 
 
-def lyapunov(spec: dict, sweep: dict, *, model: dict, code: str, title: str,
-             periodic_shortcut: bool = True, n_workers: int = 1, scheduler: str | None = None):
-    """Dataset of the Lyapunov exponents along the sweep entry ``sweep`` (the config's
-    ``sweeps[spec['sweep']]``, with defaults): every line (outer value, direction), every
-    point, over the last ``spec['t_window']`` of the point's run (one dask task per line)."""
+def lyapunov_part(spec: dict, sweep: dict, *, model: dict, start: int, stop: int,
+                  periodic_shortcut: bool = True, n_workers: int = 1,
+                  scheduler: str | None = None) -> list:
+    """The exponents along the sweep lines [start, stop) (``_sweep_lines`` order) of
+    ``lyapunov``: one result per line (one dask task each)."""
     import dask
     kw = dict(t_settle=sweep["t_settle"], t_step=sweep["t_step"], n_record=sweep["n_record"],
               v_stick=sweep["v_stick"], periodic_shortcut=periodic_shortcut, **model)
     window = dict(t_window=spec["t_window"], n_batches=spec["n_batches"])
-    lines = _sweep_lines(sweep)
     tasks = [dask.delayed(_lyapunov_line, pure=True)(sweep["param"], vals, fixed, kw, window)
-             for (_, _, vals, fixed) in lines]
-    res = compute(tasks, max(1, int(n_workers)), scheduler, True)
+             for (_, _, vals, fixed) in _sweep_lines(sweep)[start:stop]]
+    return compute(tasks, max(1, int(n_workers)), scheduler, True)
+
+
+def lyapunov(spec: dict, sweep: dict, *, model: dict, code: str, title: str,
+             periodic_shortcut: bool = True, n_workers: int = 1, scheduler: str | None = None,
+             parts: list | None = None):
+    """Dataset of the Lyapunov exponents along the sweep entry ``sweep`` (the config's
+    ``sweeps[spec['sweep']]``, with defaults): every line (outer value, direction), every
+    point, over the last ``spec['t_window']`` of the point's run (one dask task per line).
+    ``parts``: the ``lyapunov_part`` results covering every line in order (else computed
+    here)."""
+    lines = _sweep_lines(sweep)
+    if parts is None:
+        parts = [lyapunov_part(spec, sweep, model=model, start=0, stop=len(lines),
+                               periodic_shortcut=periodic_shortcut, n_workers=n_workers,
+                               scheduler=scheduler)]
+    res = [r for part in parts for r in part]
+    if len(res) != len(lines):
+        raise ValueError(f"parts hold {len(res)} sweep lines, the sweep {len(lines)}")
     cat = {k: np.concatenate([r[k] for r in res]) for k in res[0]}
     cat["outer_value"] = np.concatenate([np.full(r["value"].size, ov)
                                          for (ov, _, _, _), r in zip(lines, res, strict=True)])
@@ -349,21 +366,45 @@ def _robust_block(points, F, kw):
     return [robust_point(e, w, F, n_threads=1, **kw) for e, w in points]
 
 
-def robust_map(spec: dict, *, model: dict, simulation: dict, code: str, title: str,
-               n_workers: int = 1, block_size: int = 4, scheduler: str | None = None):
-    """Dataset of one robust-TET map over (eta, omega) at ``spec['F']``: a census of
-    ``spec['n']`` Sobol states (seed ``spec['seed']``) per point, in dask blocks."""
-    import dask
-
-    from ..attractors.census_maps import ROBUST_ASYMPTOTIC_FIELDS, ROBUST_FIELDS
+def _robust_points(spec: dict) -> tuple:
+    """eta, omega axes of a robust map and its points (eta slowest)."""
     eta, omega = axis_values(spec["eta"]), axis_values(spec["omega"])
-    points = [(e, w) for e in eta for w in omega]
+    return eta, omega, [(e, w) for e in eta for w in omega]
+
+
+def robust_map_part(spec: dict, *, model: dict, simulation: dict, start: int, stop: int,
+                    n_workers: int = 1, block_size: int = 4,
+                    scheduler: str | None = None) -> list:
+    """The census rows of the robust map's points [start, stop) (eta slowest), in dask
+    blocks: every point's census of the same ``spec['n']`` Sobol states (seed
+    ``spec['seed']``)."""
+    import dask
+    points = _robust_points(spec)[2][start:stop]
     kw = {**_census_kw(model, simulation), "n": spec["n"], "seed": spec["seed"],
           "threshold": spec["threshold"], "t_max": spec.get("t_max")}
     bs = max(1, int(block_size))
     tasks = [dask.delayed(_robust_block, pure=True)(points[i:i + bs], float(spec["F"]), kw)
              for i in range(0, len(points), bs)]
-    rows = [r for part in compute(tasks, max(1, int(n_workers)), scheduler, True) for r in part]
+    return [r for part in compute(tasks, max(1, int(n_workers)), scheduler, True) for r in part]
+
+
+def robust_map(spec: dict, *, model: dict, simulation: dict, code: str, title: str,
+               n_workers: int = 1, block_size: int = 4, scheduler: str | None = None,
+               parts: list | None = None):
+    """Dataset of one robust-TET map over (eta, omega) at ``spec['F']``: a census of
+    ``spec['n']`` Sobol states (seed ``spec['seed']``) per point, in dask blocks.
+    ``parts``: the ``robust_map_part`` results covering every point in order (else
+    computed here)."""
+    from ..attractors.census_maps import ROBUST_ASYMPTOTIC_FIELDS, ROBUST_FIELDS
+    eta, omega, points = _robust_points(spec)
+    if parts is None:
+        parts = [robust_map_part(spec, model=model, simulation=simulation, start=0,
+                                 stop=len(points), n_workers=n_workers,
+                                 block_size=block_size, scheduler=scheduler)]
+    rows = [r for part in parts for r in part]
+    if len(rows) != len(points):
+        raise ValueError(f"parts hold {len(rows)} points, the map {len(points)}")
+    kw = {"t_max": spec.get("t_max")}
     names = ROBUST_FIELDS + (ROBUST_ASYMPTOTIC_FIELDS if kw["t_max"] is not None else ())
     fields = {k: np.array([r[k] for r in rows]).reshape(len(eta), len(omega)) for k in names}
     attrs = provenance_attrs(title=title, config_subset={"spec": spec, "model": model,
@@ -374,13 +415,25 @@ def robust_map(spec: dict, *, model: dict, simulation: dict, code: str, title: s
     return builders.robust_dataset(eta, omega, fields, attrs)
 
 
+def basin_slice_part(spec: dict, *, model: dict, simulation: dict, start: int, stop: int,
+                     n_workers: int = 1) -> dict:
+    """The runs of the slice's initial states [start, stop) (z_m0 slowest) of
+    ``basin_slice``."""
+    from ..attractors.census_maps import basin_slice_part as runs
+    return runs(spec["eta"], spec["omega"], spec["F"], axis_values(spec["z_m0"]),
+                axis_values(spec["v_m0"]), start, stop, n_threads=max(1, int(n_workers)),
+                t_max=spec.get("t_max"), **_census_kw(model, simulation))
+
+
 def basin_slice(spec: dict, *, model: dict, simulation: dict, code: str, title: str,
-                n_workers: int = 1):
+                n_workers: int = 1, parts: list | None = None):
     """Dataset of one basin slice: the attractor reached from each (z_m(0), z_m'(0)) with
-    the ball at rest in the middle of the cavity, at ``spec``'s (eta, omega, F)."""
+    the ball at rest in the middle of the cavity, at ``spec``'s (eta, omega, F).
+    ``parts``: the ``basin_slice_part`` results covering every state in order (else the
+    states are run here)."""
     from ..attractors.census_maps import basin_slice as solve_slice
     z_m0, v_m0 = axis_values(spec["z_m0"]), axis_values(spec["v_m0"])
-    res = solve_slice(spec["eta"], spec["omega"], spec["F"], z_m0, v_m0,
+    res = solve_slice(spec["eta"], spec["omega"], spec["F"], z_m0, v_m0, parts=parts,
                       n_threads=max(1, int(n_workers)), t_max=spec.get("t_max"),
                       **_census_kw(model, simulation))
     attrs = provenance_attrs(title=title, config_subset={"spec": spec, "model": model,
@@ -412,11 +465,28 @@ def work_precision(case: dict, *, settings: dict, model: dict, v_stick: float, c
     return builders.work_precision_dataset(result, attrs)
 
 
+def convergence_part(study: str, spec: dict, *, model: dict, simulation: dict, start: int,
+                     stop: int, n_workers: int = 1) -> dict:
+    """The runs of the grid study's finest-grid eta rows [start, stop) (``study`` must be
+    ``grid``: the one study split into chunk jobs)."""
+    from ..studies.convergence import grid_convergence_part
+    if study != "grid":
+        raise ValueError(f"convergence study {study!r} is not split into parts")
+    return grid_convergence_part(start, stop, **spec, **simulation, **model,
+                                 n_threads=n_workers)
+
+
 def convergence(study: str, spec: dict, *, model: dict, simulation: dict, code: str,
-                title: str, n_workers: int = 1):
-    """Dataset of one convergence study (``study``: window, vstick or grid)."""
-    from ..studies.convergence import STUDIES
-    result = STUDIES[study](**spec, **simulation, **model, n_threads=n_workers)
+                title: str, n_workers: int = 1, parts: list | None = None):
+    """Dataset of one convergence study (``study``: window, vstick or grid). ``parts``
+    (grid only): the ``convergence_part`` results covering the finest grid's rows in
+    order (else run here)."""
+    from ..studies.convergence import STUDIES, grid_convergence_of_parts
+    if parts:
+        result = grid_convergence_of_parts(parts, **spec, **simulation, **model,
+                                           n_threads=n_workers)
+    else:
+        result = STUDIES[study](**spec, **simulation, **model, n_threads=n_workers)
     attrs = provenance_attrs(
         title=title,
         config_subset={"spec": spec, "model": model, "simulation": simulation},
@@ -431,15 +501,39 @@ def convergence(study: str, spec: dict, *, model: dict, simulation: dict, code: 
 DESIGN_SETTINGS = ("v_stick", "max_impacts", "root_tol")
 
 
-def design(spec: dict, *, model: dict, simulation: dict, code: str, title: str,
-           n_workers: int = 1):
-    """Dataset of one ``designs`` entry: ``vines.design`` with the entry's keywords, the
-    model's r and the simulation section's v_stick, max_impacts, root_tol (the structure's
-    damping is the entry's: M, k, c or d, Table 1 by default)."""
-    from ..studies.design import design as solve_design
+def _design_kw(spec: dict, model: dict, simulation: dict) -> tuple[dict, dict]:
+    """``vines.design``'s keywords of a ``designs`` entry, and the solver settings of it
+    taken from the simulation section."""
     kw = {k: v for k, v in spec.items() if k != "description" and v is not None}
     settings = {k: simulation[k] for k in DESIGN_SETTINGS}
-    res = solve_design(**kw, r=model["r"], **settings, n_threads=max(1, int(n_workers)))
+    return {**kw, "r": model["r"], **settings}, settings
+
+
+def design_part(spec: dict, *, model: dict, simulation: dict, start: int, stop: int,
+                n_workers: int = 1) -> dict:
+    """The responses from rest of the search grid's designs [start, stop) of ``design``
+    (``studies.design.grid_responses``)."""
+    from ..studies.design import grid_responses
+    kw, _ = _design_kw(spec, model, simulation)
+    return grid_responses(start, stop, **kw, n_threads=max(1, int(n_workers)))
+
+
+def design(spec: dict, *, model: dict, simulation: dict, code: str, title: str,
+           n_workers: int = 1, parts: list | None = None):
+    """Dataset of one ``designs`` entry: ``vines.design`` with the entry's keywords, the
+    model's r and the simulation section's v_stick, max_impacts, root_tol (the structure's
+    damping is the entry's: M, k, c or d, Table 1 by default). ``parts``: ``design_part``
+    results for parts of the search grid (not run again; the same dataset)."""
+    from ..studies.design import complete
+    from ..studies.design import design as solve_design
+    kw, settings = _design_kw(spec, model, simulation)
+    n = max(1, int(n_workers))
+    if parts:
+        known = {"responses": {k: v for p in parts for k, v in p["responses"].items()},
+                 "n_runs": sum(p["n_runs"] for p in parts)}
+        res = complete(known, **kw, n_threads=n)
+    else:
+        res = solve_design(**kw, n_threads=n)
     cost = res.cost
     print(f"design: {cost['n_designs']} designs, {cost['n_runs_from_rest']} runs from rest, "
           f"{cost['n_runs_census']} census runs; wall {cost['wall_s']:.1f} s "
@@ -458,26 +552,47 @@ def _atlas_rows(eta, omega, F, kw):
     return atlas_arrays(eta, omega, F, **kw)
 
 
+def _atlas_kw(sim_t_end: float, model: dict) -> dict:
+    from ..orbits.sequence import SIM_T_END
+    return {"r": model["r"], "d": model["d"], "simulation": sim_t_end > 0,
+            "sim_t_end": sim_t_end if sim_t_end > 0 else SIM_T_END}
+
+
+def orbit_atlas_part(grid: dict, *, sim_t_end: float, model: dict, start: int, stop: int,
+                     n_workers: int = 1, rows_per_task: int = 1,
+                     scheduler: str | None = None) -> dict:
+    """The atlas arrays of the eta rows [start, stop) of ``orbit_atlas`` (whole rows: each
+    is swept in omega from omega[0]), in dask tasks of ``rows_per_task`` rows."""
+    import dask
+    eta, omega = axis_values(grid["eta"])[start:stop], axis_values(grid["omega"])
+    kw = _atlas_kw(sim_t_end, model)
+    n = max(1, int(rows_per_task))
+    tasks = [dask.delayed(_atlas_rows, pure=True)(eta[i:i + n], omega, float(grid["F"]), kw)
+             for i in range(0, eta.size, n)]
+    parts = compute(tasks, max(1, int(n_workers)), scheduler, True)
+    return {k: np.concatenate([p[k] for p in parts], axis=0) for k in parts[0]}
+
+
 def orbit_atlas(grid: dict, *, sim_t_end: float, model: dict, code: str, title: str,
-                n_workers: int = 1, rows_per_task: int = 1, scheduler: str | None = None):
+                n_workers: int = 1, rows_per_task: int = 1, scheduler: str | None = None,
+                parts: list | None = None):
     """Dataset of one orbit atlas over ``grid``'s (eta, omega) at its F: every family of
     ``orbits.atlas.FAMILIES`` found / admissible / stable at each point. Each eta row is
     swept in omega from omega[0], seeded by the previous omega (``atlas_arrays``), so tasks
-    hold whole rows (``rows_per_task`` of them): the numbers do not depend on workers,
-    task size or scheduler."""
-    import dask
-
+    and parts hold whole rows (``rows_per_task`` of them a task): the numbers do not
+    depend on workers, task size, parts or scheduler. ``parts``: the ``orbit_atlas_part``
+    results covering every row in order (else computed here)."""
     from ..orbits.atlas import FAMILIES, PAPER_LABELS
-    from ..orbits.sequence import SIM_T_END
     eta, omega = axis_values(grid["eta"]), axis_values(grid["omega"])
     F = float(grid["F"])
-    kw = {"r": model["r"], "d": model["d"], "simulation": sim_t_end > 0,
-          "sim_t_end": sim_t_end if sim_t_end > 0 else SIM_T_END}
-    n = max(1, int(rows_per_task))
-    starts = list(range(0, eta.size, n))
-    tasks = [dask.delayed(_atlas_rows, pure=True)(eta[i:i + n], omega, F, kw) for i in starts]
-    parts = compute(tasks, max(1, int(n_workers)), scheduler, True)
+    if parts is None:
+        parts = [orbit_atlas_part(grid, sim_t_end=sim_t_end, model=model, start=0,
+                                  stop=eta.size, n_workers=n_workers,
+                                  rows_per_task=rows_per_task, scheduler=scheduler)]
     arrays = {k: np.concatenate([p[k] for p in parts], axis=0) for k in parts[0]}
+    if next(iter(arrays.values())).shape[0] != eta.size:
+        raise ValueError(f"parts hold {next(iter(arrays.values())).shape[0]} eta rows, "
+                         f"the atlas {eta.size}")
     families = {k: (walls, periods, PAPER_LABELS[k]) for k, (walls, periods, _) in FAMILIES.items()}
     attrs = provenance_attrs(title=title, config_subset={"grid": grid, "sim_t_end": sim_t_end,
                                                          "model": model},

@@ -21,6 +21,7 @@ window [t_transient, t_end] lies. Each point is computed on its own, so no resul
 """
 from __future__ import annotations
 
+import inspect
 import math
 import os
 import time
@@ -478,37 +479,83 @@ def grid_convergence(eta_range: Sequence[float] = (0.01, 1.0),
     ``ke_ratio``/``xmax``/``regime`` over (eta, omega): the coarse grids are
     ``[::stride, ::stride]``.
     """
-    run = StudySolver(t_end, t_transient, v_stick, r, d, max_impacts, root_tol,
-                      periodic_shortcut)
-    _check_threads(n_threads)
-    F = check_param("F", F)
-    level = check_real("level", level)
+    g = _grid_inputs(dict(locals()))
+    f = simulate_batch(*np.meshgrid(g["eta"], g["omega"], indexing="ij"), g["F"],
+                       n_threads=n_threads, **g["run"].run_kwargs())
+    return _grid_result(g, f)
+
+
+def _grid_arguments(kwargs: dict) -> dict:
+    """``grid_convergence``'s arguments: its defaults updated by ``kwargs``."""
+    return {k: p.default for k, p in
+            inspect.signature(grid_convergence).parameters.items()} | kwargs
+
+
+def grid_convergence_part(start: int, stop: int, **kwargs) -> dict:
+    """The runs of ``grid_convergence(**kwargs)`` at the finest grid's eta rows
+    [start, stop): its ``simulate_batch`` fields there, a part for
+    ``grid_convergence_of_parts``."""
+    a = _grid_arguments(kwargs)
+    g = _grid_inputs(a)
+    E, OM = np.meshgrid(g["eta"][start:stop], g["omega"], indexing="ij")
+    return simulate_batch(E, OM, g["F"], n_threads=a["n_threads"], **g["run"].run_kwargs())
+
+
+def grid_convergence_of_parts(parts: list, **kwargs) -> GridConvergence:
+    """``grid_convergence(**kwargs)`` from the ``grid_convergence_part`` results that cover
+    the finest grid's eta rows in order (their runs are not repeated; the same result)."""
+    g = _grid_inputs(_grid_arguments(kwargs))
+    f = {k: np.concatenate([part[k] for part in parts], axis=0) for k in parts[0]}
+    if f["ke_ratio"].shape != (g["eta"].size, g["omega"].size):
+        raise ValueError(f"parts hold {f['ke_ratio'].shape} runs, the finest grid "
+                         f"{(g['eta'].size, g['omega'].size)}")
+    return _grid_result(g, f)
+
+
+def grid_rows(**kwargs) -> int:
+    """Rows (eta values) of the finest grid of ``grid_convergence(**kwargs)``."""
+    return int(max(_grid_arguments(kwargs)["resolutions"]))
+
+
+def _grid_inputs(a: dict) -> dict:
+    """``grid_convergence``'s arguments validated: the solver, F, level, resolutions, their
+    strides, the finest grid's axes and the rectangle."""
+    run = StudySolver(a["t_end"], a["t_transient"], a["v_stick"], a["r"], a["d"],
+                      a["max_impacts"], a["root_tol"], a["periodic_shortcut"])
+    _check_threads(a["n_threads"])
+    F = check_param("F", a["F"])
+    level = check_real("level", a["level"])
+    resolutions = a["resolutions"]
     counts = check_reals("resolutions", resolutions, lo=2, hi=RESOLUTION_MAX)
     if np.any(counts != np.round(counts)):
         raise ParameterError("resolutions", resolutions, "must be integers (points per axis)")
     res = sorted({int(n) for n in counts})
     n_f = res[-1]
-    e0, e1 = _check_range("eta_range", eta_range)
-    w0, w1 = _check_range("omega_range", omega_range)
-    strides = [(n_f - 1) // (n - 1) for n in res]
+    e0, e1 = _check_range("eta_range", a["eta_range"])
+    w0, w1 = _check_range("omega_range", a["omega_range"])
     for n in res:
         try:
             nested_axis(e0, e1, n_f, n)           # raises when not nested
         except ValueError as err:
             raise ParameterError("resolutions", resolutions, str(err)) from None
-    eta = np.linspace(e0, e1, n_f)
-    omega = np.linspace(w0, w1, n_f)
-    E, OM = np.meshgrid(eta, omega, indexing="ij")
-    f = simulate_batch(E, OM, float(F), n_threads=n_threads, **run.run_kwargs())
-    per_res = {"stride": np.array(strides),
+    return dict(run=run, F=float(F), level=float(level), res=res,
+                strides=[(n_f - 1) // (n - 1) for n in res], box=(e0, e1, w0, w1),
+                eta=np.linspace(e0, e1, n_f), omega=np.linspace(w0, w1, n_f))
+
+
+def _grid_result(g: dict, f: dict) -> GridConvergence:
+    """The grid study of the inputs ``g`` from the finest grid's fields ``f``."""
+    e0, e1, w0, w1 = g["box"]
+    res, eta, omega = g["res"], g["eta"], g["omega"]
+    per_res = {"stride": np.array(g["strides"]),
                "spacing_eta": (e1 - e0) / (np.array(res) - 1.0),
                "spacing_omega": (w1 - w0) / (np.array(res) - 1.0),
-               **_contour_measures(eta, omega, f["ke_ratio"], strides, level,
+               **_contour_measures(eta, omega, f["ke_ratio"], g["strides"], g["level"],
                                   (e1 - e0) * (w1 - w0))}
     return GridConvergence(eta=eta, omega=omega,
                            fields={k: f[k] for k in ("ke_ratio", "xmax", "regime")},
-                           resolution=np.array(res), per_resolution=per_res, F=float(F),
-                           level=float(level), solver=run.record())
+                           resolution=np.array(res), per_resolution=per_res, F=g["F"],
+                           level=g["level"], solver=g["run"].record())
 
 
 #: the studies by name (the ``convergence`` config section's keys)

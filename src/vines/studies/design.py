@@ -27,6 +27,7 @@ whereas the VI NES's is a maximum over the omega grid (each point one simulation
 """
 from __future__ import annotations
 
+import inspect
 import math
 import time
 from collections.abc import Sequence
@@ -430,7 +431,7 @@ class DesignSearch:
 
 
 def solve(problem: DesignProblem, search: DesignSearch, *, n_threads: int | None = None,
-          inputs: dict | None = None) -> DesignResult:
+          inputs: dict | None = None, known: dict | None = None) -> DesignResult:
     """Evaluate or optimise a design as ``search`` says (validated inputs; ``design`` is
     the checked entry; ``inputs``: the inputs as the result reports them)."""
     eta, clearance_m, eta_max = search.eta, search.clearance_m, search.eta_max
@@ -442,6 +443,9 @@ def solve(problem: DesignProblem, search: DesignSearch, *, n_threads: int | None
     lo_curve = np.asarray(_tmd.lo_ratio(omega, d), dtype=float)
     t1, c1 = time.perf_counter(), time.process_time()
     ev = Evaluator(problem, n_threads)
+    if known is not None:             # responses computed by grid_responses elsewhere
+        ev.cache.update(known["responses"])
+        ev.n_runs += known["n_runs"]
     grid = None
     with progress.task(None, "design: runs from rest", "runs"):
         if eta_max is not None:
@@ -495,32 +499,72 @@ def design(*, omega_band: Sequence[float] = DEFAULT_BAND, n_omega: int = DEFAULT
     basin_min. t_end ... root_tol: every simulation's settings (``SolverSettings``).
     Results do not depend on n_threads. Raises ParameterError naming the bad argument.
     """
-    mode = _chk.check_mode(eta, clearance_m, eta_max, clearance_range_m)
-    band = _chk.check_band(omega_band)
-    n_omega = _chk.check_count("n_omega", n_omega, 2, N_OMEGA_MAX)
-    amps = _chk.check_amplitudes(amplitudes_m, AMPLITUDE_MAX_M, N_AMPLITUDES_MAX)
-    M, k, c, d = _chk.check_structure(M_kg, k_N_per_m, c_Ns_per_m, d)
-    model = ModelParams(eta=1.0, omega=1.0, F=0.0, r=r, d=d)
-    settings = SolverSettings(t_end=t_end, t_transient=t_transient, v_stick=v_stick,
-                              max_impacts=max_impacts, root_tol=root_tol)
+    problem, search, inputs, n_threads = _prepare(dict(locals()))
+    return solve(problem, search, n_threads=n_threads, inputs=inputs)
+
+
+def _arguments(kwargs: dict) -> dict:
+    """``design``'s arguments: its defaults updated by ``kwargs``."""
+    return {k: p.default for k, p in inspect.signature(design).parameters.items()} | kwargs
+
+
+def complete(known: dict, **kwargs) -> DesignResult:
+    """``design(**kwargs)`` with the responses of ``known`` (the merged ``grid_responses``
+    of parts of its search grid, computed elsewhere) not run again: the same result."""
+    problem, search, inputs, n_threads = _prepare(_arguments(kwargs))
+    return solve(problem, search, n_threads=n_threads, inputs=inputs, known=known)
+
+
+def grid_responses(start: int, stop: int, **kwargs) -> dict:
+    """What ``design(**kwargs)`` computes for the designs [start, stop) of its search grid
+    (grid order, ``grid_designs``): their responses from rest and the runs they took; pass
+    the merged dicts of all parts to ``complete``."""
+    problem, search, _, n_threads = _prepare(_arguments(kwargs))
+    ev = Evaluator(problem, n_threads)
+    ev.responses(grid_designs(search)[start:stop])
+    return {"responses": ev.cache, "n_runs": ev.n_runs}
+
+
+def grid_designs(search: DesignSearch) -> list:
+    """The (eta, clearance_m) of the search grid in the order ``optimise`` runs them (none
+    when a design is evaluated, not optimised)."""
+    if search.eta_max is None:
+        return []
+    etas, Ls = search_grid(search.eta_max, search.clearance_range_m, search.n_eta,
+                           search.n_clearance)
+    return [(float(e), float(L)) for e in etas for L in Ls]
+
+
+def _prepare(a: dict) -> tuple:
+    """(problem, search, inputs, n_threads) from ``design``'s arguments ``a``, validated."""
+    mode = _chk.check_mode(a["eta"], a["clearance_m"], a["eta_max"], a["clearance_range_m"])
+    band = _chk.check_band(a["omega_band"])
+    n_omega = _chk.check_count("n_omega", a["n_omega"], 2, N_OMEGA_MAX)
+    amps = _chk.check_amplitudes(a["amplitudes_m"], AMPLITUDE_MAX_M, N_AMPLITUDES_MAX)
+    M, k, c, d = _chk.check_structure(a["M_kg"], a["k_N_per_m"], a["c_Ns_per_m"], a["d"])
+    model = ModelParams(eta=1.0, omega=1.0, F=0.0, r=a["r"], d=d)
+    settings = SolverSettings(t_end=a["t_end"], t_transient=a["t_transient"],
+                              v_stick=a["v_stick"], max_impacts=a["max_impacts"],
+                              root_tol=a["root_tol"])
+    view = a["view"]
     if not isinstance(view, str) or view not in VIEWS:
         raise ParameterError("view", view, f"must be one of {', '.join(VIEWS)}")
-    census_n = _chk.check_count("census_n", census_n, 0, 1_000_000)
-    census_seed = _chk.check_count("census_seed", census_seed, 0, 2**63 - 1)
-    basin_min = check_real("basin_min", basin_min, lo=0.0, hi=1.0)
+    census_n = _chk.check_count("census_n", a["census_n"], 0, 1_000_000)
+    census_seed = _chk.check_count("census_seed", a["census_seed"], 0, 2**63 - 1)
+    basin_min = check_real("basin_min", a["basin_min"], lo=0.0, hi=1.0)
+    n_threads = a["n_threads"]
     if n_threads is not None:
         n_threads = _chk.check_count("n_threads", n_threads, 1, 4096)
-    search = {}
     if mode == "evaluate":
-        eta = _chk.check_eta("eta", eta)
-        clearance_m = _chk.check_clearance("clearance", clearance_m, amps)
-        search = dict(eta=eta, clearance_m=clearance_m)
+        search = dict(eta=_chk.check_eta("eta", a["eta"]),
+                      clearance_m=_chk.check_clearance("clearance", a["clearance_m"], amps))
     else:
-        eta_max = _chk.check_eta("eta_max", eta_max)
-        rng = _chk.check_clearance_range(clearance_range_m, amps, CLEARANCE_RANGE_FACTORS)
+        eta_max = _chk.check_eta("eta_max", a["eta_max"])
+        rng = _chk.check_clearance_range(a["clearance_range_m"], amps, CLEARANCE_RANGE_FACTORS)
         search = dict(eta_max=eta_max, clearance_range_m=rng,
-                      n_eta=_chk.check_count("n_eta", n_eta, 1, N_GRID_MAX),
-                      n_clearance=_chk.check_count("n_clearance", n_clearance, 2, N_GRID_MAX))
+                      n_eta=_chk.check_count("n_eta", a["n_eta"], 1, N_GRID_MAX),
+                      n_clearance=_chk.check_count("n_clearance", a["n_clearance"], 2,
+                                                   N_GRID_MAX))
     omega = tuple(float(w) for w in np.linspace(band[0], band[1], n_omega))
     problem = DesignProblem(model=model, omega=omega, amplitudes_m=amps, settings=settings,
                             M_kg=M, k_N_per_m=k, c_Ns_per_m=c, view=view, census_n=census_n,
@@ -530,4 +574,4 @@ def design(*, omega_band: Sequence[float] = DEFAULT_BAND, n_omega: int = DEFAULT
                   **{k_: (list(v) if isinstance(v, tuple) else v) for k_, v in search.items()},
                   view=view, census_n=census_n, census_seed=census_seed,
                   basin_min=basin_min, settings=settings.as_dict() | {"state0": None})
-    return solve(problem, DesignSearch(**search), n_threads=n_threads, inputs=inputs)
+    return problem, DesignSearch(**search), inputs, n_threads

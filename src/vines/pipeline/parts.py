@@ -1,0 +1,103 @@
+"""Chunk jobs of the chunked stages: which items each job computes, and its part file.
+
+A chunked stage (``robust_map``, ``orbit_atlas``, ``basin_slice``, ``lyapunov``,
+``design``, ``convergence``) lists the independent items of one config entry (points,
+eta rows, sweep lines, search designs) in dataset order; ``item_ranges`` cuts them into
+runs of whole items of about ``points`` points each (the config's ``chunks`` section),
+one job per run. A job writes its results as a part file (``write_part``: a pickle,
+written atomically beside its path); the gather job reads the parts in order
+(``read_parts``) and builds the same dataset as one job computing every item would: each
+item's numbers depend on the item alone, never on the run it is computed in.
+"""
+from __future__ import annotations
+
+import math
+import pickle
+from pathlib import Path
+
+#: the stages split into chunk jobs (config ``chunks`` keys besides ``simulate_grid``) ->
+#: the config section of their entries
+CHUNKED_STAGES = {"robust_map": "robust_maps", "orbit_atlas": "orbit_atlases",
+                  "basin_slice": "basin_slices", "lyapunov": "lyapunov_sweeps",
+                  "design": "designs", "convergence": "convergence"}
+
+
+def item_ranges(n_items: int, points_per_item: int, points: int) -> list[tuple[int, int]]:
+    """[(start, stop)] cutting ``n_items`` items of ``points_per_item`` points each into
+    runs of at most ``points`` points (at least one item a run), as even as they go."""
+    n_items = int(n_items)
+    per = max(1, int(points) // max(1, int(points_per_item)))
+    n_runs = max(1, math.ceil(n_items / per))
+    bounds = [round(k * n_items / n_runs) for k in range(n_runs + 1)]
+    return [(a, b) for a, b in zip(bounds[:-1], bounds[1:], strict=True) if b > a]
+
+
+def stage_items(stage: str, name: str, config: dict) -> tuple[int, int]:
+    """(items, points per item) of the entry ``name`` of a chunked stage in a validated
+    ``config``: robust_map and basin_slice points (states), orbit_atlas eta rows,
+    lyapunov sweep lines, design search-grid designs (runs from rest each: omega values x
+    amplitudes), convergence finest-grid eta rows of the ``grid`` study (the other studies
+    and a design that is evaluated, not searched: no items, one job)."""
+    from .axes import axis_values
+    from .config_checks import atlas_grid
+    if stage == "robust_map":
+        e = config["robust_maps"][name]
+        return axis_values(e["eta"]).size * axis_values(e["omega"]).size, 1
+    if stage == "basin_slice":
+        e = config["basin_slices"][name]
+        return axis_values(e["z_m0"]).size * axis_values(e["v_m0"]).size, 1
+    if stage == "orbit_atlas":
+        g = atlas_grid(config, name)
+        return axis_values(g["eta"]).size, axis_values(g["omega"]).size
+    if stage == "lyapunov":
+        sw = config["sweeps"][config["lyapunov_sweeps"][name]["sweep"]]
+        lines = axis_values(sw["outer_values"]).size * len(sw["directions"])
+        return lines, axis_values(sw["values"]).size
+    if stage == "design":
+        return _design_items(config["designs"][name])
+    if stage == "convergence":
+        if name != "grid":
+            return 0, 1
+        rows = int(max(config["convergence"]["grid"]["resolutions"]))
+        return rows, rows
+    raise ValueError(f"{stage} is not a chunked stage ({', '.join(CHUNKED_STAGES)})")
+
+
+def _design_items(entry: dict) -> tuple[int, int]:
+    """(search-grid designs, runs from rest per design) of a ``designs`` entry."""
+    from ..studies import design_checks as dc
+    if entry.get("eta_max") is None:
+        return 0, 1
+    n = entry.get("n_eta", dc.N_ETA_DEFAULT) * entry.get("n_clearance", dc.N_CLEARANCE_DEFAULT)
+    amps = entry.get("amplitudes_m", dc.DEFAULT_AMPLITUDES_M)
+    amps = [amps] if isinstance(amps, (int, float)) else amps
+    return n, entry.get("n_omega", dc.DEFAULT_N_OMEGA) * len(amps)
+
+
+def chunk_plan(stage: str, name: str, config: dict) -> list[tuple[int, int]]:
+    """The item ranges of the chunk jobs of one entry (``config['chunks'][stage]`` points
+    a job); [] when the entry has no items to split (its gather job computes it)."""
+    n, per = stage_items(stage, name, config)
+    return item_ranges(n, per, config["chunks"][stage])
+
+
+def write_part(obj, path) -> Path:
+    """Pickle ``obj`` to ``path`` atomically (temporary beside it, then renamed)."""
+    from ..data.netcdf import write_atomically
+
+    def dump(tmp):
+        with open(tmp, "wb") as fh:
+            pickle.dump(obj, fh, protocol=pickle.HIGHEST_PROTOCOL)
+
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    return write_atomically(path, dump)
+
+
+def read_parts(paths) -> list:
+    """The objects of the part files ``paths``, in order (files this workflow wrote)."""
+    out = []
+    for p in paths:
+        with open(p, "rb") as fh:
+            out.append(pickle.load(fh))  # noqa: S301 (the workflow's own temporary files)
+    return out
