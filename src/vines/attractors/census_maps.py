@@ -83,19 +83,29 @@ def basin_slice_part(eta: float, omega: float, F: float, z_m0: ArrayLike, v_m0: 
                        **census_kw)
 
 
-def basin_slice(eta: float, omega: float, F: float, z_m0: ArrayLike, v_m0: ArrayLike, *,
-                parts: list | None = None, **census_kw) -> dict:
+def basin_slice(eta: float, omega: float, F: float, z_m0: ArrayLike, v_m0: ArrayLike,
+                **census_kw) -> dict:
     """Attractor index over the slice (shape (len(z_m0), len(v_m0)), -1: unsettled) and
     the attractor table (regime, period, ke_ratio, xmax_m, basin_fraction within the
     slice), from_rest (index into the table) and the census for further use. With ``t_max``
     in census_kw also the asymptotic view: attractor_asymptotic (the attractor each point
     is on at t_max), from_rest_asymptotic, and in the table basin_fraction_asymptotic and
     status (persistent / transient / unresolved); attractors reached only after t_end are
-    in the table with basin_fraction 0. ``parts``: the ``basin_slice_part`` results that
-    cover the slice, in order (their runs are not repeated; the same result)."""
-    states = slice_states(z_m0, v_m0)
-    c = (census(eta, omega, F, states=states, **census_kw) if parts is None
-         else census_of_parts(eta, omega, F, parts, states=states, **census_kw))
+    in the table with basin_fraction 0."""
+    c = census(eta, omega, F, states=slice_states(z_m0, v_m0), **census_kw)
+    return _slice_result(c, z_m0, v_m0)
+
+
+def basin_slice_of_parts(eta: float, omega: float, F: float, z_m0: ArrayLike,
+                         v_m0: ArrayLike, parts: list, **census_kw) -> dict:
+    """``basin_slice`` from the ``basin_slice_part`` results that cover the slice's states
+    in order (their runs are not repeated; the same result)."""
+    c = census_of_parts(eta, omega, F, parts, states=slice_states(z_m0, v_m0), **census_kw)
+    return _slice_result(c, z_m0, v_m0)
+
+
+def _slice_result(c, z_m0: ArrayLike, v_m0: ArrayLike) -> dict:
+    """``basin_slice``'s dict of the census ``c`` of the slice's states."""
     shape = (np.size(z_m0), np.size(v_m0))
     table = {k: [getattr(a, k) for a in c.attractors]
              for k in ("regime", "period", "ke_ratio", "xmax_m", "basin_fraction")}

@@ -432,10 +432,13 @@ def basin_slice(spec: dict, *, model: dict, simulation: dict, code: str, title: 
     ``parts``: the ``basin_slice_part`` results covering every state in order (else the
     states are run here)."""
     from ..attractors.census_maps import basin_slice as solve_slice
+    from ..attractors.census_maps import basin_slice_of_parts
     z_m0, v_m0 = axis_values(spec["z_m0"]), axis_values(spec["v_m0"])
-    res = solve_slice(spec["eta"], spec["omega"], spec["F"], z_m0, v_m0, parts=parts,
-                      n_threads=max(1, int(n_workers)), t_max=spec.get("t_max"),
-                      **_census_kw(model, simulation))
+    kw = dict(n_threads=max(1, int(n_workers)), t_max=spec.get("t_max"),
+              **_census_kw(model, simulation))
+    point = (spec["eta"], spec["omega"], spec["F"], z_m0, v_m0)
+    res = (solve_slice(*point, **kw) if parts is None
+           else basin_slice_of_parts(*point, parts, **kw))
     attrs = provenance_attrs(title=title, config_subset={"spec": spec, "model": model,
                                                          "simulation": simulation},
                              settings={**model, **simulation}, code_version=code)
@@ -553,6 +556,7 @@ def _atlas_rows(eta, omega, F, kw):
 
 
 def _atlas_kw(sim_t_end: float, model: dict) -> dict:
+    """``atlas_arrays``'s keywords: r, d, and the simulation check (sim_t_end 0: none)."""
     from ..orbits.sequence import SIM_T_END
     return {"r": model["r"], "d": model["d"], "simulation": sim_t_end > 0,
             "sim_t_end": sim_t_end if sim_t_end > 0 else SIM_T_END}
