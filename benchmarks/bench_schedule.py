@@ -8,9 +8,10 @@ RUN: a finished run's results folder (``results/<run>``, holding ``benchmarks/<r
 written by every compute rule's ``benchmark:``), read only.
 
 The DAG is Snakemake's: ``snakemake -n -F TARGET --cores C`` on the Snakefile of this
-checkout (or of the checkout ``--workflow DIR``, e.g. the one RUN was made with) and CONFIGFILE (with ``run`` set to a name of its own, so nothing of RUN is touched), once per
-core count (a job's threads are capped at the cores); a job waits for the jobs that write its
-inputs. The schedule (snakemake_logger_plugin_vines.schedule) is greedy, longest path first,
+checkout (or of the checkout ``--workflow DIR``, e.g. the one RUN was made with) and
+CONFIGFILE (with ``run`` set to a name of its own, so nothing of RUN is touched), once per
+core count (a job's threads are capped at the cores); a job waits for the jobs that write
+its inputs. The schedule (snakemake_logger_plugin_vines.schedule) is greedy, longest path first,
 each job holding its threads' cores; Snakemake's own start-up, the numba warm-up and the
 waits of a loaded machine are not in it. A job's seconds, three models side by side:
 ``ideal threads`` its measured ``cpu_time`` / threads (every thread busy: a lower bound),
