@@ -27,9 +27,14 @@ REPORT_CFG = dict(
 JOB_BLOCKS = ("--workflow-profile", "none")
 
 
+def _blocks(out: str, rule: str) -> list:
+    """The job blocks a dry-run prints for `rule` (indented inside a group job)."""
+    return re.findall(rf"\n *rule {rule}:\n(.*?)(?:\n\n|\Z)", out, re.S)
+
+
 def _threads(out: str, rule: str) -> set:
     """Thread counts a dry-run prints for the jobs of `rule` (1 is not printed)."""
-    blocks = re.findall(rf"\nrule {rule}:\n(.*?)(?:\n\n|\Z)", out, re.S)
+    blocks = _blocks(out, rule)
     assert blocks, out
     return {int(m.group(1)) if (m := re.search(r"threads: (\d+)", b)) else 1 for b in blocks}
 
@@ -62,7 +67,7 @@ def _declared(rule: str) -> dict:
 
 def _resources(out: str, rule: str) -> set:
     """(mem_mb, runtime) a dry-run prints for the jobs of `rule`."""
-    blocks = re.findall(rf"\nrule {rule}:\n(.*?)(?:\n\n|\Z)", out, re.S)
+    blocks = _blocks(out, rule)
     assert blocks, out
     return {tuple(int(re.search(rf"\b{k}=(\d+)", b).group(1)) for k in ("mem_mb", "runtime"))
             for b in blocks}
@@ -139,6 +144,34 @@ def test_profile_dry_run_without_cores(tmp_path):
                  "work_precision"):
         d = _declared(rule)                     # the rule's own resources reach its jobs
         assert _resources(r.stdout, rule) == {(d["mem_mb"], d["runtime"])}, rule
+    _check_groups(r.stdout)
+
+
+def _check_groups(out: str):
+    """The profile's groups: every job of a grouped rule runs inside a group job, at most
+    `group-components` of them a group job; every figure rule is grouped, no other rule."""
+    profile = yaml.safe_load((ROOT / "profiles" / "slurm" / "config.yaml").read_text())
+    groups, per_job = profile["groups"], profile["group-components"]
+    assert set(groups.values()) == set(per_job) and min(per_job.values()) > 1
+    planned = set(re.findall(r"^ *rule (\w+):$", out, re.M))
+    assert set(groups) <= planned                     # no name of a rule that is not there
+    assert {r for r in planned if r.startswith("fig")} <= set(groups)
+    seen = set()
+    for job in re.split(r"\n(?=\[)", out):       # a job or group job: "[date] ..." at column 0
+        if m := re.match(r"\[[^]]*\] Group job (\w+) ", job):
+            rules = re.findall(r"^    rule (\w+):$", job, re.M)
+            assert 1 <= len(rules) <= per_job[m.group(1)], (m.group(1), rules)
+            assert {groups[r] for r in rules} == {m.group(1)}, rules
+            seen.add(m.group(1))
+        else:                                         # a SLURM job of its own
+            assert not set(re.findall(r"^rule (\w+):$", job, re.M)) & set(groups), job
+    assert seen == set(per_job)
+
+
+def test_the_default_profile_has_no_groups():
+    """Groups are the SLURM profile's: a local run runs the same jobs as before."""
+    profile = yaml.safe_load((ROOT / "profiles" / "default" / "config.yaml").read_text())
+    assert not {"groups", "group-components"} & set(profile)
 
 
 @needs_snakemake
