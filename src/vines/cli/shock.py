@@ -57,8 +57,10 @@ def add_parser(subparsers) -> VinesArgumentParser:
                         f"{N_PERIODS_DEFAULT:g}]")
     p.add_argument("--json", action="store_true",
                    help="print one JSON object on stdout (keys: inputs, scales, activation, "
-                        "vines, tmd, lo_alone, cost; one shock: history; a range: curve, "
-                        "optimal)")
+                        "vines, tmd, lo_alone, cost; one shock: history, and in vines "
+                        "impacts_stop_amplitude, the LO amplitude in units of L where the "
+                        "two-impact regime ends, or null, beside the slow flow's xi_min; a "
+                        "range: curve, optimal)")
     return p
 
 

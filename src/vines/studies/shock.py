@@ -35,6 +35,10 @@ LEVELS = (0.1, 0.01)
 #: Gauss-Legendre nodes per piece, and the longest piece (dimensionless time)
 GAUSS_NODES = 16
 PIECE = 0.5
+#: a regular gap between impacts is within REGULAR_TOL pi of pi (half a natural period,
+#: alternating walls); REGULAR_RUN of them in a row make the two-impact regime
+REGULAR_TOL = 0.25
+REGULAR_RUN = 6
 #: the progress task of ``energy_curve``
 TASK = ("shock", "energies")
 
@@ -45,7 +49,8 @@ _X, _W = np.polynomial.legendre.leggauss(GAUSS_NODES)
 class Decay:
     """A free decay sampled at ``times``: remaining energy and the cumulative energies
     dissipated by LO damping, impacts and the absorber's damper (all / E0), impacts so far;
-    the decay times to each of LEVELS (NaN: not reached); solver status."""
+    the decay times to each of LEVELS (NaN: not reached); solver status; the LO amplitude
+    where the two-impact regime ends (``two_impact_end``, NaN: not within the window)."""
 
     times: np.ndarray
     remaining: np.ndarray
@@ -56,6 +61,7 @@ class Decay:
     t_levels: tuple
     status: str = "ok"
     n_sticks: int = 0
+    stop_amplitude: float = math.nan
 
     def summary(self, time_unit: float = 1.0) -> dict:
         """The JSON keys at the end of the window (``t_reached``: the window's end, or where a
@@ -89,6 +95,34 @@ def activation_velocity(d: float) -> float:
     s1, s2 = -a + math.sqrt(a * a - 1.0), -a - math.sqrt(a * a - 1.0)
     t = math.log(s2 / s1) / (s1 - s2)
     return (s1 - s2) / (math.exp(s1 * t) - math.exp(s2 * t))
+
+
+def xi_min(r: float) -> float:
+    """The slow flow's activation threshold (the SIM's fold, units of L) at restitution r."""
+    from ..slowflow.manifold import rho
+    from ..slowflow.manifold import xi_min as fold
+    return float(fold(rho(r)))
+
+
+def two_impact_end(impacts, t_last: float) -> float:
+    """LO amplitude hypot(z_m, z_m') (units of L) at the last impact of the last run of
+    REGULAR_RUN regular gaps (|gap - pi| < REGULAR_TOL pi, alternating walls): where the
+    symmetric two-impact regime of the free decay ends. NaN if there is no such run, or if
+    it is still on at ``t_last`` (its last impact less than 2 pi before it)."""
+    t, wall = np.asarray(impacts["t"]), np.asarray(impacts["wall"])
+    gaps = np.diff(t)
+    ok = (np.abs(gaps - math.pi) < REGULAR_TOL * math.pi) & (wall[1:] != wall[:-1])
+    # run length of regular gaps ending at each gap
+    run = np.zeros(ok.size, dtype=np.int64)
+    for i in np.flatnonzero(ok):
+        run[i] = run[i - 1] + 1 if i > 0 else 1
+    ends = np.flatnonzero((run >= REGULAR_RUN) & ~np.append(ok[1:], False))
+    if ends.size == 0:
+        return math.nan
+    k = int(ends[-1]) + 1
+    if k == t.size - 1 and t_last - t[k] < 2.0 * math.pi:
+        return math.nan
+    return float(math.hypot(impacts["z_m"][k], impacts["v_m"][k]))
 
 
 def _first_below(times, energy_at, remaining, level) -> float:
@@ -171,7 +205,7 @@ def vines_decay(eta: float, r: float, d: float, v0: float, periods: float,
 
     t_levels = tuple(_first_below(times, energy_at, remaining, lv) for lv in LEVELS)
     return Decay(times, remaining, by_damping, by_impacts, np.zeros_like(times), n_imp,
-                 t_levels, raw.status, raw.n_sticks)
+                 t_levels, raw.status, raw.n_sticks, two_impact_end(raw.impacts, t_last))
 
 
 # ----------------------------------------------------------------- linear systems
@@ -334,7 +368,8 @@ def shock(*, eta, clearance_m, velocity_m_s=None, energy_J=None, energy_range=No
     energy_range (A, B, N: N energies from A to B J, geometric). Window: ``periods``
     natural periods of the LO. Structure as ``vines.design`` (Table 1 by default). Returns
     a JSON-ready dict (keys inputs, scales, activation, vines, tmd, lo_alone and, for one
-    shock, history; for a range, curve and optimal). ParameterError on bad input.
+    shock, history and the VI NES's impacts_stop_amplitude beside the slow flow's xi_min;
+    for a range, curve and optimal). ParameterError on bad input.
     """
     import time
 
@@ -381,7 +416,10 @@ def shock(*, eta, clearance_m, velocity_m_s=None, energy_J=None, energy_range=No
         dec = decays[0]
         out["inputs"].update(velocity_m_s=float(velocities[0]),
                              energy_J=float(0.5 * M * velocities[0] ** 2))
-        out["vines"] = {**dec.summary(1.0 / w0), "n_sticks": dec.n_sticks}
+        stop = dec.stop_amplitude
+        out["vines"] = {**dec.summary(1.0 / w0), "n_sticks": dec.n_sticks,
+                        "impacts_stop_amplitude": None if math.isnan(stop) else stop,
+                        "xi_min": xi_min(r)}
         out["history"] = _history(dec, lin, 1.0 / w0)
     out["cost"] = {"wall_s": time.perf_counter() - t0, "n_runs": len(decays)}
     return out
