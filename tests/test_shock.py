@@ -200,7 +200,7 @@ def test_two_impact_regime_ends_at_the_slow_flows_fold_as_eta_vanishes():
     """Free decay (d = 0, r = 0.5): the LO amplitude where the two-impact regime ends tends
     to the slow flow's activation threshold, the SIM's fold, written here from its closed
     form. The end lags below the fold (a slow passage through a fold: measured deficit
-    0.23, 0.15, 0.10, 0.07 at eta 0.01 / 2^k, about eta^0.6, not the averaging's O(eta)),
+    0.226, 0.153, 0.104, 0.068 at eta 0.01 / 2^k: about eta^0.57, not the averaging's O(eta)),
     so the bounds are the limit and the trend, not an O(eta) tolerance."""
     r = 0.5
     rho = 2.0 / math.pi * (1.0 - r) / (1.0 + r)

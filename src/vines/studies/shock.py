@@ -105,24 +105,30 @@ def xi_min(r: float) -> float:
 
 
 def two_impact_end(impacts, t_last: float) -> float:
-    """LO amplitude hypot(z_m, z_m') (units of L) at the last impact of the last run of
-    REGULAR_RUN regular gaps (|gap - pi| < REGULAR_TOL pi, alternating walls): where the
-    symmetric two-impact regime of the free decay ends. NaN if there is no such run, or if
-    it is still on at ``t_last`` (its last impact less than 2 pi before it)."""
+    """Pre-impact LO amplitude hypot(z_m, z_m') (units of L) where the symmetric two-impact
+    regime of a free decay ends: at the last impact before a gap of more than a natural
+    period 2 pi (to the next impact, or to ``t_last``) that closes a streak of gaps shorter
+    than 2 pi at alternating walls holding REGULAR_RUN regular ones in a row
+    (|gap - pi| < REGULAR_TOL pi). NaN if there is none within the window."""
     t, wall = np.asarray(impacts["t"]), np.asarray(impacts["wall"])
-    gaps = np.diff(t)
-    ok = (np.abs(gaps - math.pi) < REGULAR_TOL * math.pi) & (wall[1:] != wall[:-1])
-    # run length of regular gaps ending at each gap
-    run = np.zeros(ok.size, dtype=np.int64)
-    for i in np.flatnonzero(ok):
-        run[i] = run[i - 1] + 1 if i > 0 else 1
-    ends = np.flatnonzero((run >= REGULAR_RUN) & ~np.append(ok[1:], False))
-    if ends.size == 0:
+    gaps = np.diff(np.append(t, t_last))
+    alt = wall[1:] != wall[:-1]
+    regular = (np.abs(gaps[:-1] - math.pi) < REGULAR_TOL * math.pi) & alt
+    streak = (gaps[:-1] <= 2.0 * math.pi) & alt
+    run = best = 0              # regular gaps in a row; most of them in the current streak
+    end = -1
+    for i in range(gaps.size):
+        if gaps[i] > 2.0 * math.pi:
+            end = i if best >= REGULAR_RUN else end
+            run = best = 0
+        elif i == streak.size or not streak[i]:     # the window's end, or a break
+            run = best = 0
+        else:
+            run = run + 1 if regular[i] else 0
+            best = max(best, run)
+    if end < 0:
         return math.nan
-    k = int(ends[-1]) + 1
-    if k == t.size - 1 and t_last - t[k] < 2.0 * math.pi:
-        return math.nan
-    return float(math.hypot(impacts["z_m"][k], impacts["v_m"][k]))
+    return float(math.hypot(impacts["z_m"][end], impacts["v_m"][end]))
 
 
 def _first_below(times, energy_at, remaining, level) -> float:
