@@ -89,7 +89,7 @@ def make_osc(m: float, d: float, omega: float, F: float) -> np.ndarray:
     return osc
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def fundamentals(osc, s):
     """(C, C', S, S') of the homogeneous equation at local time s >= 0."""
     sigma = osc[I_SIGMA]
@@ -122,7 +122,7 @@ def fundamentals(osc, s):
     return C, dC, S, dS
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def particular(osc, sth0, cth0, s):
     """Particular solution z_p and its first three derivatives at local time s.
 
@@ -149,7 +149,7 @@ def particular(osc, sth0, cth0, s):
     return zp, zp1, zp2, zp3
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def particular0(osc, sth0, cth0):
     """z_p(0) and z_p'(0)."""
     if osc[I_RES] > 0.5:
@@ -191,18 +191,24 @@ def _flow_nres(osc, x0, v0, sth0, cth0, s):
     return z, z1, z2, z3, b1
 
 
-@njit(cache=True, nogil=True)
-def flow(osc, x0, v0, sth0, cth0, s):
-    """State at local time s from (x0, v0) at s = 0.
+@njit(cache=True, nogil=True, inline="always")
+def flow_start(osc, x0, v0, sth0, cth0):
+    """The start of ``flow_from``: (x0, v0, sin, cos of theta0, x_h, v_h), x_h and v_h the
+    homogeneous parts of (x0, v0) (what ``flow`` computes from the start at every s; unused
+    by the near-resonant undamped form)."""
+    if osc[I_NRES] > 0.5:
+        return x0, v0, sth0, cth0, 0.0, 0.0
+    zp0, zp10 = particular0(osc, sth0, cth0)
+    return x0, v0, sth0, cth0, x0 - zp0, v0 - zp10
 
-    Returns (z, z', z'', z''', b1) where b1 = sqrt(2 E_h(s)) bounds |z_h'| from s on (for
-    the near-resonant undamped form: the energy of the whole state at s).
-    """
+
+@njit(cache=True, nogil=True, inline="always")
+def flow_from(osc, start, s):
+    """``flow`` at local time s from start = ``flow_start(osc, x0, v0, sin, cos)``, bit for
+    bit: flows of one start at many s (the kernel's steps) compute the start once."""
+    x0, v0, sth0, cth0, xh, vh = start
     if osc[I_NRES] > 0.5:
         return _flow_nres(osc, x0, v0, sth0, cth0, s)
-    zp0, zp10 = particular0(osc, sth0, cth0)
-    xh = x0 - zp0
-    vh = v0 - zp10
     C, dC, S, dS = fundamentals(osc, s)
     zh = xh * C + vh * S
     zh1 = xh * dC + vh * dS
@@ -216,6 +222,16 @@ def flow(osc, x0, v0, sth0, cth0, s):
 
 
 @njit(cache=True, nogil=True)
+def flow(osc, x0, v0, sth0, cth0, s):
+    """State at local time s from (x0, v0) at s = 0.
+
+    Returns (z, z', z'', z''', b1) where b1 = sqrt(2 E_h(s)) bounds |z_h'| from s on (for
+    the near-resonant undamped form: the energy of the whole state at s).
+    """
+    return flow_from(osc, flow_start(osc, x0, v0, sth0, cth0), s)
+
+
+@njit(cache=True, nogil=True, inline="always")
 def part_bounds(osc, b1, s_hi):
     """Upper bounds (B0, ..., B4) of |z^(n)|, n = 0..4, on [s, s_hi] given b1 = sqrt(2 E_h(s)).
 
@@ -266,7 +282,7 @@ def deriv_bound(osc, b1, n, s_hi):
     return part_bounds(osc, b1, s_hi)[n]
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def state_bounds(osc, z, v, margin, H):
     """Bounds of |z''|, |z'''|, |z''''| on [s, s + H] from the whole state (z, z') at s.
 

@@ -77,6 +77,8 @@ from .flow import (
     I_RES,
     deriv_bound,
     flow,
+    flow_from,
+    flow_start,
     forcing,
     part_bounds,
     state_bounds,
@@ -139,7 +141,7 @@ N_STEP_ITER = 3
 ROUNDOFF = 8.0 * 2.220446049250313e-16   # a few ulps: contact/release at this gap is exact
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def _floor(part, s, x, rate):
     """Resolution of a computed z^(n) of size |x| that changes at ``rate`` per unit time.
 
@@ -149,7 +151,7 @@ def _floor(part, s, x, rate):
     return ROUNDOFF * (1.0 + abs(x) + part + abs(rate) * (1.0 + s))
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def _step_bounds(osc, z, v, b1, s, h_cap):
     """Bounds for a step from local time s: the parts' sizes P0 ... P3 at s (for the
     floors), and bounds B2, B3, B4 of |z''|, |z'''|, |z''''| on [s, s + h_cap], each the
@@ -163,7 +165,7 @@ def _step_bounds(osc, z, v, b1, s, h_cap):
     return P0, P1, P2, P3, min(Q2, T2), min(Q3, T3), min(Q4, T4)
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def _safe_step(gap, closing, B):
     """Largest h with gap - closing h - B h^2/2 >= 0 for all [0, h] (B >= 0).
 
@@ -196,9 +198,8 @@ def _extremum(osc, start, pa, pb, s):
     """|z| at the zero of z' inside [sa, sb] (z'(sa) z'(sb) < 0), from the first guess s:
     safeguarded Halley iteration on z' (cubic: from the Hermite guess one step usually
     suffices), stopped once the next correction ds = -z'/z'' is below EXTREMUM_DS / rate,
-    with z + z' ds / 2 as the value there. start = (x0, v0, sth0, cth0) of the closed form,
+    with z + z' ds / 2 as the value there. start: the closed form's (``flow.flow_start``),
     pa = (sa, z, z') and pb = (sb, z, z') the interval's ends."""
-    x0, v0, sth0, cth0 = start
     sa, _, va = pa
     sb, _, vb = pb
     lo, hi = sa, sb
@@ -208,7 +209,7 @@ def _extremum(osc, start, pa, pb, s):
     ds_tol = EXTREMUM_DS / osc[I_RATE]
     z = 0.0
     for _ in range(60):
-        z, v, a, j, _ = flow(osc, x0, v0, sth0, cth0, s)
+        z, v, a, j, _ = flow_from(osc, start, s)
         if (v > 0.0) == (vlo > 0.0):
             lo = s
             vlo = v
@@ -252,7 +253,7 @@ def _hermite_max(za, va, zb, vb, h):
     return best, t_best
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def _may_exceed(za, va, zb, vb, h, B2, B4, m):
     """(max |z| on an interval of length h may exceed m, first guess of where):
     max(|z(a)|, |z(b)|) + B2 h^2/8 and the Hermite bound (``_hermite_max``) both bound it."""
@@ -267,8 +268,7 @@ def _interval_max(osc, start, pa, pb, B2, B4, m):
     """Running maximum m updated with max |z| over [sa, sb] (|z''| <= B2, |z''''| <= B4
     there): nothing more is computed where the bounds of ``_may_exceed`` stay <= m; a
     sign change of z' is refined by ``_extremum``, else the interval is bisected.
-    start = (x0, v0, sth0, cth0) of the closed form, pa = (sa, z, z'), pb = (sb, z, z')."""
-    x0, v0, sth0, cth0 = start
+    start: the closed form's (``flow.flow_start``), pa = (sa, z, z'), pb = (sb, z, z')."""
     sa, za, va = pa
     sb, zb, vb = pb
     m = max(m, abs(za), abs(zb))
@@ -294,7 +294,7 @@ def _interval_max(osc, start, pa, pb, B2, B4, m):
         if n + 2 > MAX_BISECT or b_ - a_ <= MIN_BISECT:
             continue
         mid = 0.5 * (a_ + b_)
-        zm, vm, _, _, _ = flow(osc, x0, v0, sth0, cth0, mid)
+        zm, vm, _, _, _ = flow_from(osc, start, mid)
         m = max(m, abs(zm))
         stack[n, 0], stack[n, 1], stack[n, 2], stack[n, 3], stack[n, 4], stack[n, 5] = \
             a_, za1, va1, mid, zm, vm
@@ -304,7 +304,18 @@ def _interval_max(osc, start, pa, pb, B2, B4, m):
     return m
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
+def _running_max(osc, start, pa, pb, B2, B4, m):
+    """``_interval_max``, its first test inline: most step intervals end there (the bound
+    max(|z(a)|, |z(b)|) + B2 h^2/8 stays <= the running maximum), without a call."""
+    za, zb = abs(pa[1]), abs(pb[1])
+    h = pb[0] - pa[0]
+    if max(za, zb) + 0.125 * B2 * h * h <= max(m, za, zb):
+        return max(m, za, zb)
+    return _interval_max(osc, start, pa, pb, B2, B4, m)
+
+
+@njit(cache=True, nogil=True, inline="always")
 def free_step(pt, ball, bounds, floors, released):
     """Step that provably reaches neither wall in free flight (module docstring).
 
@@ -370,7 +381,7 @@ def _wall_bounds(a, j, H, B2g, B4, floor_a, floor_j):
     return BL, BR, min(B2g, abs(a) + abs(j) * H + 0.5 * B4 * H * H)
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def free_step_local(osc, pt, ball, h_cap, root_tol, released):
     """``free_step`` with bounds for the step length H itself (``_wall_bounds``).
 
@@ -406,7 +417,7 @@ def free_step_local(osc, pt, ball, h_cap, root_tol, released):
     return h_best, 0, B_best, B4
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def free_contact(osc, pt, ball, B2, root_tol):
     """(wall, gap, closing speed) when contact is accepted at the point pt = (s, z, z',
     z'', z''', b1) of the LO's closed form, the ball at ball = (z_b, z_b') there; else
@@ -536,7 +547,7 @@ def _advance_segment(osc, sg, s_stop, root_tol, acc, step0, s_pause):
     """
     mode, in_window = sg.mode, sg.in_window
     zm0, vm0, sth0, cth0 = _start(sg)
-    start = (zm0, vm0, sth0, cth0)
+    start = flow_start(osc, zm0, vm0, sth0, cth0)
     ball = (sg.zb0, sg.vb0)
     h_cap = 1.0 / osc[I_RATE]
     if step0 > 1:
@@ -544,7 +555,7 @@ def _advance_segment(osc, sg, s_stop, root_tol, acc, step0, s_pause):
             acc[A_SEG_J], acc[A_SEG_B1]
     else:
         s = 0.0
-        z, v, a, j, b1 = flow(osc, zm0, vm0, sth0, cth0, 0.0)
+        z, v, a, j, b1 = flow_from(osc, start, 0.0)
     B4 = 0.0
     gap = 0.0
     closing = 0.0
@@ -569,16 +580,16 @@ def _advance_segment(osc, sg, s_stop, root_tol, acc, step0, s_pause):
                 if wall != 0:
                     return EV_IMPACT, wall, (s, z, v, a, j, b1), gap, closing, steps
             break
-        z1, v1, a1, j1, b11 = flow(osc, zm0, vm0, sth0, cth0, s_new)
+        z1, v1, a1, j1, b11 = flow_from(osc, start, s_new)
         if in_window:
-            m = _interval_max(osc, start, (s, z, v), (s_new, z1, v1), B2, B4,
-                              acc[A_XMAX_WIN])
+            m = _running_max(osc, start, (s, z, v), (s_new, z1, v1), B2, B4,
+                             acc[A_XMAX_WIN])
             acc[A_XMAX_WIN] = m
             if m > acc[A_XMAX_ALL]:
                 acc[A_XMAX_ALL] = m
         else:
-            acc[A_XMAX_ALL] = _interval_max(osc, start, (s, z, v), (s_new, z1, v1), B2, B4,
-                                            acc[A_XMAX_ALL])
+            acc[A_XMAX_ALL] = _running_max(osc, start, (s, z, v), (s_new, z1, v1), B2, B4,
+                                           acc[A_XMAX_ALL])
         s, z, v, a, j, b1 = s_new, z1, v1, a1, j1, b11
         acc[A_NEVAL] += 1.0
         if mode == MODE_FREE:
