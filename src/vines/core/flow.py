@@ -89,7 +89,7 @@ def make_osc(m: float, d: float, omega: float, F: float) -> np.ndarray:
     return osc
 
 
-@njit(cache=True, nogil=True, inline="always")
+@njit(cache=True, nogil=True)
 def fundamentals(osc, s):
     """(C, C', S, S') of the homogeneous equation at local time s >= 0."""
     sigma = osc[I_SIGMA]
@@ -122,7 +122,7 @@ def fundamentals(osc, s):
     return C, dC, S, dS
 
 
-@njit(cache=True, nogil=True, inline="always")
+@njit(cache=True, nogil=True)
 def particular(osc, sth0, cth0, s):
     """Particular solution z_p and its first three derivatives at local time s.
 
@@ -149,7 +149,7 @@ def particular(osc, sth0, cth0, s):
     return zp, zp1, zp2, zp3
 
 
-@njit(cache=True, nogil=True, inline="always")
+@njit(cache=True, nogil=True)
 def particular0(osc, sth0, cth0):
     """z_p(0) and z_p'(0)."""
     if osc[I_RES] > 0.5:
@@ -231,7 +231,7 @@ def flow(osc, x0, v0, sth0, cth0, s):
     return flow_from(osc, flow_start(osc, x0, v0, sth0, cth0), s)
 
 
-@njit(cache=True, nogil=True, inline="always")
+@njit(cache=True, nogil=True)
 def part_bounds(osc, b1, s_hi):
     """Upper bounds (B0, ..., B4) of |z^(n)|, n = 0..4, on [s, s_hi] given b1 = sqrt(2 E_h(s)).
 
@@ -282,7 +282,7 @@ def deriv_bound(osc, b1, n, s_hi):
     return part_bounds(osc, b1, s_hi)[n]
 
 
-@njit(cache=True, nogil=True, inline="always")
+@njit(cache=True, nogil=True)
 def state_bounds(osc, z, v, margin, H):
     """Bounds of |z''|, |z'''|, |z''''| on [s, s + H] from the whole state (z, z') at s.
 
