@@ -1,8 +1,8 @@
 """Speed of the event kernel against the kernel of another revision, in one process.
 
 Run: python benchmarks/bench_kernel.py [--ref main] [--repeat N]
-The kernel module of git revision REF (``src/vines/core/kernel.py``) is loaded beside the
-current one (same ``flow``), both run the same trajectories (the 1:1 orbit and the
+The kernel module of git revision REF (``src/vines/core/kernel.py``, with that revision's
+``flow.py``) is loaded beside the current ones, both run the same trajectories (the 1:1 orbit and the
 chatter point, whole runs from rest, no shortcut), interleaved, best of N each (CPU
 time of the thread); the script prints the time ratio current / REF, checks that both give bit-identical state, counters,
 impacts and segments, and prints the machine's load. No timing is asserted anywhere.
@@ -27,22 +27,34 @@ CASES = (("1:1 (0.05, 1, 0.05)", dict(eta=0.05, omega=1.0, F=0.05), 20000.0),
          ("chatter (0.2, 0.9, 0.4)", dict(eta=0.2, omega=0.9, F=0.4), 3000.0))
 
 
-def load_ref(ref: str):
-    """The kernel module of git revision ``ref``, importable beside the current one."""
-    root = subprocess.run(["git", "rev-parse", "--show-toplevel"], capture_output=True,
-                          text=True, check=True).stdout.strip()
-    src = subprocess.run(["git", "-C", root, "show", f"{ref}:src/vines/core/kernel.py"],
-                         capture_output=True, text=True, check=True).stdout
-    path = os.path.join(tempfile.mkdtemp(prefix="vines_kernel_ref_"), "kernel_ref.py")
-    with open(path, "w") as fh:
-        fh.write(src)
-    name = "vines.core._kernel_ref"
-    spec = importlib.util.spec_from_file_location(name, path)
+def _load(name: str, path: str):
+    """Import the file ``path`` as the module ``vines.core.<name>`` (relative imports
+    resolve in vines.core)."""
+    spec = importlib.util.spec_from_file_location(f"vines.core.{name}", path)
     mod = importlib.util.module_from_spec(spec)
-    mod.__package__ = "vines.core"          # its relative imports: the current flow, walls
-    sys.modules[name] = mod
+    mod.__package__ = "vines.core"
+    sys.modules[spec.name] = mod
     spec.loader.exec_module(mod)
     return mod
+
+
+def load_ref(ref: str):
+    """The kernel module of git revision ``ref`` with that revision's ``flow`` (closed form,
+    bounds, integrals), importable beside the current ones; walls, params from the current."""
+    root = subprocess.run(["git", "rev-parse", "--show-toplevel"], capture_output=True,
+                          text=True, check=True).stdout.strip()
+    folder = tempfile.mkdtemp(prefix="vines_kernel_ref_")
+    tag = "".join(c if c.isalnum() else "_" for c in ref)
+    paths = {}
+    for part in ("flow", "kernel"):
+        src = subprocess.run(["git", "-C", root, "show", f"{ref}:src/vines/core/{part}.py"],
+                             capture_output=True, text=True, check=True).stdout
+        src = src.replace("from .flow import", f"from ._flow_{tag} import")
+        paths[part] = os.path.join(folder, f"_{part}_{tag}.py")
+        with open(paths[part], "w") as fh:
+            fh.write(src)
+    _load(f"_flow_{tag}", paths["flow"])
+    return _load(f"_kernel_{tag}", paths["kernel"])
 
 
 def make_runner(mod, p: ModelParams, st: SolverSettings):

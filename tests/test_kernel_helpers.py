@@ -94,7 +94,7 @@ def _dense_max(osc, x0, v0, sth, cth, sa, sb):
 
 def test_interval_max_matches_a_dense_search():
     """The x_max refinement (bounds, Hermite test, Newton on z') finds max |z| on a step."""
-    from vines.core.flow import flow, part_bounds, state_bounds
+    from vines.core.flow import flow, flow_start, part_bounds, state_bounds
     rng = np.random.default_rng(3)
     for eta, omega, F in ((0.05, 1.0, 0.05), (0.2, 0.9, 0.4), (0.3, 1.6, 0.5)):
         osc = oscillators(ModelParams(eta=eta, omega=omega, F=F))[0]
@@ -109,10 +109,10 @@ def test_interval_max_matches_a_dense_search():
             B2, B4 = min(B2, part_bounds(osc, b1, sb)[2]), min(B4, part_bounds(osc, b1, sb)[4])
             ref = _dense_max(osc, x0, v0, sth, cth, sa, sb)
             # from below the interval's max (refined) and from above (nothing to do)
-            ends = (osc, (x0, v0, sth, cth), (sa, za, va), (sb, zb, vb), B2, B4)
-            got = k._interval_max(*ends, 0.0)
+            ends = (osc, flow_start(osc, x0, v0, sth, cth), (sa, za, va), (sb, zb, vb), B2, B4)
+            got = k._interval_max(*ends, 0.0, np.empty(k.N_STACK))
             # z' = 0 at the maximum, so the two searches' times differ harmlessly (second
             # order); what is left is flow's round-off of z, a few u (1 + |z| + parts):
             # measured 8.9e-16, 1e-14 is 90 u (u = 2^-53)
             assert abs(got - ref) <= 1e-14 * (1 + ref)
-            assert k._interval_max(*ends, ref + 1e-3) == ref + 1e-3
+            assert k._interval_max(*ends, ref + 1e-3, np.empty(k.N_STACK)) == ref + 1e-3

@@ -191,18 +191,24 @@ def _flow_nres(osc, x0, v0, sth0, cth0, s):
     return z, z1, z2, z3, b1
 
 
-@njit(cache=True, nogil=True)
-def flow(osc, x0, v0, sth0, cth0, s):
-    """State at local time s from (x0, v0) at s = 0.
+@njit(cache=True, nogil=True, inline="always")
+def flow_start(osc, x0, v0, sth0, cth0):
+    """The start of ``flow_from``: (x0, v0, sin, cos of theta0, x_h, v_h), x_h and v_h the
+    homogeneous parts of (x0, v0) (what ``flow`` computes from the start at every s; unused
+    by the near-resonant undamped form)."""
+    if osc[I_NRES] > 0.5:
+        return x0, v0, sth0, cth0, 0.0, 0.0
+    zp0, zp10 = particular0(osc, sth0, cth0)
+    return x0, v0, sth0, cth0, x0 - zp0, v0 - zp10
 
-    Returns (z, z', z'', z''', b1) where b1 = sqrt(2 E_h(s)) bounds |z_h'| from s on (for
-    the near-resonant undamped form: the energy of the whole state at s).
-    """
+
+@njit(cache=True, nogil=True, inline="always")
+def flow_from(osc, start, s):
+    """``flow`` at local time s from start = ``flow_start(osc, x0, v0, sin, cos)``, bit for
+    bit: flows of one start at many s (the kernel's steps) compute the start once."""
+    x0, v0, sth0, cth0, xh, vh = start
     if osc[I_NRES] > 0.5:
         return _flow_nres(osc, x0, v0, sth0, cth0, s)
-    zp0, zp10 = particular0(osc, sth0, cth0)
-    xh = x0 - zp0
-    vh = v0 - zp10
     C, dC, S, dS = fundamentals(osc, s)
     zh = xh * C + vh * S
     zh1 = xh * dC + vh * dS
@@ -213,6 +219,16 @@ def flow(osc, x0, v0, sth0, cth0, s):
     zp, zp1, zp2, zp3 = particular(osc, sth0, cth0, s)
     b1 = math.sqrt(zh1 * zh1 + om2 * zh * zh)
     return zp + zh, zp1 + zh1, zp2 + zh2, zp3 + zh3, b1
+
+
+@njit(cache=True, nogil=True)
+def flow(osc, x0, v0, sth0, cth0, s):
+    """State at local time s from (x0, v0) at s = 0.
+
+    Returns (z, z', z'', z''', b1) where b1 = sqrt(2 E_h(s)) bounds |z_h'| from s on (for
+    the near-resonant undamped form: the energy of the whole state at s).
+    """
+    return flow_from(osc, flow_start(osc, x0, v0, sth0, cth0), s)
 
 
 @njit(cache=True, nogil=True)
@@ -376,41 +392,63 @@ def _modes_at(omega, mu, s):
     return ew, m_p, ew.conjugate(), m_m
 
 
+@njit(cache=True, nogil=True, inline="always")
+def _node_modes(omega, mu, u):
+    """The factors of the node pair c +- u of a panel centred at c (``_v2_modes_gauss``):
+    (e^(i omega u), e^(mu u) - 1, e^(lam u), and the same at -u), lam = mu + i omega."""
+    ew_p, m_p, ew_m, m_m = _modes_at(omega, mu, u)
+    return ew_p, m_p, ew_p * (1.0 + m_p), ew_m, m_m, ew_m * (1.0 + m_m)
+
+
+@njit(cache=True, nogil=True, inline="always")
+def _pair_v2(DE, BE, Mc, node):
+    """z'^2 at the node pair ``node`` (``_node_modes``) of a panel whose factors are
+    DE = D e^(lam c), BE = Bp e^(i omega c), Mc = e^(mu c) - 1 (``_v2_modes_gauss``)."""
+    ew_p, m_p, el_p, ew_m, m_m, el_m = node
+    vp = (DE * el_p).real - (BE * ew_p * (Mc + m_p * (1.0 + Mc))).real
+    vm = (DE * el_m).real - (BE * ew_m * (Mc + m_m * (1.0 + Mc))).real
+    return vp * vp + vm * vm
+
+
 @njit(cache=True, nogil=True)
 def _v2_modes_gauss(Ah, lam, Bp, omega, L, npan, gx, gw):
-    """``_v2_gauss`` for z'(s) = Re(Ah e^(lam s) + Bp e^(i omega s)), from the modes.
+    """``_v2_gauss`` for z'(s) = Re(Ah e^(lam s) + Bp e^(i omega s)), from the modes; the
+    8-point rule (gx, gw: ``_GL_X``, ``_GL_W``).
 
     Written as z' = Re(D e^(lam s)) - Re(Bp e^(i omega s) (e^(mu s) - 1)), D = Ah + Bp,
     mu = lam - i omega: near resonance Ah ~ -Bp are each far larger than z', and this form
     does not add them (e^(lam s) = e^(i omega s) e^(mu s)). At the nodes c +- u of a panel
     centred at c the factors are products of the panel's (stepped from panel to panel,
     computed afresh every V2_RESEED panels) and the node's (once per node pair, gx being
-    symmetric).
+    symmetric). Each node pair's sum runs over the panels in order and the pairs' sums are
+    added from the outermost pair in; the panel's factors are computed once for all pairs.
     """
     h = L / npan
     mu = lam - complex(0.0, omega)
     D = Ah + Bp
     step_w, step_m, _, _ = _modes_at(omega, mu, h)
-    Ew0, Mc0, _, _ = _modes_at(omega, mu, 0.5 * h)
-    n = gx.shape[0]
+    Ew, Mc, _, _ = _modes_at(omega, mu, 0.5 * h)
+    n0 = _node_modes(omega, mu, 0.5 * h * gx[7])
+    n1 = _node_modes(omega, mu, 0.5 * h * gx[6])
+    n2 = _node_modes(omega, mu, 0.5 * h * gx[5])
+    n3 = _node_modes(omega, mu, 0.5 * h * gx[4])
+    part0 = part1 = part2 = part3 = 0.0
+    for p in range(npan):
+        if p > 0 and p % V2_RESEED == 0:
+            Ew, Mc, _, _ = _modes_at(omega, mu, (p + 0.5) * h)
+        DE = D * (Ew * (1.0 + Mc))
+        BE = Bp * Ew
+        part0 += _pair_v2(DE, BE, Mc, n0)
+        part1 += _pair_v2(DE, BE, Mc, n1)
+        part2 += _pair_v2(DE, BE, Mc, n2)
+        part3 += _pair_v2(DE, BE, Mc, n3)
+        Ew *= step_w
+        Mc += step_m * (1.0 + Mc)
     acc = 0.0
-    for k in range(n // 2):
-        ew_p, m_p, ew_m, m_m = _modes_at(omega, mu, 0.5 * h * gx[n - 1 - k])
-        el_p = ew_p * (1.0 + m_p)
-        el_m = ew_m * (1.0 + m_m)
-        Ew, Mc = Ew0, Mc0
-        part = 0.0
-        for p in range(npan):
-            if p > 0 and p % V2_RESEED == 0:
-                Ew, Mc, _, _ = _modes_at(omega, mu, (p + 0.5) * h)
-            DE = D * (Ew * (1.0 + Mc))
-            BE = Bp * Ew
-            vp = (DE * el_p).real - (BE * ew_p * (Mc + m_p * (1.0 + Mc))).real
-            vm = (DE * el_m).real - (BE * ew_m * (Mc + m_m * (1.0 + Mc))).real
-            part += vp * vp + vm * vm
-            Ew *= step_w
-            Mc += step_m * (1.0 + Mc)
-        acc += gw[n - 1 - k] * part
+    acc += gw[7] * part0
+    acc += gw[6] * part1
+    acc += gw[5] * part2
+    acc += gw[4] * part3
     return 0.5 * h * acc
 
 

@@ -77,6 +77,8 @@ from .flow import (
     I_RES,
     deriv_bound,
     flow,
+    flow_from,
+    flow_start,
     forcing,
     part_bounds,
     state_bounds,
@@ -100,10 +102,15 @@ C_NIMP_TOTAL, C_NIMP_REC, C_NSEG_REC, C_NZERO, C_NIMP_L, C_SEG_STEP = range(6)
 N_CNT = 6
 # Slots of the pause snapshot ``sec`` (``run_kernel_until``): the start of the segment that
 # contains t_pause (t0, z_m, z_m', z_b, z_b', mode), the time the segment had reached, and
-# the counters and window integrals as they were at the segment start.
+# the counters and window integrals as they were at the segment start; from S_STACK on, the
+# kernel's scratch (the bisection stack of ``_interval_max``: the kernel allocates nothing).
 (S_T0, S_ZM, S_VM, S_ZB, S_VB, S_MODE, S_TREACHED, S_NIMP, S_NIMP_L, S_NSTICK, S_TSTUCK_ALL,
- S_TSTUCK_WIN, S_INT_VM2, S_INT_VB2, S_NIMP_REC, S_NSEG_REC) = range(16)
-N_SEC = 16
+ S_TSTUCK_WIN, S_INT_VM2, S_INT_VB2, S_NIMP_REC, S_NSEG_REC, S_STACK) = range(17)
+# Depth of the bisection of ``_interval_max`` (intervals shorter than MIN_BISECT are
+# not split further), and the length of its stack (6 numbers an interval)
+MAX_BISECT = 24
+N_STACK = 6 * MAX_BISECT
+N_SEC = S_STACK + N_STACK
 
 # Walls (w = z_m - z_b = +1 and -1; impacts' ``wall`` column, first_contact's result).
 # Segment modes (cur[CUR_MODE], seg[:, 5]): free flight, or stuck on wall WALL_L / WALL_R
@@ -139,7 +146,7 @@ N_STEP_ITER = 3
 ROUNDOFF = 8.0 * 2.220446049250313e-16   # a few ulps: contact/release at this gap is exact
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def _floor(part, s, x, rate):
     """Resolution of a computed z^(n) of size |x| that changes at ``rate`` per unit time.
 
@@ -149,7 +156,7 @@ def _floor(part, s, x, rate):
     return ROUNDOFF * (1.0 + abs(x) + part + abs(rate) * (1.0 + s))
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def _step_bounds(osc, z, v, b1, s, h_cap):
     """Bounds for a step from local time s: the parts' sizes P0 ... P3 at s (for the
     floors), and bounds B2, B3, B4 of |z''|, |z'''|, |z''''| on [s, s + h_cap], each the
@@ -163,7 +170,7 @@ def _step_bounds(osc, z, v, b1, s, h_cap):
     return P0, P1, P2, P3, min(Q2, T2), min(Q3, T3), min(Q4, T4)
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def _safe_step(gap, closing, B):
     """Largest h with gap - closing h - B h^2/2 >= 0 for all [0, h] (B >= 0).
 
@@ -185,9 +192,6 @@ def _safe_step(gap, closing, B):
 # x_max refinement: a stationary point of z is placed to within EXTREMUM_DS / rate in local
 # time, then z there is corrected by its Taylor term (error ~ (rate ds)^3 |z|, below round-off)
 EXTREMUM_DS = 1e-6
-# Depth of the bisection stack of ``_interval_max`` (intervals shorter than MIN_BISECT are
-# not split further)
-MAX_BISECT = 24
 MIN_BISECT = 1e-9
 
 
@@ -196,9 +200,8 @@ def _extremum(osc, start, pa, pb, s):
     """|z| at the zero of z' inside [sa, sb] (z'(sa) z'(sb) < 0), from the first guess s:
     safeguarded Halley iteration on z' (cubic: from the Hermite guess one step usually
     suffices), stopped once the next correction ds = -z'/z'' is below EXTREMUM_DS / rate,
-    with z + z' ds / 2 as the value there. start = (x0, v0, sth0, cth0) of the closed form,
+    with z + z' ds / 2 as the value there. start: the closed form's (``flow.flow_start``),
     pa = (sa, z, z') and pb = (sb, z, z') the interval's ends."""
-    x0, v0, sth0, cth0 = start
     sa, _, va = pa
     sb, _, vb = pb
     lo, hi = sa, sb
@@ -208,7 +211,7 @@ def _extremum(osc, start, pa, pb, s):
     ds_tol = EXTREMUM_DS / osc[I_RATE]
     z = 0.0
     for _ in range(60):
-        z, v, a, j, _ = flow(osc, x0, v0, sth0, cth0, s)
+        z, v, a, j, _ = flow_from(osc, start, s)
         if (v > 0.0) == (vlo > 0.0):
             lo = s
             vlo = v
@@ -252,7 +255,7 @@ def _hermite_max(za, va, zb, vb, h):
     return best, t_best
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def _may_exceed(za, va, zb, vb, h, B2, B4, m):
     """(max |z| on an interval of length h may exceed m, first guess of where):
     max(|z(a)|, |z(b)|) + B2 h^2/8 and the Hermite bound (``_hermite_max``) both bound it."""
@@ -263,12 +266,12 @@ def _may_exceed(za, va, zb, vb, h, B2, B4, m):
 
 
 @njit(cache=True, nogil=True)
-def _interval_max(osc, start, pa, pb, B2, B4, m):
+def _interval_max(osc, start, pa, pb, B2, B4, m, stack):
     """Running maximum m updated with max |z| over [sa, sb] (|z''| <= B2, |z''''| <= B4
     there): nothing more is computed where the bounds of ``_may_exceed`` stay <= m; a
     sign change of z' is refined by ``_extremum``, else the interval is bisected.
-    start = (x0, v0, sth0, cth0) of the closed form, pa = (sa, z, z'), pb = (sb, z, z')."""
-    x0, v0, sth0, cth0 = start
+    start: the closed form's (``flow.flow_start``), pa = (sa, z, z'), pb = (sb, z, z');
+    stack: N_STACK numbers of scratch (the intervals (a, z, z', b, z, z') to examine)."""
     sa, za, va = pa
     sb, zb, vb = pb
     m = max(m, abs(za), abs(zb))
@@ -277,14 +280,13 @@ def _interval_max(osc, start, pa, pb, B2, B4, m):
         return m
     if va * vb < 0.0:
         return max(m, _extremum(osc, start, pa, pb, sa + t))
-    stack = np.empty((MAX_BISECT, 6))         # intervals (a, z, z', b, z, z') to examine
-    stack[0, 0], stack[0, 1], stack[0, 2], stack[0, 3], stack[0, 4], stack[0, 5] = \
-        sa, za, va, sb, zb, vb
+    stack[0], stack[1], stack[2], stack[3], stack[4], stack[5] = sa, za, va, sb, zb, vb
     n = 1
     while n > 0:
         n -= 1
-        a_, za1, va1, b_, zb1, vb1 = stack[n, 0], stack[n, 1], stack[n, 2], stack[n, 3], \
-            stack[n, 4], stack[n, 5]
+        i = 6 * n
+        a_, za1, va1, b_, zb1, vb1 = stack[i], stack[i + 1], stack[i + 2], stack[i + 3], \
+            stack[i + 4], stack[i + 5]
         exceed, t = _may_exceed(za1, va1, zb1, vb1, b_ - a_, B2, B4, m)
         if not exceed:
             continue
@@ -294,17 +296,28 @@ def _interval_max(osc, start, pa, pb, B2, B4, m):
         if n + 2 > MAX_BISECT or b_ - a_ <= MIN_BISECT:
             continue
         mid = 0.5 * (a_ + b_)
-        zm, vm, _, _, _ = flow(osc, x0, v0, sth0, cth0, mid)
+        zm, vm, _, _, _ = flow_from(osc, start, mid)
         m = max(m, abs(zm))
-        stack[n, 0], stack[n, 1], stack[n, 2], stack[n, 3], stack[n, 4], stack[n, 5] = \
+        stack[i], stack[i + 1], stack[i + 2], stack[i + 3], stack[i + 4], stack[i + 5] = \
             a_, za1, va1, mid, zm, vm
-        stack[n + 1, 0], stack[n + 1, 1], stack[n + 1, 2], stack[n + 1, 3], \
-            stack[n + 1, 4], stack[n + 1, 5] = mid, zm, vm, b_, zb1, vb1
+        stack[i + 6], stack[i + 7], stack[i + 8], stack[i + 9], stack[i + 10], \
+            stack[i + 11] = mid, zm, vm, b_, zb1, vb1
         n += 2
     return m
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
+def _running_max(osc, start, pa, pb, B2, B4, m, stack):
+    """``_interval_max``, its first test inline: most step intervals end there (the bound
+    max(|z(a)|, |z(b)|) + B2 h^2/8 stays <= the running maximum), without a call."""
+    za, zb = abs(pa[1]), abs(pb[1])
+    h = pb[0] - pa[0]
+    if max(za, zb) + 0.125 * B2 * h * h <= max(m, za, zb):
+        return max(m, za, zb)
+    return _interval_max(osc, start, pa, pb, B2, B4, m, stack)
+
+
+@njit(cache=True, nogil=True, inline="always")
 def free_step(pt, ball, bounds, floors, released):
     """Step that provably reaches neither wall in free flight (module docstring).
 
@@ -370,7 +383,7 @@ def _wall_bounds(a, j, H, B2g, B4, floor_a, floor_j):
     return BL, BR, min(B2g, abs(a) + abs(j) * H + 0.5 * B4 * H * H)
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def free_step_local(osc, pt, ball, h_cap, root_tol, released):
     """``free_step`` with bounds for the step length H itself (``_wall_bounds``).
 
@@ -406,7 +419,7 @@ def free_step_local(osc, pt, ball, h_cap, root_tol, released):
     return h_best, 0, B_best, B4
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def free_contact(osc, pt, ball, B2, root_tol):
     """(wall, gap, closing speed) when contact is accepted at the point pt = (s, z, z',
     z'', z''', b1) of the LO's closed form, the ball at ball = (z_b, z_b') there; else
@@ -515,7 +528,7 @@ def _start(sg):
 
 
 @njit(cache=True, nogil=True, inline="always")
-def _advance_segment(osc, sg, s_stop, root_tol, acc, step0, s_pause):
+def _advance_segment(osc, sg, s_stop, root_tol, acc, step0, s_pause, stack):
     """Step segment ``sg`` (``Segment``; closed form of ``osc``) to its first event.
 
     Free flight: ``free_step_local`` steps, ``free_contact`` tests. Stuck (mode = wall):
@@ -530,13 +543,15 @@ def _advance_segment(osc, sg, s_stop, root_tol, acc, step0, s_pause):
     Pauses: before a step from s >= s_pause it returns EV_PAUSE; the caller stores s and
     the closed form there in acc[A_SEG_S:A_SEG_B1 + 1], and calling again with step0 = the
     returned index (1 for a new segment) resumes with bit-identical numbers (every other
-    quantity of the loop is recomputed each step). s_pause = inf: no pause.
-    The step loop stays in one function on purpose (hot path): per-step helpers taking
-    arrays cost ~1% more instructions even inlined (reference counting), 3% as calls.
+    quantity of the loop is recomputed each step). s_pause = inf: no pause. stack: scratch
+    of ``_interval_max`` (N_STACK numbers).
+    The step loop stays in one function on purpose (hot path): its helpers are inlined
+    (as calls they cost ~20 % of the kernel's time) and ``run_kernel_until`` runs without
+    numba's reference counting (another ~20 %).
     """
     mode, in_window = sg.mode, sg.in_window
     zm0, vm0, sth0, cth0 = _start(sg)
-    start = (zm0, vm0, sth0, cth0)
+    start = flow_start(osc, zm0, vm0, sth0, cth0)
     ball = (sg.zb0, sg.vb0)
     h_cap = 1.0 / osc[I_RATE]
     if step0 > 1:
@@ -544,7 +559,7 @@ def _advance_segment(osc, sg, s_stop, root_tol, acc, step0, s_pause):
             acc[A_SEG_J], acc[A_SEG_B1]
     else:
         s = 0.0
-        z, v, a, j, b1 = flow(osc, zm0, vm0, sth0, cth0, 0.0)
+        z, v, a, j, b1 = flow_from(osc, start, 0.0)
     B4 = 0.0
     gap = 0.0
     closing = 0.0
@@ -569,16 +584,16 @@ def _advance_segment(osc, sg, s_stop, root_tol, acc, step0, s_pause):
                 if wall != 0:
                     return EV_IMPACT, wall, (s, z, v, a, j, b1), gap, closing, steps
             break
-        z1, v1, a1, j1, b11 = flow(osc, zm0, vm0, sth0, cth0, s_new)
+        z1, v1, a1, j1, b11 = flow_from(osc, start, s_new)
         if in_window:
-            m = _interval_max(osc, start, (s, z, v), (s_new, z1, v1), B2, B4,
-                              acc[A_XMAX_WIN])
+            m = _running_max(osc, start, (s, z, v), (s_new, z1, v1), B2, B4,
+                             acc[A_XMAX_WIN], stack)
             acc[A_XMAX_WIN] = m
             if m > acc[A_XMAX_ALL]:
                 acc[A_XMAX_ALL] = m
         else:
-            acc[A_XMAX_ALL] = _interval_max(osc, start, (s, z, v), (s_new, z1, v1), B2, B4,
-                                            acc[A_XMAX_ALL])
+            acc[A_XMAX_ALL] = _running_max(osc, start, (s, z, v), (s_new, z1, v1), B2, B4,
+                                           acc[A_XMAX_ALL], stack)
         s, z, v, a, j, b1 = s_new, z1, v1, a1, j1, b11
         acc[A_NEVAL] += 1.0
         if mode == MODE_FREE:
@@ -784,7 +799,11 @@ def run_kernel(kp, ks, imp, seg):
     return run_kernel_until(kp, ks, imp, seg, math.inf, sec)
 
 
-@njit(cache=True, nogil=True)
+# _nrt=False: numba's option to compile without its runtime (numba's own extending
+# example, ``register_jitable(_nrt=False)``): no reference counting of the arrays the
+# inlined helpers pass around (atomic increments, ~20 % of the kernel's time), and nothing
+# in it or its callees may allocate (compile error if one does).
+@njit(cache=True, nogil=True, _nrt=False)
 def run_kernel_until(kp, ks, imp, seg, t_pause, sec):
     """``run_kernel`` that also returns RC_PAUSED once the trajectory reaches t_pause.
 
@@ -813,7 +832,7 @@ def run_kernel_until(kp, ks, imp, seg, t_pause, sec):
         if t0 < t_tr:
             s_stop = min(s_stop, t_tr - t0)
         event, wall, pt, gap, closing, steps = _advance_segment(
-            osc, sg, s_stop, root_tol, acc, step0, t_pause - t0)
+            osc, sg, s_stop, root_tol, acc, step0, t_pause - t0, sec[S_STACK:])
         if event == EV_PAUSE:
             _snapshot(sec, cur, acc, cnt, t0 + pt[0])
             acc[A_SEG_S], acc[A_SEG_Z], acc[A_SEG_V], acc[A_SEG_A], acc[A_SEG_J], \

@@ -154,8 +154,8 @@ def _atlas(model: dict, simulation: dict) -> None:
 
 #: warm-up tasks: name -> (function, tasks whose compiled kernels it reuses: it starts once
 #: they are in the cache); ready tasks start in this order. Compile CPU measured cold, one
-#: process, in this order: seeds ~16 s (1:1 maps, seeds, orbit solver), shooting ~18 s,
-#: core ~12 s more (event kernel; the periodic shortcut reuses the orbit solver), stability
+#: process, in this order: seeds ~13-16 s (1:1 maps, seeds, orbit solver), shooting ~13-18 s,
+#: core ~17 s more (event kernel; the periodic shortcut reuses the orbit solver), stability
 #: map ~7 s more (its column kernel), lyapunov ~4 s; the rest reuse these. On 2 workers:
 #: seeds then core on one, shooting then the stability map on the other (~33 s).
 TASKS = {
