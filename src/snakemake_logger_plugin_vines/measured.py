@@ -9,8 +9,9 @@ the console log).
 
 #: where the numbers come from
 SOURCE = ("measured on 2 shared, loaded cores: the full study (config/config.yaml, paper "
-          "and all; 2 threads a job; before the chunked stages were split) and the smoke "
-          "run (config/smoke.yaml, all; 1 thread)")
+          "and all; 2 threads a job; before the chunked stages were split; the stages "
+          "design_robust, uncertainty, shock and model_ladder run alone on the full config) "
+          "and the smoke run (config/smoke.yaml, all; 1 thread)")
 #: run -> the chunked stages its costs measured as one job per entry (before they were split
 #: into chunk jobs): ``cost`` spreads an entry's time over its chunk jobs
 WHOLE = {"paper": ("robust_map", "orbit_atlas", "basin_slice", "lyapunov", "design",
@@ -29,35 +30,41 @@ MEASURED = {
         'extract_measures': (9, 2.01, 4.38),
         'lyapunov': (4, 9.72, 19.35),
         'map_solve': (4, 2.56, 3.21),
+        'model_ladder': (1, 5.32, 5.32),
         'orbit_atlas': (3, 107.19, 146.91),
         'robust_map': (3, 579.73, 604.48),
+        'shock': (2, 1.84, 2.13),
         'simulate_grid': (12, 14.68, 37.27),
         'stability_map': (3, 5.42, 9.08),
         'timehistory': (5, 1.4, 1.42),
+        'uncertainty': (1, 247.73, 247.73),
         'work_precision': (2, 16.76, 24.96),
     },
     'smoke': {
-        'basin_slice': (2, 4.12, 4.34),
-        'basin_slice_chunk': (4, 2.96, 4.24),
-        'bifurcation_sweep': (5, 3.26, 3.42),
-        'boundaries': (4, 5.5, 7.3),
-        'convergence': (3, 2.55, 2.74),
-        'convergence_chunk': (2, 2.63, 2.86),
-        'design': (1, 5.56, 5.56),
-        'design_chunk': (2, 2.77, 3.03),
-        'design_robust': (1, 5.83, 7.66),
-        'extract_measures': (9, 2.19, 2.69),
-        'lyapunov': (4, 2.18, 2.97),
-        'lyapunov_chunk': (4, 3.56, 4.05),
-        'map_solve': (4, 3.74, 4.09),
-        'orbit_atlas': (3, 2.17, 2.31),
-        'orbit_atlas_chunk': (3, 3.03, 3.25),
-        'robust_map': (3, 2.28, 3.07),
-        'robust_map_chunk': (6, 3.85, 5.25),
-        'simulate_grid': (12, 2.81, 3.52),
-        'stability_map': (3, 3.33, 4.57),
-        'timehistory': (5, 2.49, 2.88),
-        'work_precision': (2, 4.39, 5.23),
+        'basin_slice': (2, 2.66, 2.73),
+        'basin_slice_chunk': (4, 1.91, 2.88),
+        'bifurcation_sweep': (5, 1.94, 2.91),
+        'boundaries': (4, 4.1, 4.66),
+        'convergence': (3, 2.39, 2.76),
+        'convergence_chunk': (2, 1.42, 1.71),
+        'design': (1, 4.49, 4.49),
+        'design_chunk': (2, 2.34, 2.46),
+        'design_robust': (1, 5.84, 5.84),
+        'extract_measures': (9, 1.67, 2.41),
+        'lyapunov': (4, 1.84, 2.2),
+        'lyapunov_chunk': (4, 2.31, 2.95),
+        'map_solve': (4, 2.73, 3.19),
+        'model_ladder': (1, 3.64, 3.64),
+        'orbit_atlas': (3, 1.45, 1.73),
+        'orbit_atlas_chunk': (3, 2.28, 2.96),
+        'robust_map': (3, 2.15, 2.48),
+        'robust_map_chunk': (6, 3.48, 3.86),
+        'shock': (1, 1.71, 1.71),
+        'simulate_grid': (12, 2.15, 3.15),
+        'stability_map': (3, 2.38, 2.62),
+        'timehistory': (5, 2.28, 3.24),
+        'uncertainty': (1, 4.09, 4.09),
+        'work_precision': (2, 4.21, 5.28),
     },
 }
 FIGURE_SECONDS = {'paper': 5.7, 'smoke': 4.0}
