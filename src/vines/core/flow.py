@@ -379,7 +379,10 @@ def _em1_pair(x):
     ch = math.cos(0.5 * x.imag)
     sb = 2.0 * sh * ch                      # sin(Im x)
     cm1 = -2.0 * sh * sh                    # cos(Im x) - 1
-    em_neg = -em / (1.0 + em)               # e^-Re(x) - 1
+    if em > -1.0:
+        em_neg = -em / (1.0 + em)           # e^-Re(x) - 1
+    else:                                   # e^Re(x) < 2^-54: e^-Re(x) - 1 = e^-Re(x)
+        em_neg = math.exp(-x.real) if x.real > -709.0 else math.inf
     return (complex(em * (1.0 + cm1) + cm1, (1.0 + em) * sb),
             complex(em_neg * (1.0 + cm1) + cm1, -(1.0 + em_neg) * sb))
 
