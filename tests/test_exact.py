@@ -6,6 +6,7 @@ import pytest
 from scipy.integrate import quad
 
 import vines
+from vines.core.exact import run_exact
 from vines.core.params import D_DEFAULT
 
 
@@ -177,6 +178,20 @@ def test_no_forcing_no_motion():
     res = vines.simulate(0.1, 1.0, 0.0)
     assert res.n_impacts == 0 and res.ke_ratio == 0.0 and res.xmax == 0.0
     assert res.regime == "no-impact"
+
+
+def test_long_unforced_decay_runs_to_the_end():
+    """F = 0, LO decaying under a ball drifting slowly across the cavity: one free flight
+    of 15000 units, e^(-d s / 2) far below round-off of 1 (it once divided by zero in the
+    v'^2 integral). Energy balance: the integral of z_m'^2 is E0/d (E(t_end) ~ e^-750)."""
+    d, v0, vb = 0.05, 1e-4, 5e-5
+    p = vines.ModelParams(eta=0.1, omega=1.0, F=0.0, d=d)
+    st = vines.SolverSettings(t_end=15000.0, t_transient=0.0, state0=(0.0, v0, 0.0, vb))
+    raw = run_exact(p, st)
+    assert raw.status == "ok" and raw.n_impacts == 0 and raw.t_last == 15000.0
+    # a sum of ~1.5e4 panels' Gauss rules: relative error <= n u ~ 2e-12
+    assert abs(raw.int_vm2 - 0.5 * v0 * v0 / d) <= 1e-11 * 0.5 * v0 * v0 / d
+    assert abs(raw.int_vb2 - vb * vb * 15000.0) <= 1e-14 * vb * vb * 15000.0
 
 
 def test_batch_matches_single_runs_and_thread_count():

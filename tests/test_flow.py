@@ -129,3 +129,18 @@ def test_velocity_square_integral_near_resonance(m, d, W, F, x0, v0):
         # quad is asked for a relative 1e-13 (epsrel) and the closed form has a few ulps of
         # round-off: 2e-13 is that request's bound, not this CPU's round-off
         assert abs(exact - num) <= 2e-13 * num
+
+
+@pytest.mark.parametrize("x", [-40.0, -700.0 + 0.3j, -800.0])
+def test_exponential_modes_far_in_the_decay(x):
+    """(e^x - 1, e^-x - 1) once e^Re(x) is below half an ulp of 1 (e^x - 1 rounds to -1;
+    the second once divided by 1 + (e^x - 1) = 0); e^-x overflows to inf beyond ~709."""
+    x = complex(x)
+    m_p, m_m = fl._em1_pair(x)
+    assert m_p == complex(-1.0, 0.0)
+    if x.real < -709.8:
+        assert m_m.real == math.inf
+        return
+    exact = math.exp(-x.real) * complex(math.cos(x.imag), -math.sin(x.imag))
+    # e^-Re(x) and cos, sin of Im(x) to a few ulps each: 1e-14 relative
+    assert abs(m_m - exact) <= 1e-14 * abs(exact)

@@ -373,13 +373,19 @@ def _v2_gauss(osc, x0, v0, sth0, cth0, L, gx, gw):
 
 @njit(cache=True, nogil=True)
 def _em1_pair(x):
-    """(e^x - 1, e^-x - 1) for complex x, without cancellation for small |x|."""
+    """(e^x - 1, e^-x - 1) for complex x, without cancellation for small |x| (the second
+    without dividing by 1 + (e^x - 1) = 0 once e^Re(x) rounds it to 0: long decays)."""
     em = math.expm1(x.real)
     sh = math.sin(0.5 * x.imag)
     ch = math.cos(0.5 * x.imag)
     sb = 2.0 * sh * ch                      # sin(Im x)
     cm1 = -2.0 * sh * sh                    # cos(Im x) - 1
-    em_neg = -em / (1.0 + em)               # e^-Re(x) - 1
+    if em > -1.0:
+        em_neg = -em / (1.0 + em)           # e^-Re(x) - 1
+    elif x.real > -709.0:                   # e^Re(x) < 2^-54 (em = -1): e^-Re(x) - 1
+        em_neg = math.exp(-x.real)          # rounds to e^-Re(x)
+    else:                                   # e^-Re(x) overflows
+        em_neg = math.inf
     return (complex(em * (1.0 + cm1) + cm1, (1.0 + em) * sb),
             complex(em_neg * (1.0 + cm1) + cm1, -(1.0 + em_neg) * sb))
 
