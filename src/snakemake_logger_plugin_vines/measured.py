@@ -8,37 +8,42 @@ the console log).
 """
 
 #: where the numbers come from
-SOURCE = ("measured on 2 shared, loaded cores: the full study (config/config.yaml, paper "
-          "and all; 2 threads a job; before the chunked stages were split; the stages "
-          "design_robust, uncertainty, shock and model_ladder run alone on the full config) "
-          "and the smoke run (config/smoke.yaml, all; 1 thread)")
+SOURCE = ("measured on 2 cores: the full study (config/config.yaml, paper and all, the "
+          "chunked stages split into chunk jobs; 2 threads a job; nothing else running; the "
+          "stages design_robust, uncertainty, shock and model_ladder run alone, loaded) and "
+          "the smoke run (config/smoke.yaml, all; 1 thread)")
 #: run -> the chunked stages its costs measured as one job per entry (before they were split
 #: into chunk jobs): ``cost`` spreads an entry's time over its chunk jobs
-WHOLE = {"paper": ("robust_map", "orbit_atlas", "basin_slice", "lyapunov", "design",
-                   "convergence")}
+WHOLE = {}
 #: what no estimate counts
 NOT_COUNTED = "Snakemake's own work, the numba compilation when its cache is cold"
 
 MEASURED = {
     'paper': {
-        'basin_slice': (2, 10.29, 16.76),
-        'bifurcation_sweep': (5, 4.85, 13.01),
-        'boundaries': (5, 11.69, 22.57),
-        'convergence': (3, 22.4, 60.17),
-        'design': (1, 31.76, 31.76),
+        'basin_slice': (2, 1.8, 1.83),
+        'basin_slice_chunk': (8, 2.25, 3.21),
+        'bifurcation_sweep': (5, 2.48, 3.68),
+        'boundaries': (5, 4.38, 7.24),
+        'convergence': (3, 1.66, 1.86),
+        'convergence_chunk': (7, 4.84, 5.67),
+        'design': (1, 8.79, 8.79),
+        'design_chunk': (5, 3.31, 3.59),
         'design_robust': (1, 254.57, 254.57),
-        'extract_measures': (9, 2.01, 4.38),
-        'lyapunov': (4, 9.72, 19.35),
-        'map_solve': (4, 2.56, 3.21),
+        'extract_measures': (9, 1.34, 2.25),
+        'lyapunov': (4, 0.99, 1.07),
+        'lyapunov_chunk': (19, 2.67, 3.19),
+        'map_solve': (4, 2.42, 3.08),
         'model_ladder': (1, 5.32, 5.32),
-        'orbit_atlas': (3, 107.19, 146.91),
-        'robust_map': (3, 579.73, 604.48),
+        'orbit_atlas': (3, 1.1, 1.27),
+        'orbit_atlas_chunk': (18, 20.26, 27.14),
+        'robust_map': (3, 1.08, 1.14),
+        'robust_map_chunk': (63, 10.18, 15.76),
         'shock': (2, 1.84, 2.13),
-        'simulate_grid': (12, 14.68, 37.27),
-        'stability_map': (3, 5.42, 9.08),
-        'timehistory': (5, 1.4, 1.42),
+        'simulate_grid': (12, 6.42, 10.16),
+        'stability_map': (3, 2.38, 2.6),
+        'timehistory': (5, 1.28, 1.34),
         'uncertainty': (1, 247.73, 247.73),
-        'work_precision': (2, 16.76, 24.96),
+        'work_precision': (2, 16.7, 24.62),
     },
     'smoke': {
         'basin_slice': (2, 2.66, 2.73),
@@ -67,4 +72,4 @@ MEASURED = {
         'work_precision': (2, 4.21, 5.28),
     },
 }
-FIGURE_SECONDS = {'paper': 5.7, 'smoke': 4.0}
+FIGURE_SECONDS = {'paper': 2.7, 'smoke': 4.0}
