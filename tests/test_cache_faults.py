@@ -263,3 +263,18 @@ def test_full_disk_while_numba_writes_its_cache(warm, tmp_path):
     for line in lines:
         m = SAVE_FAILED.match(line)
         assert m and m.group(2) == "No space left on device", line
+
+
+def test_kernels_run_as_python_with_numba_disabled(warm, tmp_path):
+    """``NUMBA_DISABLE_JIT=1`` (numba's switch for debugging a kernel in Python): njit gives
+    back the plain function, nothing is cached, and the command answers as compiled: the
+    same impacts (the same floating-point operations in the same order, to the root
+    tolerance of 1e-13 in time: the loose 1e-9 allows for a libm of another precision)."""
+    r = _run(SIMULATE, tmp_path / "unused", env={"NUMBA_DISABLE_JIT": "1"})
+    assert r.returncode == 0 and r.stderr == "", r.stderr
+    python, compiled = json.loads(r.stdout), json.loads(warm[1])
+    assert python["status"] == compiled["status"] == "ok"
+    assert python["n_impacts"] == compiled["n_impacts"] > 0
+    for key in ("ke_ratio", "xmax", "t_stuck"):
+        assert python[key] == pytest.approx(compiled[key], rel=1e-9, abs=1e-12), key
+    assert not (tmp_path / "unused").exists()

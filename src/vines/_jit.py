@@ -180,18 +180,20 @@ def _enable_cache(dispatcher) -> None:
 
 
 def njit(fn=None, *, cache: bool = False, **options):
-    """``numba.njit``; with ``cache=True`` the compiled code is kept in a ``HealingCache``."""
+    """``numba.njit``; with ``cache=True`` the compiled code is kept in a ``HealingCache``.
+    With ``NUMBA_DISABLE_JIT=1`` numba returns ``fn`` itself (no dispatcher, no cache)."""
     if fn is None:
         return functools.partial(njit, cache=cache, **options)
     dispatcher = _numba_njit(**options)(fn)
-    if cache:
+    if cache and hasattr(dispatcher, "py_func"):
         _enable_cache(dispatcher)
     return dispatcher
 
 
-def check_cache() -> bool:
-    """Check the cache files of vines' kernels now (``heal``), wherever numba keeps them;
+def check_cache(kernel) -> bool:
+    """Check the cache files of vines' kernels now (``heal``), wherever numba keeps them,
+    found from the cache of one of them, ``kernel`` (a dispatcher of ``njit(cache=True)``);
     True if any was damaged (the warm-up does this before its workers start)."""
-    from .core.flow import fundamentals
-    path = fundamentals._cache.cache_path        # None: no cache (compiled in memory)
+    cache = getattr(kernel, "_cache", None)
+    path = getattr(cache, "cache_path", None)    # None: no cache (compiled in memory)
     return heal(path) if path else False

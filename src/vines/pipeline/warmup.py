@@ -235,8 +235,9 @@ def _run_tasks(model: dict, simulation: dict, n_workers: int) -> None:
 def warm(model: dict, simulation: dict, n_workers: int = 2) -> float:
     """Compile the kernels (``TASKS`` on ``n_workers`` processes), write the stamp; seconds."""
     from .._jit import check_cache
+    from ..core.flow import fundamentals
     t0 = time.perf_counter()
-    check_cache()      # damaged cache files: removed here, in one line (workers are quiet)
+    check_cache(fundamentals)      # damaged cache files: removed here, in one line (workers are quiet)
     _run_tasks(model, simulation, max(1, n_workers))
     STAMP.parent.mkdir(exist_ok=True)
     fd, tmp = tempfile.mkstemp(dir=STAMP.parent, prefix=f".{STAMP.name}.")
