@@ -97,3 +97,17 @@ def test_relative_imports_resolve_to_modules():
 
 def test_no_import_circles_in_vines():
     assert _circles(_graph()) == []
+
+
+def test_no_private_names_imported_across_modules():
+    """A module's private names (``_name``) stay its own: no ``from .x import _name``."""
+    mods = _modules()
+    private = []
+    for module, (path, is_pkg) in mods.items():
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.ImportFrom) and _targets(node, module, is_pkg, mods):
+                private += [f"{module}: {a.name}" for a in node.names
+                            if a.name.startswith("_") and not a.name.startswith("__")
+                            and not any(t.endswith(f".{a.name}") for t in
+                                        _targets(node, module, is_pkg, mods))]
+    assert private == []

@@ -31,7 +31,7 @@ import numba
 from numba import njit as _numba_njit
 from numba.core import caching
 
-from ._numba_cache import _sources
+from ._numba_cache import kernel_sources
 
 PKG_DIR = Path(__file__).resolve().parent
 _said: set[str] = set()   # the messages of this process, each said once
@@ -72,7 +72,7 @@ def damaged(path: Path) -> str | None:
 def cache_folders(cache_path: str) -> list[Path]:
     """The folders of all vines' kernels, given the folder of one: numba keeps those of a
     source folder in its ``__pycache__`` or in ``<cache root>/<name>_<sha1 of its path>``."""
-    sources = sorted({PKG_DIR / Path(rel).parent for rel in _sources(PKG_DIR)})
+    sources = sorted({PKG_DIR / Path(rel).parent for rel in kernel_sources(PKG_DIR)})
     if Path(cache_path).name == "__pycache__":
         return [folder / "__pycache__" for folder in sources]
     root = Path(cache_path).parent

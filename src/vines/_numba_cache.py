@@ -32,7 +32,7 @@ COMPILED_SUBPACKAGES = ("core", "orbits")
 RACY_NS = 2_000_000_000
 
 
-def _sources(pkg_dir: Path) -> list[str]:
+def kernel_sources(pkg_dir: Path) -> list[str]:
     """Paths (relative to ``pkg_dir``, sorted) of the .py files of COMPILED_SUBPACKAGES."""
     out = []
     todo = list(COMPILED_SUBPACKAGES)
@@ -50,7 +50,7 @@ def _sources(pkg_dir: Path) -> list[str]:
 def sources_hash(pkg_dir: Path) -> str:
     """sha256 over the paths and contents of the sources of ``COMPILED_SUBPACKAGES``."""
     h = hashlib.sha256()
-    for rel in _sources(pkg_dir):
+    for rel in kernel_sources(pkg_dir):
         h.update(rel.encode() + b"\0" + (pkg_dir / rel).read_bytes() + b"\0")
     return h.hexdigest()
 
@@ -59,7 +59,7 @@ def sources_fingerprint(pkg_dir: Path) -> tuple[str, int]:
     """(sha256 over the paths, inodes, sizes and modification times of the same sources,
     the newest modification time in ns)."""
     parts, newest = [], 0
-    for rel in _sources(pkg_dir):
+    for rel in kernel_sources(pkg_dir):
         st = os.stat(os.path.join(pkg_dir, rel))
         parts.append(f"{rel}\0{st.st_ino}\0{st.st_size}\0{st.st_mtime_ns}")
         newest = max(newest, st.st_mtime_ns)

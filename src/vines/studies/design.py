@@ -266,7 +266,7 @@ def _clearance(log10_L) -> float:
     return 10.0 ** float(log10_L)
 
 
-def _compass(ev: Evaluator, start, value, steps, lower, upper) -> tuple:
+def compass(ev: Evaluator, start, value, steps, lower, upper) -> tuple:
     """Compass search in x = (eta, log10 L) from ``start``: try x +- step along each axis
     (inside [lower, upper]), move to the best strict improvement, else halve the steps,
     N_HALVINGS times. Returns (x, value)."""
@@ -306,7 +306,7 @@ def optimise(ev: Evaluator, eta_max: float, clearance_range_m: tuple[float, floa
             Ls[order[0] % n_clearance])
     for flat in order:
         i, j = divmod(int(flat), n_clearance)
-        x, v = _compass(ev, (etas[i], logs[j]), float(worst[i, j]), steps, lower, upper)
+        x, v = compass(ev, (etas[i], logs[j]), float(worst[i, j]), steps, lower, upper)
         if v < best[0]:
             best = (v, float(x[0]), _clearance(x[1]))
     return dict(eta=float(best[1]), clearance_m=float(best[2]), worst_ratio=best[0],

@@ -271,7 +271,7 @@ def robust_vines(problem, search, D: float, n_search: int, nominal: tuple,
     compass search from the ``nominal`` design (eta, L) too, so that the robust design is
     never worse than the nominal one on this objective; ``search``: the nominal
     ``design.DesignSearch`` (eta_max, range, grid)."""
-    from .design import _compass, optimise, search_grid
+    from .design import compass, optimise, search_grid
     ev = RobustEvaluator(problem, delta_grid(D, n_search) if n_search > 1 else [0.0],
                          n_threads)
     with progress.task(None, "robust design: runs from rest", "runs"):
@@ -283,7 +283,7 @@ def robust_vines(problem, search, D: float, n_search: int, nominal: tuple,
         steps = [0.5 * (etas[1] - etas[0]) if len(etas) > 1 else 0.0,
                  0.5 * (logs[1] - logs[0])]
         x0 = (nominal[0], math.log10(nominal[1]))
-        x, v = _compass(ev, x0, ev.worst([nominal])[0], steps, [etas[0], logs[0]],
+        x, v = compass(ev, x0, ev.worst([nominal])[0], steps, [etas[0], logs[0]],
                         [etas[-1], logs[-1]])
     if v < best["worst_ratio"]:
         moved = tuple(x) != x0
