@@ -25,7 +25,7 @@ def point_label(ds, i):
     return f"{lab}: {par}" if lab and not lab.startswith("eta=") else par
 
 
-def colours(n):
+def point_colours(n):
     """n distinct colours: the palette's categorical ones, or steps of the colour map."""
     return palette.CATEGORICAL[:n] if n <= len(palette.CATEGORICAL) else palette.sequence(n)
 
@@ -39,7 +39,7 @@ def log_values(y, floor=FLOOR):
 def window_panels(ax_ke, ax_x, ax_leg, w):
     t = w["t_end"].values
     n_p = w.sizes["point"]
-    col = colours(n_p)
+    col = point_colours(n_p)
     styles = {"length": "-", "fraction": "--"}
     ref_k = t.size - 1
     for i in range(n_p):
@@ -87,7 +87,7 @@ def window_panels(ax_ke, ax_x, ax_leg, w):
 def vstick_panels(ax_d, ax_c, ax_leg, v):
     vs = v["v_stick"].values
     n_p = v.sizes["point"]
-    col = colours(n_p)
+    col = point_colours(n_p)
     d_ke, z1 = log_values(v["d_ke"].values)
     d_x, z2 = log_values(v["rel_d_xmax"].values)
     ident = (z1 & z2).all(axis=0)                   # every point bitwise equal to reference
