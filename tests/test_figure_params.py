@@ -28,16 +28,31 @@ def _names(tree) -> set:
             | {n.attr for n in ast.walk(tree) if isinstance(n, ast.Attribute)})
 
 
-def _plotting_readers() -> set:
-    """Functions of vines.plotting (outside the palette) that read the colour map."""
-    out = set()
+def _plotting_functions() -> dict:
+    """Every function of vines.plotting (outside the palette): name -> the names it uses
+    (functions of one name in several modules together)."""
+    used = {}
     for f in PLOTTING.glob("*.py"):
         if f.name == "palette.py":
             continue
         for node in ast.walk(ast.parse(f.read_text())):
-            if isinstance(node, ast.FunctionDef) and _names(node) & READERS:
-                out.add(node.name)
-    return out
+            if isinstance(node, ast.FunctionDef):
+                used.setdefault(node.name, set()).update(_names(node) - {node.name})
+    return used
+
+
+def _plotting_readers(direct=False) -> set:
+    """Functions of vines.plotting (outside the palette) that read the colour map: directly,
+    or (``direct`` False) also through the functions that do (to a fixed point; by name, so
+    a reader's name used as a variable elsewhere counts as a call: keep them apart)."""
+    used = _plotting_functions()
+    readers = {name for name, names in used.items() if names & READERS}
+    while not direct:
+        more = {name for name, names in used.items() if names & readers} | readers
+        if more == readers:
+            break
+        readers = more
+    return readers
 
 
 def _figures_reading_the_colormap() -> set:
@@ -54,8 +69,11 @@ def _colormap_figures_of_the_rules() -> set:
     return set(ast.literal_eval(m.group(1)))
 
 
-def test_only_contour_maps_read_the_colormap_in_plotting():
-    assert _plotting_readers() == {"contour_map"}
+def test_only_contour_maps_and_the_colormap_figures_panels_read_the_colormap():
+    # contour maps (Figs 7, 12, robust_tet), the search grid of design, the contours (and
+    # the colours of many points) of convergence
+    assert _plotting_readers(direct=True) == {"contour_map", "_search_panel", "grid_panels",
+                                              "point_colours"}
 
 
 def test_colormap_param_goes_exactly_to_the_figures_that_read_it():

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
-from vines.core.linear import stuck_amplitude, stuck_peak
+from vines.core.linear import stuck_amplitude, stuck_peak, stuck_steady_state
 from vines.core.params import D_DEFAULT
 
 
@@ -78,3 +78,24 @@ def test_peak_of_fig11_values():
         omega, peak = stuck_peak(eta, 0.4)
         # w is quoted to 8 decimals (rounding <= 5e-9); the peak itself is solved to round-off
         assert omega == pytest.approx(w, abs=1e-8) and round(peak * 15) == mm
+
+
+@pytest.mark.parametrize("eta,W,F,d,phi", [(0.2, 0.7, 0.4, 0.3, 0.0), (0.5, 1.1, 0.4, 0.2, 1.0)])
+def test_steady_state_solves_eq28_and_has_its_amplitude(eta, W, F, d, phi):
+    # integrated from the closed form's state at t = 0, Eq. 28 stays on it
+    def rhs(t, y):
+        force = F * math.sin(W * t + phi) + d * W * F * math.cos(W * t + phi)
+        return [y[1], (force - d * y[1] - y[0]) / (1.0 + eta)]
+
+    h = 1e-6
+    z0 = stuck_steady_state(0.0, eta, W, F, d, phi)
+    v0 = (stuck_steady_state(h, eta, W, F, d, phi)
+          - stuck_steady_state(-h, eta, W, F, d, phi)) / (2 * h)
+    t = np.linspace(0.0, 3 * 2 * math.pi / W, 3001)
+    sol = solve_ivp(rhs, (0.0, t[-1]), [z0, v0], t_eval=t, rtol=1e-11, atol=1e-12,
+                    method="DOP853")
+    z = stuck_steady_state(t, eta, W, F, d, phi)
+    # v0's central difference is off by ~1e-10 (round-off / h): a transient of that size
+    assert np.max(np.abs(sol.y[0] - z)) < 1e-8
+    # 1000 samples a period: the sampled maximum is within (pi/1000)^2/2 of the amplitude
+    assert np.max(np.abs(z)) == pytest.approx(stuck_amplitude(eta, W, F, d), rel=1e-5)

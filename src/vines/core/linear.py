@@ -42,3 +42,11 @@ def stuck_peak(eta, F, d=D_DEFAULT):
     a = 1.0 + eta
     omega = np.sqrt(2.0 / (a + np.sqrt(a * a + 2.0 * a * d * d)))
     return omega[()], stuck_amplitude(eta, omega, F, d)
+
+
+def stuck_steady_state(t, eta, omega, F, d=D_DEFAULT, phi=0.0):
+    """The steady-state displacement z(t) (units of L) of Eq. 28 forced with the phase
+    ``phi``: F sin(omega t + phi) + d omega F cos(omega t + phi); the imaginary part of
+    H e^(i (omega t + phi)), H = F (1 + i d omega) / (1 - (1 + eta) omega^2 + i d omega)."""
+    H = F * (1 + 1j * d * omega) / (1 - (1 + eta) * omega ** 2 + 1j * d * omega)
+    return np.imag(H * np.exp(1j * (omega * t + phi)))

@@ -2,8 +2,12 @@
 (``layouts``), the one palette and the colour map (``palette``), impact directions
 (``impacts``), the stable 1:1 region of a stability map on other maps and the map's classes
 on a raster that follows its interpolated edge (``stable_region``),
-the regime of each point of a bifurcation sweep (``sweep_regimes``).
-Figure scripts use ``import vines.plotting as P``.
+the regime of each point of a bifurcation sweep (``sweep_regimes``); and the figures
+themselves, one function per figure that takes datasets and returns the figure, in the
+modules by subject (``sections``, ``maps``, ``sweeps``, ``bifurcation``, ``stuck_linear``,
+``basins``, ``atlas``, ``design``, ``shock``, ``model_ladder``, ``studies``).
+Figure scripts use ``import vines.plotting as P`` (and the figure's module): read the
+datasets, call the figure's function, ``P.save``.
 
 Figures only *read* the pipeline's datasets (``results/<run>/...``); restyling a figure
 never reruns a computation.
@@ -41,7 +45,6 @@ from .draw import (
     MapStyle,
     bifurcation_dots,
     branch_lines,
-    cell_edges,
     class_handles,
     class_map,
     common_range,
@@ -92,7 +95,7 @@ __all__ = [
     "stability", "sweep", "sweep_fixed", "sweep_points", "timehistory",
     # draw
     "C_BALL", "C_BRANCH", "C_LO", "CLASSES", "LABELS", "SYMBOLS", "bifurcation_dots",
-    "branch_lines", "class_handles", "cell_edges", "class_map", "common_range", "contour_map", "MapStyle",
+    "branch_lines", "class_handles", "class_map", "common_range", "contour_map", "MapStyle",
     "eigenvalue_panel", "figure", "fmt", "impact_handles", "impact_phase_panel", "metres",
     "no_impact_handle", "panel_label", "save", "shared_colorbar", "stable_edge", "stable_edge_handle", "hatch_cells", "hatch_region", "th_title",
     "time_history", "twin_measures",

@@ -1,13 +1,17 @@
 """Orbit atlases (``orbit_atlas`` datasets) on figures: the stable family group at each
 point, the simulation's regime in the same groups, and their agreement where the two grids
-share points. Reads datasets only."""
+share points (``agreement``); the atlas figure (``atlas_figure``: each atlas beside the
+simulation's regimes). Reads datasets only."""
 from __future__ import annotations
 
 import numpy as np
 import xarray as xr
+from matplotlib.patches import Patch
 
 from . import palette
-from .checks import FigureInputError, load, require
+from .bifurcation import curve_handles, draw_curves
+from .checks import FigureInputError, fixed_value, load, require
+from .draw import LABELS, class_map, figure, fmt, hatch_cells, panel_label
 
 #: category codes of the atlas map: 0 nothing found, 1 found but none stable, else 2 + the
 #: index of the group in palette.FAMILY_GROUPS
@@ -133,3 +137,96 @@ def agreement(ds: xr.Dataset, eta, omega, regime) -> dict:
             else:
                 misses.append((e, w, reg))
     return {"n": n, "agree": ok, "misses": misses}
+
+
+# ------------------------------------------------------------------ the figure
+
+def _atlas_panel(ax, ds, k, curves):
+    """The atlas at one F and the boundary curves ``curves`` (datasets at that F); returns
+    the class codes and the (curve type, family) pairs drawn."""
+    eta, W = ds["eta"].values, ds["omega"].values
+    codes, coexist = atlas_codes(ds)
+    class_map(ax, eta, W, codes.T, atlas_classes())
+    hatch_cells(ax, eta, W, coexist.T, hatch="xx", color="0.5")
+    _axes(ax, eta, W)
+    drawn = set()
+    for c in curves:
+        drawn |= draw_curves(ax, c)
+    families = sorted({fam for _, fam in drawn})
+    panel_label(ax, k, rf"orbit atlas, $F$ = {fmt(float(ds.attrs['F']))}"
+                + (f"; boundaries of {', '.join(families)}" if families else ""))
+    return codes, drawn
+
+
+def _sim_panel(ax, grid, k):
+    eta, W = grid["eta"].values, grid["omega"].values
+    regime = grid["regime"].isel(F=0).transpose("eta", "omega").values
+    class_map(ax, eta, W, sim_codes(regime).T, sim_classes())
+    _axes(ax, eta, W)
+    panel_label(ax, k, rf"simulation from rest (Fig. 12 grid), $F$ = "
+                       rf"{fmt(fixed_value(grid, 'F'))}")
+    return regime
+
+
+def _axes(ax, eta, W):
+    ax.set_xlim(eta.min(), eta.max())
+    ax.set_ylim(W.min(), W.max())
+    ax.set_xlabel(LABELS["eta"])
+    ax.set_ylabel(LABELS["omega"])
+
+
+def _report(ds, grid, regime):
+    codes, coexist = atlas_codes(ds)
+    F = float(ds.attrs["F"])
+    counts = {lab: int((codes == c).sum()) for c, (lab, _) in atlas_classes().items()}
+    print(f"F = {F}: atlas points by group {counts}; >= 2 groups stable at "
+          f"{int(coexist.sum())} of {coexist.size}")
+    if grid is not None:
+        agr = agreement(ds, grid["eta"].values, grid["omega"].values, regime)
+        print(f"F = {F}: simulation on an atlas family at {agr['n']} shared points, stable "
+              f"and admissible in the atlas at {agr['agree']}; others (eta, W, regime): "
+              + ", ".join(f"({e:.4g}, {w:.4g}, {r})" for e, w, r in agr["misses"]))
+
+
+def _legend(fig, drawn_atlas, drawn_sim, any_coexist, drawn_curves):
+    """One legend of what the panels draw, in their colours."""
+    handles = [Patch(facecolor=col, edgecolor="black", lw=0.5, label=lab)
+               for lab, col in legend_entries(drawn_atlas, drawn_sim)]
+    if any_coexist:
+        handles.append(Patch(facecolor="white", edgecolor="0.5", hatch="xx",
+                             label="atlas: >= 2 groups stable"))
+    handles += curve_handles(drawn_curves, note=False)
+    fig.legend(handles=handles, loc="outside lower center", ncol=3, fontsize=7, frameon=False)
+
+
+def atlas_figure(atlases, grids: dict, curves):
+    """Per atlas (one row each, sorted by F) the atlas with the boundary curves of
+    ``curves`` at its F, beside the regime from rest of ``grids[F]`` (Fig 12's grid)."""
+    n = len(atlases)
+    fig, axes = figure(n, 2, width=9.8, height=3.5 * n + 0.6)
+    drawn_atlas, drawn_sim, any_coexist, drawn_curves = [], [], False, set()
+    for i, ds in enumerate(atlases):
+        F = round(float(ds.attrs["F"]), 9)
+        codes, drawn = _atlas_panel(axes[i, 0], ds, 2 * i,
+                                    [c for c in curves if round(float(c.attrs["F"]), 9) == F])
+        drawn_atlas.append(codes.ravel())
+        drawn_curves |= drawn
+        if drawn:
+            print(f"F = {F}: boundary curves drawn on the atlas (type, family): "
+                  + ", ".join(f"{t} {fam}" for t, fam in sorted(drawn)))
+        any_coexist |= bool(atlas_codes(ds)[1].any())
+        grid = grids.get(round(float(ds.attrs["F"]), 9))
+        regime = None
+        if grid is None:
+            axes[i, 1].set_axis_off()
+            axes[i, 1].text(0.5, 0.5, "no Fig. 12 grid at this F", ha="center",
+                            transform=axes[i, 1].transAxes)
+        else:
+            regime = _sim_panel(axes[i, 1], grid, 2 * i + 1)
+            drawn_sim.append(sim_codes(regime).ravel())
+        _report(ds, grid, regime)
+    _legend(fig, np.concatenate(drawn_atlas), np.concatenate(drawn_sim or [[]]).astype(int),
+            any_coexist, drawn_curves)
+    fig.suptitle("atlas: finite search (absent = no seed reached the family); "
+                 "simulation: finite-time regime from rest", fontsize=8)
+    return fig

@@ -15,8 +15,24 @@ from matplotlib.ticker import MaxNLocator
 
 from ..data.builders import ragged_rows
 from . import palette
-from .checks import FigureInputError, load, require
-from .draw import LABELS, fit_y_to_window
+from .checks import FigureInputError, load, require, sweep_points
+from .draw import (
+    CLASSES,
+    LABELS,
+    bifurcation_dots,
+    branch_lines,
+    class_handles,
+    class_map,
+    figure,
+    fit_y_to_window,
+    fmt,
+    panel_label,
+    stable_edge,
+    stable_edge_handle,
+)
+from .layouts import zoom_figure, zoom_legend
+from .stable_region import class_raster, stable_at
+from .sweep_regimes import REGIME_ASYM, sweep_regimes
 
 #: colour of the asymmetric 1:1 branches (the symmetric one is C_BRANCH)
 C_ASYMMETRIC = palette.C_ASYMMETRIC
@@ -185,7 +201,6 @@ def _inset(ax, br, subs, sweep, outer_dim):
     a, b = a - pad, b + pad
     ys, dots = [], None
     if sweep is not None:
-        from .checks import sweep_points
         x, y = sweep_points(sweep, float(br[outer_dim].values[0]))
         m = (x >= a) & (x <= b)
         dots = x[m], y[m]
@@ -200,7 +215,6 @@ def _inset(ax, br, subs, sweep, outer_dim):
     ins = ax.inset_axes(_inset_box(ax, zoomed=(a, b, -top, top)))
     if dots is not None:
         ins.scatter(*dots, s=2.0, color="black", linewidths=0, rasterized=True)
-    from .draw import branch_lines
     branch_lines(ins, br.isel(point=_rows(br)[0]), label=False)
     for sub in subs:
         _branch_curves(ins, sub, label=False)
@@ -272,3 +286,100 @@ def draw_on_panels(fig, axes, F_values, paths, legend=True) -> list:
                    frameon=False, title=f"boundaries in ({LABELS['eta'].split()[-1]}, "
                                         f"{LABELS['omega'].split()[-1]})", title_fontsize=8)
     return handles
+
+
+# ------------------------------------------------------------------ the figures
+
+#: Fig 16: lower edge of the paper's Omega range (Figs 12, 16), marked when a map extends
+#: below it
+OMEGA_PAPER_MIN = 0.5
+#: Fig 16: W range of the zoom row on the tongue below OMEGA_PAPER_MIN
+TONGUE_ZOOM = (0.45, 0.53)
+
+
+def branches_figure(sw: xr.Dataset, branches, outer_dim: str, mark_asymmetric=False):
+    """Figs 6, 15: per branch dataset (one row each) the sweep ``sw`` zoomed with the
+    analytic 1:1 branch and the asymmetric branches born on it, and |lambda|; with
+    ``mark_asymmetric`` the dots of swept points on a stable asymmetric 1:1 orbit in
+    ``C_ASYMMETRIC``, labelled. One legend below."""
+    fig = zoom_figure(sw, continued_branches(branches), outer_dim=outer_dim)
+    draw_switched(fig, branches, sw, outer_dim)
+    if mark_asymmetric:
+        codes = sweep_regimes(sw)
+        for i, br in enumerate(branches):
+            _mark_asymmetric(fig.axes[2 * i], sw, float(br[outer_dim].values[0]), codes)
+    zoom_legend(fig)
+    return fig
+
+
+def _mark_asymmetric(ax, sw, outer, codes):
+    """Redraw the dots of the points on an asymmetric 1:1 orbit in C_ASYMMETRIC, with a
+    label."""
+    pts = np.flatnonzero(np.isclose(sw["outer_value"].values, outer, rtol=0, atol=1e-9))
+    x, y = sweep_points(sw, outer)
+    c = np.repeat(codes[pts], sw["row_size"].values[pts])
+    lo, hi = ax.get_xlim()
+    m = (c == REGIME_ASYM) & (x >= lo) & (x <= hi)
+    if m.any():
+        bifurcation_dots(ax, x[m], y[m], s=3.0, color=C_ASYMMETRIC,
+                         label="numerical, on a stable asymmetric 1:1 orbit")
+        print(f"omega = {outer}: {int(np.unique(x[m]).size)} swept points on an asymmetric "
+              f"1:1 orbit, eta {x[m].min():.4g} ... {x[m].max():.4g}")
+
+
+def _class_panel(ax, m, curves):
+    """The classes of the stability map ``m`` (finer than the map, ``class_raster``), its
+    stable edge and the boundary curves ``curves``; returns the (type, family) drawn."""
+    eta, W = m["eta"].values, m["omega"].values
+    class_map(ax, *class_raster(m), CLASSES)
+    stable_edge(ax, m)
+    if W.min() < OMEGA_PAPER_MIN:
+        ax.axhline(OMEGA_PAPER_MIN, color="black", ls="--", lw=0.9)
+    ax.set_xlim(eta.min(), eta.max())
+    ax.set_ylim(W.min(), W.max())
+    ax.set_xlabel(LABELS["eta"])
+    ax.set_ylabel(LABELS["omega"])
+    for s in ax.spines.values():
+        s.set_edgecolor("black")
+    return draw_curves(ax, curves)
+
+
+def class_figure(maps, curves: dict):
+    """Fig 16: per stability map (one column each, sorted by F) its classes over (eta, W)
+    with the boundary curves ``curves[F]``; a zoom row on the tongue below
+    ``OMEGA_PAPER_MIN`` when a map extends below it; one legend on the right."""
+    n = len(maps)
+    zoom = any(float(m["omega"].min()) < OMEGA_PAPER_MIN for m in maps)
+    fig, axes = figure(2 if zoom else 1, n, width=4.0 * n + 2.2, height=6.4 if zoom else 3.9,
+                       gridspec_kw={"height_ratios": [2.2, 1]} if zoom else {})
+    drawn = set()
+    for j, m in enumerate(maps):
+        F = float(m.attrs["F"])
+        if round(F, 9) not in curves:
+            raise FigureInputError(f"no boundary curves at F = {F} (curves at F = "
+                                   f"{sorted(curves)})")
+        for i in range(axes.shape[0]):
+            drawn |= _class_panel(axes[i, j], m, curves[round(F, 9)])
+        panel_label(axes[0, j], j, rf"$F$ = {fmt(F)}")
+        if zoom:
+            W = m["omega"].values
+            axes[1, j].set_ylim(max(TONGUE_ZOOM[0], W.min()), TONGUE_ZOOM[1])
+            panel_label(axes[1, j], n + j, rf"$F$ = {fmt(F)}, zoom: tongue below "
+                                           rf"$\Omega$ = {fmt(OMEGA_PAPER_MIN)}")
+            axes[0, j].axhspan(*axes[1, j].get_ylim(), fill=False, ec="0.3", lw=0.7, ls=":")
+        keys = sorted(CLASSES)
+        counts = {k: int((m["cls"].values == k).sum()) for k in keys}
+        stable_05 = stable_at(m, m["eta"].values, np.array([OMEGA_PAPER_MIN]))
+        print(f"F = {F}: class counts {counts}; stable at W = {OMEGA_PAPER_MIN} for "
+              f"{int(stable_05.sum())} of {stable_05.size} eta values")
+    handles = class_handles(CLASSES, {1: r" ($|\lambda_{\max}| < 1$)",
+                                      2: r" ($|\lambda_{\max}| < 1$)",
+                                      3: r" ($|\lambda_{\max}| > 1$)"})
+    handles.append(stable_edge_handle(r"$|\lambda_{\max}| = 1$ (interpolated)"))
+    if zoom:
+        handles.append(Line2D([], [], color="black", ls="--", lw=0.9,
+                              label=rf"$\Omega$ = {fmt(OMEGA_PAPER_MIN)} (lower edge of "
+                                    "Fig. 12)"))
+    handles += curve_handles(drawn)
+    fig.legend(handles=handles, loc="outside right center", fontsize=8, frameon=False)
+    return fig

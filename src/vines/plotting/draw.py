@@ -14,15 +14,17 @@ import xarray as xr  # noqa: E402
 from matplotlib import patheffects  # noqa: E402
 from matplotlib.colors import BoundaryNorm, ListedColormap, LogNorm  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402, F401  (re-exported for legends)
-from matplotlib.patches import Patch  # noqa: E402
-from matplotlib.ticker import MaxNLocator  # noqa: E402
+from matplotlib.patches import Patch, Rectangle  # noqa: E402
+from matplotlib.ticker import FuncFormatter, LogLocator, MaxNLocator, NullFormatter  # noqa: E402
 
 from ..core.conventions import WALL_L, WALL_R  # noqa: E402
+from ..core.grids import cell_edges  # noqa: E402
 from ..core.params import L_HALF_M  # noqa: E402
 from ..data.netcdf import temporary_beside  # noqa: E402
 from . import palette  # noqa: E402
 from .checks import FigureInputError  # noqa: E402
 from .impacts import SAME_WAY, TOWARDS, impact_direction, point_impacts  # noqa: E402
+from .stable_region import stability_margin  # noqa: E402
 
 #: axis labels (symbols and units)
 LABELS = {
@@ -334,7 +336,6 @@ _EDGE_HALO = [patheffects.Stroke(linewidth=2.7, foreground="black"), patheffects
 def stable_edge(ax, smap: xr.Dataset):
     """The |lambda_max| = 1 edge of the stable 1:1 region of the stability map ``smap``
     (interpolated between map points, ``stable_region.stability_margin``)."""
-    from .stable_region import stability_margin
     cs = ax.contour(smap["eta"].values, smap["omega"].values, stability_margin(smap),
                     levels=[0.0], colors=STABLE_EDGE["color"], linewidths=STABLE_EDGE["lw"])
     cs.set_path_effects(_EDGE_HALO)
@@ -346,18 +347,9 @@ def stable_edge_handle(label=r"edge of the stable 1:1 region ($|\lambda_{\max}| 
     return Line2D([], [], label=label, path_effects=_EDGE_HALO, **STABLE_EDGE)
 
 
-def cell_edges(v) -> np.ndarray:
-    """Edges of the cells of the grid points ``v`` (at least 2, increasing): half-way
-    between points, the end cells symmetric about their point."""
-    v = np.asarray(v, float)
-    mid = (v[1:] + v[:-1]) / 2
-    return np.concatenate([[2 * v[0] - mid[0]], mid, [2 * v[-1] - mid[-1]]])
-
-
 def hatch_cells(ax, x, y, mask, hatch="////", color="white"):
     """Hatch the cells (one per grid point, edges half-way between points) where ``mask``
     (len(y), len(x)) is True."""
-    from matplotlib.patches import Rectangle
     ex, ey = cell_edges(x), cell_edges(y)
     for j, i in zip(*np.nonzero(mask), strict=True):
         ax.add_patch(Rectangle((ex[i], ey[j]), ex[i + 1] - ex[i], ey[j + 1] - ey[j],
@@ -379,6 +371,26 @@ def hatch_region(ax, x, y, mask, hatch="////", color="white"):
 def no_impact_handle(what="no impact (the LO never reaches a wall)"):
     """Legend patch of the no-impact class of KE-ratio maps."""
     return Patch(facecolor=palette.NO_IMPACT, edgecolor="0.3", lw=0.5, label=what)
+
+
+def plain_log_ticks(axis, subs=(1.0, 2.0, 5.0)):
+    """Plain numbers at ``subs`` x 10^k on a log axis (the default labels every minor tick
+    of a short range, and they overlap)."""
+    axis.set_major_locator(LogLocator(base=10, subs=subs))
+    axis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+    axis.set_minor_formatter(NullFormatter())
+
+
+def summary_and_legend(fig, summaries, legend_ax=None, ncol=3):
+    """The tail of the design figures: each summary line printed (to the job's log) and all
+    as the figure's title; below the panels one legend of ``legend_ax``'s entries."""
+    for line in summaries:
+        print(line)
+    if summaries:
+        fig.suptitle("\n".join(summaries), fontsize=9)
+    if legend_ax is not None:
+        fig.legend(handles=legend_ax.get_legend_handles_labels()[0],
+                   loc="outside lower center", ncol=ncol, fontsize=8, frameon=False)
 
 
 def _log_ticks(cb, vmin, vmax):

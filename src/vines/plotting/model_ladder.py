@@ -9,6 +9,7 @@ import xarray as xr
 
 from . import palette
 from .checks import load, require
+from .draw import figure, panel_label
 
 C_SLOW = palette.OKABE_ITO["orange"]
 C_EXACT = "black"
@@ -135,3 +136,32 @@ def summary(ds: xr.Dataset, k: int) -> str:
         bands.append(f"within {float(tol):.0%}: {where} ({share:.0%} of the grid)")
     return f"eta = {float(p['eta']):g}, F = {float(p['F']):g}: " + "; ".join(bands) + \
         "; cost " + cost_line(ds, k)
+
+
+def ladder_figure(ladders):
+    """Per ladder two rows, one column per eta: ``frc_panel`` over ``error_panel`` with the
+    models' cost; one legend of every entry below."""
+    n = max(ds.sizes["eta"] for ds in ladders)
+    fig, axes = figure(2 * len(ladders), n, width=3.7 * n + 0.4,
+                       height=7.0 * len(ladders) + 1.4)
+    for row, ds in enumerate(ladders):
+        top, bottom = axes[2 * row], axes[2 * row + 1]
+        for k in range(ds.sizes["eta"]):
+            frc_panel(top[k], ds, k)
+            error_panel(bottom[k], ds, k)
+            eta, F = float(ds["eta"][k]), float(ds["F"][k])
+            panel_label(top[k], 2 * row * n + k, rf"$\eta$ = {eta:g}, $F$ = {F:g}")
+            panel_label(bottom[k], (2 * row + 1) * n + k, "slow flow against the exact orbits")
+            bottom[k].text(0.02, 0.02, cost_line(ds, k).replace(", ", "\n"),
+                           transform=bottom[k].transAxes, fontsize=6.5, va="bottom")
+            print(summary(ds, k))
+        for k in range(ds.sizes["eta"], n):
+            top[k].set_visible(False)
+            bottom[k].set_visible(False)
+    handles = {}
+    for ax in axes.ravel():
+        for h, label in zip(*ax.get_legend_handles_labels(), strict=True):
+            handles.setdefault(label, h)
+    fig.legend(handles=list(handles.values()), labels=list(handles), loc="outside lower center",
+               ncol=4 if n > 2 else 2, fontsize=7.5, frameon=False)
+    return fig

@@ -5,10 +5,10 @@ from __future__ import annotations
 
 import numpy as np
 import xarray as xr
-from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
 from . import palette
 from .checks import load, require
+from .draw import figure, panel_label, plain_log_ticks, summary_and_legend
 
 C_LO_ALONE, C_TMD = "0.45", palette.OKABE_ITO["blue"]
 C_VINES = palette.OKABE_ITO["orange"]
@@ -27,13 +27,6 @@ def shock(path) -> xr.Dataset:
                    finite=("vines_dissipated_fraction", "vines_by_impacts", "tmd_remaining",
                            "lo_alone_remaining", "tmd_dissipated_fraction",
                            "lo_alone_dissipated_fraction", "activation_energy"))
-
-
-def _plain_log_ticks(axis):
-    """Plain numbers at 1 x 10^k on a log axis."""
-    axis.set_major_locator(LogLocator(base=10))
-    axis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
-    axis.set_minor_formatter(NullFormatter())
 
 
 def curve_panel(ax, ds: xr.Dataset) -> None:
@@ -55,7 +48,7 @@ def curve_panel(ax, ds: xr.Dataset) -> None:
     ax.plot(float(ds["optimal_energy"]), float(ds["optimal_dissipated_fraction"]), "v",
             color="black", ms=6, label="VI NES best")
     ax.set_xscale("log")
-    _plain_log_ticks(ax.xaxis)
+    plain_log_ticks(ax.xaxis, subs=(1.0,))
     ax.set_ylim(-0.02, 1.02)
     ax.set_xlabel(r"initial energy $E_0 = M V_0^2/2$ (J)")
     ax.set_ylabel(f"fraction of $E_0$ dissipated in {ds.attrs['periods']:g} periods")
@@ -92,3 +85,18 @@ def summary(ds: xr.Dataset) -> str:
             f"{float(ds['activation_energy']):.3g} J), TMD "
             f"{float(ds['tmd_dissipated_fraction']):.4f}, LO alone "
             f"{float(ds['lo_alone_dissipated_fraction']):.4f}")
+
+
+def shock_figure(rows):
+    """One row per shock dataset: ``curve_panel`` and ``decay_panel``; one legend below."""
+    fig, axes = figure(len(rows), 2, width=10.0, height=3.9 * len(rows) + 0.7)
+    for i, ds in enumerate(rows):
+        curve_panel(axes[i, 0], ds)
+        decay_panel(axes[i, 1], ds)
+        where = rf"$\eta$ = {ds.attrs['eta']:g}, $L$ = {ds.attrs['clearance_m'] * 1e3:.3g} mm"
+        panel_label(axes[i, 0], 2 * i, f"dissipated against initial energy ({where})")
+        panel_label(axes[i, 1], 2 * i + 1, f"energy left in time ({where})")
+        axes[i, 1].legend(fontsize=7, loc="lower left", frameon=False)
+        print(summary(ds))
+    summary_and_legend(fig, [], axes[0, 0], ncol=3)
+    return fig

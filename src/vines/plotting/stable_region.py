@@ -11,6 +11,8 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
+from ..core.grids import cell_edges
+
 #: margin given to grid points without an admissible 1:1 orbit (cls 0, lambda_max NaN)
 NO_ORBIT_MARGIN = -1.0
 #: regime label of the from-rest runs on the 1:1 orbit (vines.core.regime)
@@ -39,8 +41,7 @@ def stable_at(smap: xr.Dataset, eta, omega) -> np.ndarray:
 
 def _subdivide(v, per_cell: int) -> np.ndarray:
     """``per_cell`` points to a cell of the grid ``v`` (centres of an even subdivision of
-    each cell, ``draw.cell_edges``)."""
-    from .draw import cell_edges
+    each cell, ``core.grids.cell_edges``)."""
     e = cell_edges(v)
     k = (np.arange(per_cell) + 0.5) / per_cell
     return (e[:-1, None] + k[None, :] * np.diff(e)[:, None]).ravel()

@@ -11,10 +11,7 @@ def main(sm):
     P.configure(sm)
     sw = P.sweep(sm.input.sweep[0])
     brs = sorted((P.branch(p) for p in sm.input.branches), key=lambda b: float(b["F"][0]))
-    outer_dim = sw.attrs.get("outer_parameter", "F")
-    fig = P.zoom_figure(sw, B.continued_branches(brs), outer_dim=outer_dim)
-    B.draw_switched(fig, brs, sw, outer_dim)
-    P.zoom_legend(fig)
+    fig = B.branches_figure(sw, brs, outer_dim=sw.attrs.get("outer_parameter", "F"))
     P.save(fig, sm.output.pdf, sm.output.png, dpi=200)
 
 

@@ -1,0 +1,270 @@
+"""The absorber design figures (docs/design.md): transmissibility over the band and the
+search grid (``design``), the worst case over a drifting host (``design_robust``) and the
+design with uncertain parts (``uncertainty``), for the LO alone (grey), the TMD (blue) and
+the VI NES (orange)."""
+from __future__ import annotations
+
+import numpy as np
+from matplotlib.colors import LogNorm
+from matplotlib.patches import Patch
+
+from ..core.grids import cell_edges, log_cell_edges
+from . import palette
+from .checks import load, require
+from .draw import LABELS, figure, fmt, panel_label, plain_log_ticks, summary_and_legend
+
+C_LO_ALONE, C_TMD, C_VINES = "0.45", palette.OKABE_ITO["blue"], palette.OKABE_ITO["orange"]
+#: uncertainty: regime groups -> colour (the regime figures' colours)
+REGIME_COLOURS = {"no-impact": palette.REGIMES[0][1], "1:1": palette.REGIMES[1][1],
+                  "other periodic": palette.REGIMES[3][1],
+                  "irregular": palette.REGIMES[4][1], "chatter": palette.REGIMES[5][1]}
+#: uncertainty: the two systems compared (variable prefix, label, colour)
+SYSTEMS = (("vines", "VI NES", C_VINES), ("tmd", "TMD", C_TMD))
+
+
+# ------------------------------------------------------------------ design
+
+def design(path):
+    """A design dataset (stage ``design``), checked."""
+    ds = load(path)
+    require(ds, coords=("omega", "amplitude"), min_size=1,
+            finite=("lo_alone_ratio", "tmd_ratio", "vines_ratio", "F"))
+    return ds
+
+
+def _curve_panel(ax, ds, j, k):
+    W = ds["omega"].values
+    ax.plot(W, ds["lo_alone_ratio"].values, color=C_LO_ALONE, lw=1.6, label="LO alone")
+    ax.plot(W, ds["tmd_ratio"].values, color=C_TMD, lw=1.6,
+            label=rf"optimal TMD ($\eta$ = {fmt(float(ds['tmd_eta']))})")
+    ax.plot(W, ds["vines_ratio"].values[j], "o-", color=C_VINES, ms=3, lw=1.4,
+            label="VI NES, from rest")
+    if "vines_ratio_any_attractor" in ds:
+        ax.plot(W, ds["vines_ratio_any_attractor"].values[j], "--", color=C_VINES, lw=1.4,
+                label="VI NES, worst attractor")
+    ax.plot(float(ds["vines_peak_omega"][j]), float(ds["vines_peak_ratio"][j]), "v",
+            color="black", ms=6, label="VI NES worst from rest (refined)")
+    ax.set_yscale("log")
+    plain_log_ticks(ax.yaxis)
+    ax.set_xlabel(LABELS["omega"])
+    ax.set_ylabel(r"$x_{\max}/A$")
+    A, F = float(ds["amplitude"][j]), float(ds["F"][j])
+    panel_label(ax, k, rf"$A$ = {fmt(A * 1e3)} mm, $F$ = {F:.3g}")
+
+
+def _search_panel(fig, ax, ds, i):
+    """One cell per search-grid design over (L, eta): L logarithmic, cells halfway in log."""
+    L = ds["search_clearance"].values * 1e3
+    eta = ds["search_eta"].values
+    z = ds["search_worst_ratio"].values
+    norm = LogNorm(np.nanmin(z), np.nanmax(z)) if np.nanmin(z) > 0 else None
+    mesh = ax.pcolormesh(log_cell_edges(L), cell_edges(eta, single=0.1 * eta[0]), z,
+                         cmap=palette.colormap(), norm=norm, rasterized=True)
+    fig.colorbar(mesh, ax=ax, label=r"worst $x_{\max}/A$ from rest (log scale)")
+    ax.set_xscale("log")
+    plain_log_ticks(ax.xaxis)
+    ax.plot(float(ds["vines_clearance"]) * 1e3, float(ds["vines_eta"]), "*", color="white",
+            mec="black", ms=16)
+    ax.set_xlabel(r"clearance $L$ (mm)")
+    ax.set_ylabel(LABELS["eta"])
+    panel_label(ax, i, "search grid, star: chosen design")
+
+
+def _ratio_range(ds):
+    """y range (log) of a row's curve panels holding every curve of every amplitude (the
+    shared axis would otherwise keep the first panel's range and clip the others)."""
+    names = ("lo_alone_ratio", "tmd_ratio", "vines_ratio", "vines_ratio_any_attractor",
+             "vines_peak_ratio")
+    vals = np.concatenate([np.ravel(ds[v].values) for v in names if v in ds])
+    vals = vals[np.isfinite(vals) & (vals > 0)]
+    return 0.8 * float(vals.min()), 1.25 * float(vals.max())
+
+
+def design_summary(ds) -> str:
+    any_ = float(ds["vines_worst_ratio_any_attractor"])
+    return (f"worst x_max/A: LO alone {float(ds['lo_alone_worst_ratio']):.3g}, TMD "
+            f"{float(ds['tmd_worst_ratio']):.3g}, VI NES from rest "
+            f"{float(ds['vines_worst_ratio']):.3g}"
+            + ("" if np.isnan(any_) else f", over attractors {any_:.3g}")
+            + f" (eta = {float(ds['vines_eta']):.3g}, L = "
+              f"{float(ds['vines_clearance']) * 1e3:.3g} mm)")
+
+
+def design_figure(designs):
+    """Per design a row: x_max/A over the band, one panel per base amplitude, and the
+    worst ratio of every search-grid design over (L, eta) with the chosen one starred."""
+    rows = [(ds, ds.sizes["amplitude"], "search_worst_ratio" in ds) for ds in designs]
+    n = max(n_amp + int(search) for _, n_amp, search in rows)
+    fig, axes = figure(len(rows), n, width=3.6 * n + 0.8, height=3.9 * len(rows))
+    k = 0
+    for i, (ds, n_amp, search) in enumerate(rows):
+        for j in range(n_amp):
+            _curve_panel(axes[i, j], ds, j, k)
+            axes[i, j].sharey(axes[i, 0])
+            k += 1
+        axes[i, 0].set_ylim(*_ratio_range(ds))
+        if search:
+            _search_panel(fig, axes[i, n - 1], ds, k)
+            k += 1
+        for j in range(n_amp, n - int(search)):
+            axes[i, j].set_visible(False)
+    summary_and_legend(fig, [design_summary(ds) for ds in designs], axes[0, 0], ncol=5)
+    return fig
+
+
+# ------------------------------------------------------------------ design_robust
+
+def robust(path):
+    """A design-over-drift dataset (stage ``design_robust``), checked."""
+    ds = load(path)
+    require(ds, coords=("delta", "robust_delta"), min_size=1,
+            finite=("lo_alone", "tmd", "vines", "robust_tmd", "robust_vines"))
+    return ds
+
+
+def _drift_panel(ax, ds, k):
+    x, xr = ds["delta"].values, ds["robust_delta"].values
+    ax.plot(x, ds["lo_alone"].values, color=C_LO_ALONE, lw=1.6, label="LO alone")
+    ax.plot(x, ds["tmd"].values, color=C_TMD, lw=1.6, label=r"TMD tuned at $\delta$ = 0")
+    ax.plot(xr, ds["robust_tmd"].values, "--", color=C_TMD, lw=1.6,
+            label="TMD re-tuned for the drift")
+    ax.plot(x, ds["vines"].values, "o-", color=C_VINES, ms=3, lw=1.4,
+            label=r"VI NES designed at $\delta$ = 0, from rest")
+    if "vines_any_attractor" in ds:
+        ax.plot(x, ds["vines_any_attractor"].values, ":", color=C_VINES, lw=1.4,
+                label="same, over attractors")
+    ax.plot(xr, ds["robust_vines"].values, "s--", color=C_VINES, ms=3, lw=1.4,
+            label="VI NES optimised for the drift, from rest")
+    ax.set_yscale("log")
+    plain_log_ticks(ax.yaxis)
+    ax.set_xlabel(r"host frequency drift $\delta$ (natural frequency $(1+\delta)\,\omega_0$)")
+    ax.set_ylabel(r"worst $x_{\max}/A$ over band and amplitudes")
+    ax.grid(True, which="both", lw=0.3, alpha=0.5)
+    panel_label(ax, k, _drift_designs(ds))
+
+
+def _drift_designs(ds) -> str:
+    def v(name):
+        return float(ds[name])
+    return (f"TMD f {v('tmd_frequency_ratio'):.3f} -> {v('robust_tmd_frequency_ratio'):.3f}; "
+            f"VI NES eta {v('vines_eta'):.3g}, L {1e3 * v('vines_clearance'):.3g} mm -> "
+            f"eta {v('robust_vines_eta'):.3g}, L {1e3 * v('robust_vines_clearance'):.3g} mm")
+
+
+def robust_summary(ds) -> str:
+    def w(name):
+        x = float(ds[name])
+        return "n/a" if np.isnan(x) else f"{x:.3g}"
+    return (rf"$|\delta| \leq$ {float(ds.attrs['mistuning']):g}, worst over the drift: LO alone "
+            f"{w('worst_lo_alone')}; TMD {w('worst_tmd')} (re-tuned {w('robust_worst_tmd')}); "
+            f"VI NES {w('worst_vines')} (optimised for the drift {w('robust_worst_vines')})")
+
+
+def robust_figure(entries):
+    """One panel per entry: the worst x_max/A against the host's drift delta, the designs
+    chosen at delta = 0 (solid) and those optimised for the drift (dashed)."""
+    fig, axes = figure(len(entries), 1, width=8.0, height=4.6 * len(entries))
+    for i, ds in enumerate(entries):
+        _drift_panel(axes[i, 0], ds, i)
+    summary_and_legend(fig, [robust_summary(ds) for ds in entries], axes[0, 0], ncol=3)
+    return fig
+
+
+# ------------------------------------------------------------------ uncertainty
+
+def study(path):
+    """An uncertainty dataset (stage ``uncertainty``), checked."""
+    ds = load(path)
+    require(ds, variables=("parameter", "regime_group", "vines_first_order",
+                           "vines_total_order", "tmd_first_order", "tmd_total_order"),
+            finite=("vines_worst_ratio", "tmd_worst_ratio", "regime_share", "vines_mean",
+                    "vines_q95", "vines_nominal", "tmd_mean", "tmd_q95", "tmd_nominal"))
+    return ds
+
+
+def _distribution_panel(ax, ds, k):
+    vals = [ds[f"{key}_worst_ratio"].values for key, _, _ in SYSTEMS]
+    lo, hi = min(v.min() for v in vals), max(v.max() for v in vals)
+    bins = np.geomspace(0.95 * lo, 1.05 * hi, 60)
+    for (key, label, colour), v in zip(SYSTEMS, vals, strict=True):
+        ax.hist(v, bins=bins, color=colour, alpha=0.75,
+                label=f"{label}: mean {float(ds[f'{key}_mean']):.3g}, "
+                      f"95 % {float(ds[f'{key}_q95']):.3g}")
+        ax.axvline(float(ds[f"{key}_nominal"]), color=colour, ls="--", lw=1.4)
+        ax.axvline(float(ds[f"{key}_q95"]), color=colour, ls=":", lw=1.6)
+    ax.set_xscale("log")
+    plain_log_ticks(ax.xaxis)
+    ax.set_xlabel(r"worst $x_{\max}/A$ over the band and amplitudes")
+    ax.set_ylabel("points")
+    ax.legend(fontsize=7, loc="upper center", frameon=False)
+    panel_label(ax, k, f"{ds.sizes['point']} points, dashed: exact parts, dotted: 95 %")
+
+
+def _indices_panel(ax, ds, k):
+    names = list(ds["parameter"].values)
+    x = np.arange(len(names))
+    width = 0.2
+    for s, (key, _, colour) in enumerate(SYSTEMS):
+        reliable = ds[f"{key}_index_reliable"].values.astype(bool)
+        for o, order in enumerate(("first_order", "total_order")):
+            v = ds[f"{key}_{order}"].values
+            ci = ds[f"{key}_{order}_ci"].values
+            pos = x + (2 * s + o - 1.5) * width
+            err = np.abs(np.stack([v - ci[:, 0], ci[:, 1] - v]))
+            bars = ax.bar(pos, np.nan_to_num(v), width, color=colour,
+                          alpha=1.0 if o else 0.55, edgecolor="black", lw=0.5,
+                          yerr=np.nan_to_num(err), capsize=2, error_kw={"lw": 0.8})
+            for b, ok, val in zip(bars, reliable, v, strict=True):
+                if not ok:
+                    b.set_hatch("////")
+                if val == 0.0:          # a part without any effect: exactly 0
+                    ax.text(b.get_x() + b.get_width() / 2, 0.02, "0", ha="center",
+                            va="bottom", fontsize=7, color=colour)
+    ax.axhline(0, color="black", lw=0.6)
+    top = max(1.0, float(np.nanmax([ds[f"{key}_{o}_ci"].values for key, _, _ in SYSTEMS
+                                    for o in ("first_order", "total_order")])))
+    ax.set_ylim(top=1.45 * top)
+    ax.set_xticks(x, names)
+    ax.set_ylabel("Sobol index")
+    handles = [Patch(color=C_VINES, alpha=0.55, label="VI NES first order"),
+               Patch(color=C_VINES, label="VI NES total"),
+               Patch(color=C_TMD, alpha=0.55, label="TMD first order"),
+               Patch(color=C_TMD, label="TMD total"),
+               Patch(facecolor="white", edgecolor="black", hatch="////",
+                     label="unreliable (wide interval)")]
+    ax.legend(handles=handles, fontsize=7, frameon=False, loc="upper center", ncol=3)
+    panel_label(ax, k, "Sobol indices, 95 % bootstrap intervals")
+
+
+def _regime_panel(ax, ds, k):
+    groups = list(ds["regime_group"].values)
+    shares = ds["regime_share"].values
+    ax.bar(range(len(groups)), shares, color=[REGIME_COLOURS[g] for g in groups],
+           edgecolor="black", lw=0.5)
+    for i, v in enumerate(shares):
+        ax.text(i, v + 0.02, f"{v:.0%}", ha="center", fontsize=8)
+    ax.set_xticks(range(len(groups)), groups, rotation=20)
+    ax.set_ylim(0, 1.12)
+    ax.set_ylabel("share of the points")
+    panel_label(ax, k, "VI NES regime at its worst point")
+
+
+def uncertainty_summary(ds) -> str:
+    return (f"VI NES eta {float(ds['vines_eta']):.3g}, L "
+            f"{float(ds['vines_clearance']) * 1e3:.3g} mm: worst x_max/A mean "
+            f"{float(ds['vines_mean']):.3g} (exact parts {float(ds['vines_nominal']):.3g}); "
+            f"TMD {float(ds['tmd_mean']):.3g} ({float(ds['tmd_nominal']):.3g}); VI NES "
+            f"better at {float(ds['vines_better_probability']):.0%} of the points; "
+            f"1:1 at the worst point {float(ds['efficient_probability']):.0%}")
+
+
+def uncertainty_figure(studies):
+    """Per study a row: the distribution of the worst ratio over the Sobol points, the
+    Sobol indices with their intervals, the VI NES's regime at its worst point."""
+    fig, axes = figure(len(studies), 3, width=15.0, height=4.4 * len(studies))
+    for i, ds in enumerate(studies):
+        _distribution_panel(axes[i, 0], ds, 3 * i)
+        _indices_panel(axes[i, 1], ds, 3 * i + 1)
+        _regime_panel(axes[i, 2], ds, 3 * i + 2)
+    summary_and_legend(fig, [uncertainty_summary(ds) for ds in studies])
+    return fig
