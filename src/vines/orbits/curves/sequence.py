@@ -11,7 +11,7 @@
    neimark-sacker -> neimark-sacker, admissibility-loss -> the grazing
    of the flight closest to a wall contact (``sequence_curves.grazing_guess``);
 2. each seed not on a traced curve of its kind is continued both ways in (eta, omega)
-   (``boundaries.trace``: the same tracer and box handling as the 1:1 curves);
+   (``tracer.trace``: the same tracer and box handling as the 1:1 curves);
 3. fold, flip, symmetry-breaking and neimark-sacker curves keep their stretches on
    admissible orbits of the family's kind (neimark-sacker: where the pair on the unit
    circle is complex); grazing curves are kept whole, except one lying on a grazing curve
@@ -24,12 +24,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..core.params import ModelParams, ParameterError
-from . import augmented as ag
-from .sequence import find_sequence, same_orbit, solve_sequence
-from .sequence_branches import ContinueSettings, continue_sequence
-from .sequence_curves import (
-    SequenceFamily,
+from ...core.params import ModelParams, ParameterError
+from ..continuation.sequence import ContinueSettings, continue_sequence
+from ..family import augmented as ag
+from ..family.family import Family
+from ..family.map_systems import (
     family_of,
     grazing_guess,
     make_system,
@@ -37,8 +36,9 @@ from .sequence_curves import (
     unknowns,
     with_values,
 )
+from ..family.sequence import find_sequence, same_orbit, solve_sequence
+from .tracer import NS_KEEP_TOL, Traced, pieces_of
 
-NS_TOL = 1e-6           # a kept neimark-sacker point has a complex pair this close to |mu| = 1
 GRAZE_MARGIN = 1e-3     # an admissibility loss seeds a grazing curve this close to contact
 EVENT_KINDS = {"fold": "fold", "flip": "flip", "symmetry-breaking": "symmetry-breaking",
                "neimark-sacker": "neimark-sacker", "admissibility-loss": "grazing"}
@@ -57,7 +57,6 @@ class _SequenceKit:
         return make_system(self.base, self.families[name], kind, graze, ("eta", "omega"))
 
     def keep(self, curve) -> list:
-        from .boundaries import pieces_of
         if curve.type == "grazing":
             if any(_same_points(curve, c, self.step) for c in self.grazing):
                 return []
@@ -78,22 +77,21 @@ def _same_points(a, b, step: float) -> bool:
     return bool(np.all(d.min(axis=1) <= 0.5 * step))
 
 
-def _on_family(system, z, fam: SequenceFamily) -> bool:
+def _on_family(system, z, fam: Family) -> bool:
     o = orbit_of(system, z)
     good = o is not None and o.admissible and o.symmetric == fam.symmetric
     if good and system.kind == "neimark-sacker":
         ev = o.eigenvalues
-        good = bool(np.any((np.abs(ev.imag) > 1e-9) & (np.abs(np.abs(ev) - 1.0) <= NS_TOL)))
+        good = bool(np.any((np.abs(ev.imag) > 1e-9) & (np.abs(np.abs(ev) - 1.0) <= NS_KEEP_TOL)))
     return good
 
 
 def sequence_boundaries(p: ModelParams, family: tuple, box, scan: tuple) -> list:
     """Kept curves of the family (walls, periods) in the box at p's F (module docstring);
-    scan = (n_scan, ``boundaries.CurveSettings``)."""
-    from .boundaries import _Traced
+    scan = (n_scan, ``tracer.CurveSettings``)."""
     n_scan, settings = scan
     kit = _SequenceKit(p, settings.step)
-    traced = _Traced(kit, box, settings)
+    traced = Traced(kit, box, settings)
     for seed in _seeds(kit, family, box, n_scan):
         traced.add(seed)
     return traced.kept
@@ -179,10 +177,10 @@ def _event_seed(kit: _SequenceKit, ev: dict, param: str):
     return fam.name, kind, graze, np.array(list(zs[:-1]) + [par["eta"], par["omega"]])
 
 
-def family_from_name(name: str, walls: str) -> SequenceFamily:
+def family_from_name(name: str, walls: str) -> Family:
     """The family of a curve of ``walls`` from its name ("WALLS/N[-sym|-asym]")."""
     periods = int(name.split("/")[1].split("-")[0])
-    return SequenceFamily(walls, periods, name.endswith("-sym"))
+    return Family(walls, periods, name.endswith("-sym"))
 
 
 def crossings(curve, walls: str, base: ModelParams, line: tuple) -> list:

@@ -21,8 +21,8 @@ import math
 
 import numpy as np
 
-from .._jit import njit
-from ..core.walls import WALL_L, WALL_R
+from ..._jit import njit
+from ...core.walls import WALL_L, WALL_R
 
 NL = 8                       # local variables of one flight
 N1 = 1 + NL                  # length of an order-1 jet

@@ -35,8 +35,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .. import progress
-from ..core.params import (
+from ... import progress
+from ...core.params import (
     MAX_INADMISSIBLE_DEFAULT,
     MAX_POINTS_MAX,
     PARAM_NAMES,
@@ -49,21 +49,23 @@ from ..core.params import (
     check_params_arg,
     check_real,
 )
-from . import augmented as ag
-from .arclength import Tracer
-from .sequence import (
+from ..family import augmented as ag
+from ..family.family import Family, check_periods, check_walls
+from ..family.map_systems import MapSystem, orbit_residual, with_values
+from ..family.sequence import (
     SequenceOrbit,
-    check_periods,
-    check_walls,
     find_sequence,
     flip_seeds,
     pitchfork_seeds,
     solve_sequence,
 )
-from .sequence_curves import MapSystem, SequenceFamily, orbit_residual, with_values
+from ..maps.newton import monodromy
+from .arclength import Tracer
 
 FLIP_NEAR = 1e-3        # a located flip needs an eigenvalue this close to -1 (not a pole)
-MAX_POINTS_DEFAULT = 2000
+#: most points of a branch of ``continue_sequence`` (not ``core.params.MAX_POINTS_DEFAULT``,
+#: the most points one step of ``continue_branch`` may need)
+MAX_BRANCH_POINTS_DEFAULT = 2000
 
 
 @dataclass(frozen=True)
@@ -79,7 +81,7 @@ class ContinueSettings:
 
     step: float | None = None
     switch: bool = False
-    max_points: int = MAX_POINTS_DEFAULT
+    max_points: int = MAX_BRANCH_POINTS_DEFAULT
     max_inadmissible: int = MAX_INADMISSIBLE_DEFAULT
 
 
@@ -148,7 +150,7 @@ class _System:
     def __init__(self, base: ModelParams, param: str, walls: str, periods: int):
         self.base, self.param = base, param
         self.walls, self.periods = walls, periods
-        self.fam = SequenceFamily(walls, periods, False)
+        self.fam = Family(walls, periods, False)
         self.s = np.full(len(walls), -1.0)
 
     def params(self, v) -> ModelParams:
@@ -186,19 +188,12 @@ class _System:
 
 
 def _tests(o: SequenceOrbit, t) -> dict:
-    B = _monodromy(o)
+    B = monodromy(o.jacobians)
     ev = o.eigenvalues
     return {"fold": float(t[4]), "flip": float(np.linalg.det(B + np.eye(4))),
             "branch": float(np.linalg.det(B - np.eye(4))),
             "ns": int(np.sum((np.abs(ev.imag) > 1e-9) & (np.abs(ev) > 1.0))),
             "adm": bool(o.admissible)}
-
-
-def _monodromy(o):
-    P = o.jacobians[0]
-    for J in o.jacobians[1:]:
-        P = J @ P
-    return P
 
 
 def continue_sequence(params: ModelParams, walls: str, periods: int, param: str, stop, *,
@@ -346,7 +341,7 @@ def _symmetry_breaking(sys_, st) -> SequenceOrbit | None:
     o1 = sys_.orbit(st.z1)
     if o1 is None or not o1.symmetric:
         return None
-    fam = SequenceFamily(sys_.walls, sys_.periods, True)
+    fam = Family(sys_.walls, sys_.periods, True)
     system = MapSystem(sys_.params(st.z1[4]), fam, "symmetry-breaking", (sys_.param,))
     z = ag.solve(system, st.z1)
     if z is None or not min(st.z0[4], st.z1[4]) <= z[4] <= max(st.z0[4], st.z1[4]):

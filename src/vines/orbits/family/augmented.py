@@ -23,11 +23,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..core.params import PARAM_NAMES
-from ..core.walls import WALL_L, WALL_R
-from . import jets
-from . import shooting as sh
-from . import shooting_kernels as sk
+from ...core.params import PARAM_NAMES
+from ...core.walls import WALL_L, WALL_R
+from ..jets import kernels as sk
+from ..jets import shooting as sh
+from ..jets import taylor as jets
 
 KINDS = {"symmetric": ("fold", "symmetry-breaking", "neimark-sacker", "grazing"),
          "asymmetric": ("fold", "flip", "neimark-sacker", "grazing")}
@@ -70,7 +70,7 @@ class Codim1System:
         z = np.asarray(z, dtype=float)
         p = self.par(z)
         k, wall = self.graze if self.graze is not None else (1, "arrival")
-        G, Gg = sk.codim1(self.m.tape, sh.FAMILIES.index(self.family), self._cond,
+        G, Gg = sk.codim1(self.m.tape, sh.ORBIT_KINDS.index(self.family), self._cond,
                           int(k), GRAZE_WALLS.index(wall), z[:self.nu],
                           (p["eta"], p["omega"], p["F"]),
                           float(z[self.nu]) if self.has_sg else 0.0)

@@ -30,16 +30,16 @@ from collections.abc import Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..core.params import PARAM_NAMES, ParameterError
-from ..core.walls import WALL_L, WALL_R
-from . import jets
-from . import shooting_kernels as kernels
-from .jets import cos, exp, sin
+from ...core.params import PARAM_NAMES, ParameterError
+from ...core.walls import WALL_L, WALL_R
+from . import kernels
+from . import taylor as jets
 from .tape import record
+from .taylor import cos, exp, sin
 
-FAMILIES = ("symmetric", "asymmetric")
+#: the two kinds of 1:1 orbits, each with its own shooting system
+ORBIT_KINDS = ("symmetric", "asymmetric")
 N_UNKNOWNS = {"symmetric": 4, "asymmetric": 5}
-MIRROR = np.diag([-1.0, -1.0, -1.0, 1.0])
 #: a number of the closed forms: a float or a Taylor jet (``jets.Jet``)
 Num = float | jets.Jet
 
@@ -127,7 +127,7 @@ def residual_jacobian(m: Model, family: str, u: ArrayLike, par: dict,
     parameters differentiated (in that order, after u). Compiled
     (``shooting_kernels.residual_jacobian``); ``residual_jacobian_jets`` is the reference."""
     u = np.asarray(u, dtype=float)
-    E, dE = kernels.residual_jacobian(m.tape, FAMILIES.index(family), u,
+    E, dE = kernels.residual_jacobian(m.tape, ORBIT_KINDS.index(family), u,
                                       float(par["eta"]), float(par["omega"]), float(par["F"]))
     n = len(u)
     return E, dE[:, list(range(n)) + [n + PARAM_NAMES.index(q) for q in free]]

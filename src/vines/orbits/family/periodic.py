@@ -34,9 +34,9 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._jit import njit
-from ..core.flow import I_F, I_W
-from ..core.params import (
+from ..._jit import njit
+from ...core.flow import I_F, I_W
+from ...core.params import (
     D_DEFAULT,
     R_DEFAULT,
     ModelParams,
@@ -45,12 +45,12 @@ from ..core.params import (
     check_bool,
     check_reals,
 )
-from ..core.walls import WALL_L, WALL_R
-from ._lapack import lambda_max_4
-from .affine import N_SEEDS_MAX, closed_form_kernel, closed_form_seeds, scan_seeds
-from .affine import scan as affine_scan
-from .maps import M_PHI, admissible_kernel, model_array
-from .newton import newton_sequence
+from ...core.walls import WALL_L, WALL_R
+from ..maps.affine import N_SEEDS_MAX, closed_form_kernel, closed_form_seeds, scan_seeds
+from ..maps.affine import scan as affine_scan
+from ..maps.impact import M_PHI, admissible_kernel, model_array
+from ..maps.lapack import lambda_max_4
+from ..maps.newton import monodromy, newton_sequence
 
 SYM_TOL = 1e-6          # flight times equal to this: symmetric
 DEDUP_TOL = 1e-8
@@ -133,17 +133,17 @@ def solve_orbit(p: ModelParams, x0: ArrayLike, s1: float = -1.0, s2: float = -1.
     if not math.isfinite(res):
         return None
     xs, Js, fl = ws[1], ws[2], ws[3]
-    return _orbit(p, mdl, xs[0], xs[1], (Js[0], Js[1]), fl, res)
+    return classify_orbit(p, mdl, xs[0], xs[1], (Js[0], Js[1]), fl, res)
 
 
 def monodromy_eigenvalues(J1: np.ndarray, J2: np.ndarray) -> np.ndarray:
     """Eigenvalues of the monodromy matrix J2 J1 by numpy (product and ``eigvals``); the
     compiled ``orbit_classify`` forms it with numba's np.dot and scipy's dgeev (the same
     numbers to round-off; ``_lapack.monodromy_eigvals`` is that path for tests)."""
-    return np.linalg.eigvals(J2 @ J1)
+    return np.linalg.eigvals(monodromy((J1, J2)))
 
 
-def _orbit(p: ModelParams, mdl: np.ndarray, x: np.ndarray, xR: np.ndarray, jacobians: tuple,
+def classify_orbit(p: ModelParams, mdl: np.ndarray, x: np.ndarray, xR: np.ndarray, jacobians: tuple,
            fl: np.ndarray, res: float) -> PeriodicOrbit:
     """The PeriodicOrbit with pre-impact states x (at L), xR (at R), map Jacobians
     (J_P1(x), J_P2(xR)), flight times fl and Newton residual res."""
@@ -190,12 +190,12 @@ def seed_orbits(p: ModelParams, osc: np.ndarray | None = None, simulation: bool 
         for vm, vb, zb, th, s1 in asymmetric_seeds(mdl):
             found.append(solve_orbit(p, [vm, vb, zb, theta_to_t(th, p)], s1, T - s1, mdl))
     if simulation:
-        found.extend(_simulation_seed(p, mdl))
+        found.extend(simulation_seed(p, mdl))
     return _dedup(found, T)
 
 
-def _simulation_seed(p: ModelParams, osc: np.ndarray, t_end: float = 600.0) -> list:
-    from ..core.simulation import simulate_exact
+def simulation_seed(p: ModelParams, osc: np.ndarray, t_end: float = 600.0) -> list:
+    from ...core.simulation import simulate_exact
     try:
         st = SolverSettings(t_end=t_end, t_transient=0.5 * t_end, max_impacts=200_000)
         res = simulate_exact(p, st)
@@ -327,7 +327,7 @@ def orbit_solve(mdl, flights, row, ws):
 @njit(cache=True, nogil=True)
 def orbit_classify(mdl, row, ws):
     """Admissibility, symmetry, dw_L and, for admissible orbits only, lambda_max (nan
-    otherwise) of the orbit the last ``orbit_solve`` with ws found (as ``_orbit``).
+    otherwise) of the orbit the last ``orbit_solve`` with ws found (as ``classify_orbit``).
 
     An admissible orbit whose monodromy matrix is not finite (numpy's eigvals would raise)
     is marked non-admissible.

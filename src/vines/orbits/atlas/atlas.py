@@ -26,15 +26,15 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..core.exact import oscillators
-from ..core.params import ModelParams, ParameterError, SolverSettings, check_bool
-from .sequence import (
+from ...core.exact import oscillators
+from ...core.params import ModelParams, ParameterError, SolverSettings, check_bool
+from ..family.sequence import (
     SIM_T_END,
     SequenceOrbit,
-    _mirror_record,
     affine_seeds,
     check_sim_t_end,
     flip_seeds,
+    mirror_record,
     paper_label,
     pitchfork_seeds,
     record_seed,
@@ -98,10 +98,10 @@ class FamilyState:
 
 
 def _rest_records(p: ModelParams, t_end: float) -> list:
-    from ..core.simulation import simulate_exact
+    from ...core.simulation import simulate_exact
     st = SolverSettings(t_end=t_end, t_transient=0.5 * t_end, max_impacts=200_000)
     res = simulate_exact(p, st)
-    return [res.impacts, _mirror_record(res.impacts, p.period)]
+    return [res.impacts, mirror_record(res.impacts, p.period)]
 
 
 def sequence_orbits(p: ModelParams, seeds: dict | None = None, simulation: bool = True,
