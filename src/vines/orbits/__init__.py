@@ -5,7 +5,7 @@
 * ``jets``: the flight as closed-form shooting conditions with exact derivatives by Taylor
   jets (``taylor``, recorded as a ``tape``, run compiled by ``kernels``; ``shooting``);
 * ``family``: the family object (``family``: walls, periods, symmetric; the 1:1 orbit is
-  ``Family("LR", 1)``), its orbits (``periodic`` for 1:1, ``sequence`` for any wall
+  the value LR/1 of it), its orbits (``periodic`` for 1:1, ``sequence`` for any wall
   sequence) and its augmented systems (``augmented`` on jets, ``map_systems`` on the maps);
 * ``continuation``: the arclength tracer, branches and their events (``one_to_one``,
   ``follower``, ``sequence``; results in ``branch``);
@@ -29,7 +29,7 @@ _LAZY = {
     "Branch": ".continuation.branch",
     "continue_sequence": ".continuation.sequence",
     "ContinueSettings": ".continuation.sequence",
-    "SequenceBranch": ".continuation.sequence",
+    "SequenceBranch": ".continuation.branch",
     "boundaries": ".curves.boundaries",
     "atlas_point": ".atlas.atlas",
     "stability_map": ".atlas.stability_map",

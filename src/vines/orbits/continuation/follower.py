@@ -43,9 +43,10 @@ from numpy.typing import ArrayLike
 from ... import progress
 from ...core.params import ModelParams, ParameterError
 from ...core.walls import WALL_L, WALL_R
-from ..family.augmented import Codim1System, grazing_point, solve
+from ..family.augmented import Codim1System, grazing_point
 from ..family.family import MIRROR_MATRIX
 from ..family.periodic import PeriodicOrbit, classify_orbit
+from ..family.systems import solve
 from ..jets import shooting as sh
 from ..maps.impact import impact_map, model_array
 from .arclength import Step, Tracer

@@ -31,7 +31,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -49,7 +49,6 @@ from ...core.params import (
     check_params_arg,
     check_real,
 )
-from ..family import augmented as ag
 from ..family.family import Family, check_periods, check_walls
 from ..family.map_systems import MapSystem, orbit_residual, with_values
 from ..family.sequence import (
@@ -59,8 +58,10 @@ from ..family.sequence import (
     pitchfork_seeds,
     solve_sequence,
 )
+from ..family.systems import solve
 from ..maps.newton import monodromy
 from .arclength import Tracer
+from .branch import SequenceBranch
 
 FLIP_NEAR = 1e-3        # a located flip needs an eigenvalue this close to -1 (not a pole)
 #: most points of a branch of ``continue_sequence`` (not ``core.params.MAX_POINTS_DEFAULT``,
@@ -109,39 +110,6 @@ class _Run:
     @property
     def step(self) -> float:
         return self.settings.step
-
-
-@dataclass
-class SequenceBranch:
-    """A continued family: points (orbits with their parameter point), events, why it
-    stopped, and the branches switched onto at its flip points."""
-
-    walls: str
-    periods: int
-    param: str
-    points: list
-    events: list
-    stopped: str
-    switched: list = field(default_factory=list)
-    born_at: dict | None = None
-
-    def to_dict(self) -> dict:
-        pts = []
-        for o in self.points:
-            p = o.params
-            d = o.to_dict()
-            pts.append({"eta": p.eta, "omega": p.omega, "F": p.F,
-                        **{k: d[k] for k in ("lambda_max", "stable", "symmetric", "admissible",
-                                             "dw", "phases", "flight_times")}})
-        out = {"walls": self.walls, "periods": self.periods,
-               "family": self.points[0].family if self.points else None,
-               "param": self.param, "branch": pts,
-               "events": [{k: v for k, v in e.items() if k != "_orbit"} for e in self.events],
-               "stopped": self.stopped,
-               "switched": [b.to_dict() for b in self.switched]}
-        if self.born_at is not None:
-            out["born_at"] = self.born_at
-        return out
 
 
 class _System:
@@ -313,7 +281,7 @@ def _events(tr, st, sys_, tests, events, index):
     if fold:
         got = tr.locate(st, lambda z, t: float(t[4]), prev["fold"], cur["fold"])
         _add(events, "fold", orbit_at(got[1] if got else None), index, st)
-    for key, typ in (("flip", "flip"), ("branch", "branch-point")):
+    for key, typ in (("flip", "flip"), ("branch", "branch-point")):     # EVENT_TYPES
         if key == "branch" and fold:
             continue
         if (prev[key] > 0) != (cur[key] > 0):
@@ -343,7 +311,7 @@ def _symmetry_breaking(sys_, st) -> SequenceOrbit | None:
         return None
     fam = Family(sys_.walls, sys_.periods, True)
     system = MapSystem(sys_.params(st.z1[4]), fam, "symmetry-breaking", (sys_.param,))
-    z = ag.solve(system, st.z1)
+    z = solve(system, st.z1)
     if z is None or not min(st.z0[4], st.z1[4]) <= z[4] <= max(st.z0[4], st.z1[4]):
         return None
     return solve_sequence(sys_.params(z[4]), sys_.walls, sys_.periods, z[:4],

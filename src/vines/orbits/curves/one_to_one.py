@@ -34,7 +34,9 @@ from ..continuation.follower import is_ns, orbit_at
 from ..continuation.one_to_one import continue_branch
 from ..family import augmented as ag
 from ..family.periodic import orbits_1to1
+from ..family.systems import solve
 from ..jets import shooting as sh
+from . import tracer
 from .tracer import NS_KEEP_TOL, Curve, CurveSettings, Traced, in_box, pieces_of
 
 
@@ -79,18 +81,13 @@ def _keep(curve: Curve, model, F) -> list:
 
 
 def crossings(curve: Curve, model, F, omega: float) -> list:
-    """Exact eta values where the curve crosses omega = const (square system in eta)."""
-    out = []
-    w = curve.z[:, -1] - omega
-    for i in np.nonzero(np.sign(w[:-1]) * np.sign(w[1:]) < 0)[0]:
-        f = w[i] / (w[i] - w[i + 1])
-        z = curve.z[i] + f * (curve.z[i + 1] - curve.z[i])
-        system = ag.Codim1System(model, curve.family, curve.type, ("eta",),
-                                 {"F": F, "omega": omega}, curve.graze)
-        zs = ag.solve(system, z[:-1])
-        if zs is not None:
-            out.append(float(zs[-1]))
-    return out
+    """Exact eta values where the curve crosses omega = const (``tracer.crossings`` on the
+    square system in eta)."""
+    def solve(z):
+        return solve(ag.Codim1System(model, curve.family, curve.type, ("eta",),
+                                        {"F": F, "omega": omega}, curve.graze), z)
+
+    return [float(pt[0]) for pt in tracer.crossings(curve, ("omega", omega), solve)]
 
 
 class OneToOneKit:
@@ -193,7 +190,7 @@ def _branch_seeds(model, br, param, fixed, F):
         z0 = np.array(u + extra + [par["eta"], par["omega"]])
         system = ag.Codim1System(model, br.family, typ, (param,),
                                  {q: v for q, v in par.items() if q != param}, graze)
-        zs = ag.solve(system, z0[:-1] if param == "eta" else np.append(z0[:-2], z0[-1]))
+        zs = solve(system, z0[:-1] if param == "eta" else np.append(z0[:-2], z0[-1]))
         if zs is None:
             continue
         z0[:-2] = zs[:-1]

@@ -26,7 +26,6 @@ import numpy as np
 
 from ...core.params import ModelParams, ParameterError
 from ..continuation.sequence import ContinueSettings, continue_sequence
-from ..family import augmented as ag
 from ..family.family import Family
 from ..family.map_systems import (
     family_of,
@@ -37,6 +36,8 @@ from ..family.map_systems import (
     with_values,
 )
 from ..family.sequence import find_sequence, same_orbit, solve_sequence
+from ..family.systems import solve
+from . import tracer
 from .tracer import NS_KEEP_TOL, Traced, pieces_of
 
 GRAZE_MARGIN = 1e-3     # an admissibility loss seeds a grazing curve this close to contact
@@ -169,7 +170,7 @@ def _event_seed(kit: _SequenceKit, ev: dict, param: str):
         return None
     other = "omega" if param == "eta" else "eta"
     base = with_values(kit.base, {other: getattr(o.params, other)})
-    zs = ag.solve(make_system(base, fam, kind, graze, (param,)), u + [getattr(o.params, param)])
+    zs = solve(make_system(base, fam, kind, graze, (param,)), u + [getattr(o.params, param)])
     if zs is None:
         return None
     par = {other: getattr(o.params, other), param: float(zs[-1])}
@@ -186,20 +187,10 @@ def family_from_name(name: str, walls: str) -> Family:
 def crossings(curve, walls: str, base: ModelParams, line: tuple) -> list:
     """Exact points (eta, omega) where a curve of the sequence ``walls`` crosses the line
     param = value (line = (param, value), param eta or omega): the square system with the
-    other parameter free, from the interpolated curve points around each sign change."""
+    other parameter free (``tracer.crossings``), one system for all crossings."""
     param, value = line
-    k = 0 if param == "eta" else 1
-    other = ("eta", "omega")[1 - k]
+    other = "omega" if param == "eta" else "eta"
     fam = family_from_name(curve.family, walls)
     system = make_system(with_values(base, {param: value}), fam, curve.type, curve.graze,
                          (other,))
-    out = []
-    w = curve.points[:, k] - value
-    for i in np.nonzero(np.sign(w[:-1]) * np.sign(w[1:]) < 0)[0]:
-        f = w[i] / (w[i] - w[i + 1])
-        z = curve.z[i] + f * (curve.z[i + 1] - curve.z[i])
-        zs = ag.solve(system, np.append(z[:-2], z[-1 - k]))
-        if zs is not None:
-            pt = [value, float(zs[-1])] if k == 0 else [float(zs[-1]), value]
-            out.append(np.array(pt))
-    return out
+    return tracer.crossings(curve, line, lambda z: solve(system, z))

@@ -177,3 +177,22 @@ def _on_curve(curves, seed, step) -> bool:
                 and np.min(np.hypot(*(c.all_points - z0[-2:]).T)) < 3.0 * step):
             return True
     return False
+
+
+def crossings(curve: Curve, line: tuple, solve) -> list[np.ndarray]:
+    """Exact points (eta, omega) where a curve crosses the line param = value (line =
+    (param, value), param eta or omega): ``solve(z)`` solves the family's square system with
+    the other parameter free from the unknowns z (that parameter last) interpolated
+    between the curve points around each sign change; the solution or None."""
+    param, value = line
+    k = 0 if param == "eta" else 1
+    out = []
+    w = curve.points[:, k] - value
+    for i in np.nonzero(np.sign(w[:-1]) * np.sign(w[1:]) < 0)[0]:
+        f = w[i] / (w[i] - w[i + 1])
+        z = curve.z[i] + f * (curve.z[i + 1] - curve.z[i])
+        zs = solve(np.append(z[:-2], z[-1 - k]))
+        if zs is not None:
+            pt = [value, float(zs[-1])] if k == 0 else [float(zs[-1]), value]
+            out.append(np.array(pt))
+    return out

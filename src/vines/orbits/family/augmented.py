@@ -28,6 +28,7 @@ from ...core.walls import WALL_L, WALL_R
 from ..jets import kernels as sk
 from ..jets import shooting as sh
 from ..jets import taylor as jets
+from .systems import solve
 
 KINDS = {"symmetric": ("fold", "symmetry-breaking", "neimark-sacker", "grazing"),
          "asymmetric": ("fold", "flip", "neimark-sacker", "grazing")}
@@ -118,23 +119,6 @@ class Codim1System:
             return [sh.flight(self.m, x, s_k, eta, omega, F, w0)[2]]
         _, gap, wdot = sh.flight(self.m, x, gv[-1], eta, omega, F, w0)
         return [gap - (2.0 * w0 if wall == "start" else 0.0), wdot]
-
-
-def solve(system: Codim1System, z0, tol=1e-11, max_iter=30):
-    """Newton on the square system (one free parameter); the solution or None."""
-    z = np.asarray(z0, dtype=float).copy()
-    for _ in range(max_iter):
-        G, Gz = system(z)
-        if not np.all(np.isfinite(G)):
-            return None
-        try:
-            dz = np.linalg.solve(Gz, -G)
-        except np.linalg.LinAlgError:
-            return None
-        z += dz
-        if np.max(np.abs(dz)) <= tol * (1.0 + np.max(np.abs(z))):
-            return z
-    return None
 
 
 def grazing_point(model: sh.Model, family: str, u, param: str, par: dict, max_margin=1e-3):

@@ -2,7 +2,7 @@
 which of its orbits (symmetric, asymmetric or both); its name, its mirror image, the checks
 of its walls and periods (docs/bifurcation.md, "Families of periodic orbits").
 
-The 1:1 orbit is the value ``Family("LR", 1)`` (``ONE_TO_ONE``); ``Family.one_to_one`` is
+The 1:1 orbit is the value LR/1 of it (``ONE_TO_ONE``); ``Family.one_to_one`` is
 the one place that tells it apart (it alone has the shooting engine on exact Taylor jets
 and the compiled stability map, ``orbits.jets``, ``orbits.atlas.stability_map``).
 Numba-free (numpy only): the pipeline's config checks read it at parse time.
