@@ -120,7 +120,7 @@ def _seeds(model: dict, simulation: dict) -> None:
 
 
 def _shooting(model: dict, simulation: dict) -> None:
-    """The jet kernel of the 1:1 shooting systems (``shooting_kernels.codim1``: continuation
+    """The jet kernel of the 1:1 shooting systems (``kernels.codim1``: continuation
     and boundaries), on its own: it shares no kernel with the others."""
     from ..orbits.jets import shooting
     shooting.residual_jacobian(shooting.Model(model["r"], model["d"]), "symmetric",

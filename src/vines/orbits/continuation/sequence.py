@@ -304,7 +304,7 @@ def _events(tr, st, sys_, tests, events, index):
 
 def _symmetry_breaking(sys_, st) -> SequenceOrbit | None:
     """The symmetry-breaking point within a step between symmetric orbits, solved as the
-    square system of ``sequence_curves.MapSystem`` (half-map eigenvalue -1, regular there,
+    square system of ``map_systems.MapSystem`` (half-map eigenvalue -1, regular there,
     where the bordered system of the full residual is singular), or None."""
     o1 = sys_.orbit(st.z1)
     if o1 is None or not o1.symmetric:

@@ -64,7 +64,7 @@ def boundaries(F: float, eta_range: Sequence[float], omega_range: Sequence[float
     then seed more (module docstring, step 4; ``n_map = 0`` skips it); ``class_map`` =
     (eta, omega, cls): a stability map already computed at this F (``stability_map``),
     whose class changes are used instead of the n_map x n_map one. Other families
-    (``sequence_boundaries``) are seeded by continuations through the n_scan x n_scan
+    (``curves.sequence``) are seeded by continuations through the n_scan x n_scan
     crossings of the scan lines and ignore n_map; ``class_map`` is for 1:1 only."""
     F = check_param("F", F)
     box = (check_range("eta_range", eta_range), check_range("omega_range", omega_range))

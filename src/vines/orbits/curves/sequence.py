@@ -4,12 +4,12 @@
 
 1. seeds: at the n_scan x n_scan crossings of the scan lines, every admissible orbit of the
    sequence ``sequence.find_sequence`` finds (the first symmetric and the first asymmetric
-   one) is continued (``sequence_branches.continue_sequence``) both ways along both lines
+   one) is continued (``continuation.sequence.continue_sequence``) both ways along both lines
    through it; every event of those continuations becomes a seed, solved as a square
-   system with the line's parameter free (``sequence_curves``): fold -> fold,
+   system with the line's parameter free (``map_systems``): fold -> fold,
    flip -> flip (asymmetric orbits), symmetry-breaking -> symmetry-breaking,
    neimark-sacker -> neimark-sacker, admissibility-loss -> the grazing
-   of the flight closest to a wall contact (``sequence_curves.grazing_guess``);
+   of the flight closest to a wall contact (``map_systems.grazing_guess``);
 2. each seed not on a traced curve of its kind is continued both ways in (eta, omega)
    (``tracer.trace``: the same tracer and box handling as the 1:1 curves);
 3. fold, flip, symmetry-breaking and neimark-sacker curves keep their stretches on

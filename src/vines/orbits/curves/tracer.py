@@ -107,7 +107,7 @@ class CurveSettings:
 
 def trace(system, z0, box, settings: CurveSettings = CurveSettings()) -> Curve:
     """The curve through z0 of an augmented system (``augmented.Codim1System`` or
-    ``sequence_curves``; free parameters eta, omega last), both ways inside the box."""
+    ``map_systems``; free parameters eta, omega last), both ways inside the box."""
     ct = CurveTracer(system, box, settings.step, settings.max_points)
     fwd, why_f = ct.half(np.asarray(z0, float), 1.0)
     bwd, why_b = ct.half(np.asarray(z0, float), -1.0)

@@ -15,7 +15,7 @@ The equations are the family's residual E(u) = 0 plus the defining condition of 
 With one free parameter the system is square (a point, ``solve``); with two it defines a
 curve in the parameter plane (``boundaries``). Every derivative is exact: first derivatives
 of E and of the grazing conditions, and the derivatives of the determinants (which need the
-flight's second derivatives), from Taylor jets, compiled (``shooting_kernels.codim1``);
+flight's second derivatives), from Taylor jets, compiled (``kernels.codim1``);
 ``Codim1System.evaluate_jets`` computes the same from the pure-Python jets behind
 ``shooting.monodromy_jets`` (the reference).
 """
@@ -33,7 +33,7 @@ from .systems import solve
 KINDS = {"symmetric": ("fold", "symmetry-breaking", "neimark-sacker", "grazing"),
          "asymmetric": ("fold", "flip", "neimark-sacker", "grazing")}
 GRAZE_WALLS = ("start", "target", "arrival")
-# the condition codes of ``shooting_kernels.codim1`` (index) and the kinds they serve
+# the condition codes of ``kernels.codim1`` (index) and the kinds they serve
 CONDITIONS = (("fold",), ("symmetry-breaking", "flip"), ("neimark-sacker",), ("grazing",))
 
 
@@ -67,7 +67,7 @@ class Codim1System:
         return cols + [self.nu + PARAM_NAMES.index(q) for q in self.free]
 
     def __call__(self, z):
-        """(G, G_z) from the compiled kernel (``shooting_kernels.codim1``)."""
+        """(G, G_z) from the compiled kernel (``kernels.codim1``)."""
         z = np.asarray(z, dtype=float)
         p = self.par(z)
         k, wall = self.graze if self.graze is not None else (1, "arrival")

@@ -23,7 +23,7 @@ One solver serves both interfaces: ``orbit_solve``/``orbit_classify``/``seed_ker
 of the module) work nogil on float rows, for threaded per-point drivers
 (``stability_map``); ``solve_orbit``/``seed_orbits`` wrap the same compiled Newton and seeds
 into ``PeriodicOrbit`` objects (eigenvalues by numpy; the compiled ones by scipy's dgeev,
-``_lapack``: the same bits where numpy and scipy share a LAPACK build).
+``lapack``: the same bits where numpy and scipy share a LAPACK build).
 """
 from __future__ import annotations
 
@@ -139,7 +139,7 @@ def solve_orbit(p: ModelParams, x0: ArrayLike, s1: float = -1.0, s2: float = -1.
 def monodromy_eigenvalues(J1: np.ndarray, J2: np.ndarray) -> np.ndarray:
     """Eigenvalues of the monodromy matrix J2 J1 by numpy (product and ``eigvals``); the
     compiled ``orbit_classify`` forms it with numba's np.dot and scipy's dgeev (the same
-    numbers to round-off; ``_lapack.monodromy_eigvals`` is that path for tests)."""
+    numbers to round-off; ``lapack.monodromy_eigvals`` is that path for tests)."""
     return np.linalg.eigvals(monodromy((J1, J2)))
 
 
@@ -152,7 +152,7 @@ def classify_orbit(p: ModelParams, mdl: np.ndarray, x: np.ndarray, xR: np.ndarra
                and admissible_kernel(mdl, xR, (WALL_R, WALL_L), fl[1]))
     ev = monodromy_eigenvalues(J1, J2)
     ev = ev[np.argsort(-np.abs(ev))]
-    lam = float(np.hypot(ev.real, ev.imag).max())      # as ``_lapack.lambda_max_4``
+    lam = float(np.hypot(ev.real, ev.imag).max())      # as ``lapack.lambda_max_4``
     two_pi = 2.0 * math.pi
     return PeriodicOrbit(
         x_L=x.copy(), x_R=xR.copy(), flight_times=[float(fl[0]), float(fl[1])],
@@ -277,7 +277,7 @@ def orbits_1to1(p: ModelParams, *, seeds: list | None = None,
 # nogil versions of solve_orbit / seed_orbits(simulation=False) for per-point drivers that
 # run on threads (``stability_map``). An orbit is a row of floats (ROW_* columns); the
 # arithmetic is that of the Python functions above, so the rows equal their PeriodicOrbits
-# (lambda_max of admissible orbits: scipy's dgeev, numpy's to round-off; see ``_lapack``).
+# (lambda_max of admissible orbits: scipy's dgeev, numpy's to round-off; see ``lapack``).
 
 ROW_X, ROW_FL, ROW_ADM, ROW_LAM, ROW_SYM, ROW_DWL = 0, 4, 6, 7, 8, 9
 N_ROW = 10                  # callers may append their own columns after these

@@ -5,7 +5,7 @@ are explicit here, as in multi-segment shooting for hybrid periodic orbits: ever
 condition is then a closed-form function of the unknowns and of (eta, omega, F), so the
 derivatives with respect to the parameters, and the second derivatives needed by the
 augmented systems of ``boundaries``, come exactly from Taylor jets: ``flight`` is recorded
-once per ``Model`` as a tape (``tape``) that ``shooting_kernels`` runs on jets in compiled
+once per ``Model`` as a tape (``tape``) that ``kernels`` runs on jets in compiled
 code (``residual_jacobian``, ``augmented.Codim1System``); the pure-Python ``jets``
 evaluate these formulas directly (``residual_jacobian_jets``, ``monodromy_jets``: the
 reference of the compiled derivatives).
@@ -54,7 +54,7 @@ class Model:
         self.r, self.d, self.phi = float(r), float(d), float(phi)
         self.sigma = 0.5 * d
         self.wd = math.sqrt(1.0 - self.sigma ** 2)
-        # ``flight`` as the compiled kernels evaluate it (``shooting_kernels``)
+        # ``flight`` as the compiled kernels evaluate it (``kernels``)
         self.tape = record(lambda *v: _flight_outputs(self, v), 9)
 
 
@@ -125,7 +125,7 @@ def residual_jacobian(m: Model, family: str, u: ArrayLike, par: dict,
                       free: tuple) -> tuple[np.ndarray, np.ndarray]:
     """(E, dE/d(u, free params)) at u with par = {eta, omega, F}; ``free`` names the
     parameters differentiated (in that order, after u). Compiled
-    (``shooting_kernels.residual_jacobian``); ``residual_jacobian_jets`` is the reference."""
+    (``kernels.residual_jacobian``); ``residual_jacobian_jets`` is the reference."""
     u = np.asarray(u, dtype=float)
     E, dE = kernels.residual_jacobian(m.tape, ORBIT_KINDS.index(family), u,
                                       float(par["eta"]), float(par["omega"]), float(par["F"]))

@@ -6,7 +6,7 @@ once, over numbers that support + - * / and ``sin``/``cos``/``exp``/``sqrt`` fro
 module, and evaluated on floats (values) or on jets (exact first and second derivatives,
 to rounding: no step size, no truncation error). Mixed float/jet arithmetic works. A
 third kind of number, ``tape.Node``, records the operations (``sin`` ... call its
-``unary``) for the compiled evaluation of ``shooting_kernels``.
+``unary``) for the compiled evaluation of ``kernels``.
 
 ``lift(J)`` turns the gradients of order-2 jets into order-1 jets of the first
 derivatives (value = d f_i / d v_k, gradient = the Hessian row), which is how derivatives
