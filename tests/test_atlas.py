@@ -56,7 +56,7 @@ def test_fig9_point_and_mirror_families():
         assert (fam[a].admissible, fam[a].stable) == (fam[b].admissible, fam[b].stable)
         if fam[a].admissible:
             assert math.isclose(fam[a].lambda_max, fam[b].lambda_max, rel_tol=1e-8)
-    assert set(orbits) == {w for w, _, _ in FAMILIES.values()}
+    assert set(orbits) == {f.walls for f in FAMILIES.values()}
 
 
 def test_sweep_equals_points_with_the_same_seeds_and_bad_input():

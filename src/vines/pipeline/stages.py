@@ -659,7 +659,7 @@ def orbit_atlas(grid: dict, *, sim_t_end: float, model: dict, code: str, title: 
     if next(iter(arrays.values())).shape[0] != eta.size:
         raise ValueError(f"parts hold {next(iter(arrays.values())).shape[0]} eta rows, "
                          f"the atlas {eta.size}")
-    families = {k: (walls, periods, PAPER_LABELS[k]) for k, (walls, periods, _) in FAMILIES.items()}
+    families = {k: (f.walls, f.periods, PAPER_LABELS[k]) for k, f in FAMILIES.items()}
     attrs = provenance_attrs(title=title, config_subset={"grid": grid, "sim_t_end": sim_t_end,
                                                          "model": model},
                              settings=model, code_version=code)
