@@ -105,6 +105,28 @@ class PeriodicOrbit:
     residual: float = 0.0
     params: ModelParams | None = field(default=None, repr=False)
 
+    # the fields of ``sequence.SequenceOrbit`` (any wall sequence), so that code written
+    # for any family reads a 1:1 orbit as the orbit of the family LR/1
+    walls = "LR"
+    periods = 1
+
+    @property
+    def family(self) -> str:
+        return "LR/1"
+
+    @property
+    def states(self) -> np.ndarray:
+        """Pre-impact states at L and R, as ``SequenceOrbit.states``."""
+        return np.array([self.x_L, self.x_R])
+
+    @property
+    def dw(self) -> np.ndarray:
+        return np.array([self.dw_L, self.dw_R])
+
+    @property
+    def phases(self) -> np.ndarray:
+        return np.array([self.phase_L, self.phase_R])
+
     def to_dict(self) -> dict:
         return {
             "symmetric": bool(self.symmetric),
