@@ -106,6 +106,9 @@ def test_LR_one_period_is_the_1to1_solver(eta, omega, F, simulation):
         assert (o.symmetric, o.admissible, o.stable, o.lambda_max) == \
             (q.symmetric, q.admissible, q.stable, q.lambda_max)
         assert list(o.dw) == [q.dw_L, q.dw_R] and list(o.phases) == [q.phase_L, q.phase_R]
+        # the 1:1 orbit reads as an orbit of its family LR/1 (the fields of any family)
+        for key in ("walls", "periods", "family", "states", "dw", "phases"):
+            assert np.array_equal(getattr(q, key), getattr(o, key)), key
 
 
 # --------------------------------------------------------------------------- families
