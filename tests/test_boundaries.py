@@ -15,6 +15,7 @@ from vines.orbits.curves.one_to_one import crossings
 from vines.orbits.family import augmented as ag
 from vines.orbits.family.family import MIRROR_MATRIX
 from vines.orbits.family.periodic import find_1to1
+from vines.orbits.family.systems import KINDS
 from vines.orbits.jets import shooting as sh
 
 MODEL = sh.Model(R_DEFAULT, D_DEFAULT)
@@ -32,7 +33,7 @@ def _fd_jacobian(system, z):
     return out
 
 
-CASES = [(fam, kind, None) for fam in ("symmetric", "asymmetric") for kind in ag.KINDS[fam]
+CASES = [(fam, kind, None) for fam in ("symmetric", "asymmetric") for kind in KINDS[fam == "symmetric"]
          if kind != "grazing"]
 CASES += [(fam, "grazing", (k, wall)) for fam in ("symmetric", "asymmetric")
           for k in ((1,) if fam == "symmetric" else (1, 2)) for wall in ag.GRAZE_WALLS]

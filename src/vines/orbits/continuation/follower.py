@@ -46,7 +46,7 @@ from ...core.walls import WALL_L, WALL_R
 from ..family.augmented import Codim1System, grazing_point
 from ..family.family import MIRROR_MATRIX
 from ..family.periodic import PeriodicOrbit, classify_orbit
-from ..family.systems import solve
+from ..family.systems import compound2, solve
 from ..jets import shooting as sh
 from ..maps.impact import impact_map, model_array
 from .arclength import Step, Tracer
@@ -109,7 +109,7 @@ def test_values(family: str, o: PeriodicOrbit, z: np.ndarray, t: np.ndarray) -> 
         A = o.J2 @ o.J1
         out = {"flip": np.linalg.det(A + np.eye(4)),
                "symmetry-breaking": o.flight_times[0] - o.flight_times[1]}
-    out["neimark-sacker"] = np.linalg.det(np.array(sh.compound2(A.tolist())) - np.eye(6))
+    out["neimark-sacker"] = np.linalg.det(np.array(compound2(A.tolist())) - np.eye(6))
     out["fold"] = float(t[-1])
     return out
 

@@ -28,10 +28,8 @@ from ...core.walls import WALL_L, WALL_R
 from ..jets import kernels as sk
 from ..jets import shooting as sh
 from ..jets import taylor as jets
-from .systems import solve
+from .systems import KINDS, compound2, solve
 
-KINDS = {"symmetric": ("fold", "symmetry-breaking", "neimark-sacker", "grazing"),
-         "asymmetric": ("fold", "flip", "neimark-sacker", "grazing")}
 GRAZE_WALLS = ("start", "target", "arrival")
 # the condition codes of ``kernels.codim1`` (index) and the kinds they serve
 CONDITIONS = (("fold",), ("symmetry-breaking", "flip"), ("neimark-sacker",), ("grazing",))
@@ -45,7 +43,7 @@ class Codim1System:
 
     def __init__(self, model: sh.Model, family: str, kind: str, free: tuple, fixed: dict,
                  graze=None):
-        if kind not in KINDS[family]:
+        if kind not in KINDS[family == "symmetric"]:
             raise ValueError(f"kind {kind!r} is not a condition of {family} orbits")
         self.m, self.family, self.kind = model, family, kind
         self.free, self.fixed = tuple(free), dict(fixed)
@@ -98,7 +96,7 @@ class Codim1System:
     def _test(self, u, p, n_global):
         A = sh.monodromy_jets(self.m, self.family, list(u), p["eta"], p["omega"], p["F"])
         if self.kind == "neimark-sacker":
-            M = sh.shifted(sh.compound2(A), -1.0)
+            M = sh.shifted(compound2(A), -1.0)
         else:
             M = sh.shifted(A, -1.0 if self.kind == "fold" else 1.0)
         d = jets.det(M)

@@ -47,11 +47,10 @@ from ..maps.impact import impact_map, model_array
 from ..maps.newton import monodromy
 from .family import MIRROR_SIGNS, WALL_CODES, Family
 from .sequence import SequenceOrbit, solve_sequence
+from .systems import KINDS, compound2
 
 FD_PARAM = 1e-7         # relative central-difference step of a parameter column
 FD_STATE = 1e-6         # relative central-difference step of the condition's gradient
-KINDS = {True: ("fold", "symmetry-breaking", "neimark-sacker", "grazing"),
-         False: ("fold", "flip", "neimark-sacker", "grazing")}
 
 
 def family_of(orbit: SequenceOrbit) -> Family:
@@ -99,17 +98,10 @@ def orbit_residual(p: ModelParams, fam: Family, x0, s_guess):
     return R, A, fl
 
 
-def compound2(A) -> np.ndarray:
-    """Second compound matrix of a 4 x 4 matrix (eigenvalues lambda_i lambda_j, i < j)."""
-    pairs = [(a, b) for a in range(4) for b in range(a + 1, 4)]
-    return np.array([[A[a, c] * A[b, e] - A[a, e] * A[b, c] for (c, e) in pairs]
-                     for (a, b) in pairs])
-
-
 def condition(kind: str, A) -> float:
     """The determinant of the module docstring for ``kind``."""
     if kind == "neimark-sacker":
-        return float(np.linalg.det(compound2(A) - np.eye(6)))
+        return float(np.linalg.det(np.array(compound2(A)) - np.eye(6)))
     return float(np.linalg.det(A + (-1.0 if kind == "fold" else 1.0) * np.eye(4)))
 
 

@@ -14,6 +14,17 @@ from typing import Protocol
 
 import numpy as np
 
+#: the codimension-one points of symmetric (True) and asymmetric (False) orbits of any family
+KINDS = {True: ("fold", "symmetry-breaking", "neimark-sacker", "grazing"),
+         False: ("fold", "flip", "neimark-sacker", "grazing")}
+
+
+def compound2(A) -> list:
+    """Second compound matrix (eigenvalues lambda_i lambda_j, i < j) of a 4 x 4 matrix of
+    numbers or Taylor jets (rows indexable as A[p][r]), as nested lists."""
+    pairs = [(p, q) for p in range(len(A)) for q in range(p + 1, len(A))]
+    return [[A[p][r] * A[q][s] - A[p][s] * A[q][r] for (r, s) in pairs] for (p, q) in pairs]
+
 
 class System(Protocol):
     """G, G_z = system(z)."""

@@ -200,11 +200,5 @@ def shifted(A: list, c: Num) -> list:
     return [[A[i][j] + (c if i == j else 0.0) for j in range(len(A))] for i in range(len(A))]
 
 
-def compound2(A: list) -> list:
-    """Second compound matrix (eigenvalues lambda_i lambda_j, i < j) of a 4x4 matrix."""
-    pairs = [(p, q) for p in range(len(A)) for q in range(p + 1, len(A))]
-    return [[A[p][r] * A[q][s] - A[p][s] * A[q][r] for (r, s) in pairs] for (p, q) in pairs]
-
-
 def jacobian_float(J: list) -> np.ndarray:
     return np.array([[jets.value(q) for q in row] for row in J])
