@@ -1,7 +1,7 @@
 """Which periodic families exist, are admissible and stable at one (eta, omega, F) point.
 
 ``atlas_point`` solves every family of ``FAMILIES`` (docs/bifurcation.md, "Families of
-periodic orbits") on the maps (``orbits.sequence``) from:
+periodic orbits") on the maps (``orbits.family.sequence``) from:
 
 * the affine seeds of each sequence (closed form / flight-time scans where they exist);
 * one short simulation from rest, shared by all families (its impact record and its

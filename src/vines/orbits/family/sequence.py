@@ -2,7 +2,7 @@
 
 A family is named by its wall sequence and its number of forcing periods (docs/
 bifurcation.md, "Families of periodic orbits"): ``walls`` = "LLRR", ``periods`` = 1 is the
-orbit with pre-impact states x_0 .. x_{n-1} (x = (z_m', z_b', z_b, t), ``orbits.maps``) at
+orbit with pre-impact states x_0 .. x_{n-1} (x = (z_m', z_b', z_b, t), ``orbits.maps.impact``) at
 walls L, L, R, R, in that order, whose maps P(walls[k] -> walls[k+1]) (cyclically) bring
 x_0 back to x_0 + (0, 0, 0, periods T). Unknown x_0; Newton on the composed map with the
 exact Jacobian J_{n-1} ... J_0 - I (``newton.newton_sequence``, the iteration of

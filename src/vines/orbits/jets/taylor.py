@@ -1,7 +1,7 @@
 """Second-order forward-mode differentiation (Taylor jets) for the small shooting systems.
 
 A ``Jet`` carries a value, its gradient and (order 2) its Hessian with respect to n
-independent variables. The closed-form residuals of ``vines.orbits.shooting`` are written
+independent variables. The closed-form residuals of ``vines.orbits.jets.shooting`` are written
 once, over numbers that support + - * / and ``sin``/``cos``/``exp``/``sqrt`` from this
 module, and evaluated on floats (values) or on jets (exact first and second derivatives,
 to rounding: no step size, no truncation error). Mixed float/jet arithmetic works. A
