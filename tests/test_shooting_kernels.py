@@ -7,6 +7,7 @@ import pytest
 from test_boundaries import CASES, MODEL, F, augmented_point
 
 from vines.orbits.curves import boundaries as bnd
+from vines.orbits.curves import one_to_one
 from vines.orbits.curves.one_to_one import class_edges
 from vines.orbits.curves.tracer import in_box
 from vines.orbits.family.periodic import find_1to1
@@ -109,7 +110,7 @@ def test_class_changes_outside_the_box_seed_nothing(monkeypatch):
     """An edge of the class map with both cells outside the box is not continued (its
     events cannot lie in the box); an edge with a cell in the box is."""
     calls = []
-    monkeypatch.setattr(bnd, "_edge_seeds", lambda model, F_, edge: calls.append(edge) or [])
+    monkeypatch.setattr(one_to_one, "_edge_seeds", lambda model, F_, edge: calls.append(edge) or [])
     box = ((0.1, 0.4), (0.9, 1.2))
     eta, omega = np.array([0.8, 0.9]), np.array([1.0, 1.1])        # eta outside the box
     cls = np.array([[1, 3], [3, 1]])

@@ -83,11 +83,11 @@ def _keep(curve: Curve, model, F) -> list:
 def crossings(curve: Curve, model, F, omega: float) -> list:
     """Exact eta values where the curve crosses omega = const (``tracer.crossings`` on the
     square system in eta)."""
-    def solve(z):
+    def solve_at(z):
         return solve(ag.Codim1System(model, curve.family, curve.type, ("eta",),
-                                        {"F": F, "omega": omega}, curve.graze), z)
+                                     {"F": F, "omega": omega}, curve.graze), z)
 
-    return [float(pt[0]) for pt in tracer.crossings(curve, ("omega", omega), solve)]
+    return [float(pt[0]) for pt in tracer.crossings(curve, ("omega", omega), solve_at)]
 
 
 class OneToOneKit:
