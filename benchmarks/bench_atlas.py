@@ -1,4 +1,4 @@
-"""Cost of one orbit-atlas point (``vines.orbits.atlas``): a coarse (eta, omega) grid per F,
+"""Cost of one orbit-atlas point (``vines.orbits.atlas.atlas``): a coarse (eta, omega) grid per F,
 swept as the stage would (omega rows with neighbour seeds), with and without the shared
 simulation from rest. Prints ms per point and the load of the machine.
 
@@ -13,7 +13,7 @@ import time
 import numpy as np
 
 from vines.core.params import ModelParams
-from vines.orbits.atlas import atlas_arrays, atlas_point
+from vines.orbits.atlas.atlas import atlas_arrays, atlas_point
 
 
 def main(n_eta=10, n_omega=15):

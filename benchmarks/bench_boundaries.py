@@ -1,4 +1,4 @@
-"""Time the boundary curves of Fig 16 (``orbits.boundaries``) per F, with a profile.
+"""Time the boundary curves of Fig 16 (``orbits.curves.boundaries``) per F, with a profile.
 
 Usage: python benchmarks/bench_boundaries.py [--configfile config/config.yaml]
                                              [--only NAME ...] [--repeat N] [--no-profile]
@@ -22,8 +22,8 @@ import numpy as np
 import yaml
 
 from vines.core.params import D_DEFAULT
-from vines.orbits.boundaries import boundaries
-from vines.orbits.stability_map import stability_map
+from vines.orbits.atlas.stability_map import stability_map
+from vines.orbits.curves.boundaries import boundaries
 from vines.pipeline.axes import axis_values
 from vines.pipeline.config import load_schema, validate_config
 
@@ -63,12 +63,12 @@ def _profile(spec, model, class_map):
 def _per_evaluation(model):
     """Compiled vs pure-Python jets, one augmented-system evaluation (G, G_z) each, side by
     side in this process (same load): prints microseconds per call and the ratio."""
-    from vines.orbits import augmented as ag
-    from vines.orbits import shooting as sh
-    from vines.orbits.periodic import find_1to1
+    from vines.orbits.family import augmented as ag
+    from vines.orbits.family.periodic import find_1to1
+    from vines.orbits.jets import shooting as sh
     m = sh.Model(model["r"], model["d"])
     orbits = find_1to1(0.12, 1.1, 0.3077, r=model["r"], d=model["d"], simulation=False)
-    for family in sh.FAMILIES:
+    for family in sh.ORBIT_KINDS:
         o = next(o for o in orbits if o.symmetric == (family == "symmetric"))
         system = ag.Codim1System(m, family, "neimark-sacker", ("eta", "omega"), {"F": 0.3077})
         z = np.array(list(o.x_L) + ([] if o.symmetric else [o.flight_times[0]]) + [0.12, 1.1])

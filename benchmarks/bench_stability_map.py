@@ -16,7 +16,7 @@ import time
 
 import numpy as np
 
-from vines.orbits.stability_map import stability_map
+from vines.orbits.atlas.stability_map import stability_map
 
 KEYS = ("lambda_max", "cls", "dw_L", "symmetric")
 

@@ -6,7 +6,7 @@ Run: PYTHONPATH=src python benchmarks/boundaries_check.py BOUNDARIES.nc STABILIT
 1. Every pair of neighbouring cells of the stability map (a ``stability_map`` dataset at the
    same F) whose classes differ and that has a cell inside the curves' box is a class
    change; it is explained when a curve point lies within 1.5 cells of the pair's middle
-   (the rule ``orbits.boundaries`` seeds curves by). Prints how many are not, by class
+   (the rule ``orbits.curves.boundaries`` seeds curves by). Prints how many are not, by class
    pair, and exits with status 1 if any is not.
 2. With ``--reference``: for every curve of the reference dataset (e.g. computed before a
    change of the tracer) the largest distance of its points to the new curves of the same
@@ -23,7 +23,7 @@ from collections import Counter
 import numpy as np
 import xarray as xr
 
-from vines.orbits.boundaries import class_edges
+from vines.orbits.curves.one_to_one import class_edges
 
 
 def curves_of(ds) -> list:

@@ -10,12 +10,13 @@ import numpy as np
 import pytest
 
 from vines.core.params import D_DEFAULT, R_DEFAULT, ModelParams
-from vines.orbits import jets
-from vines.orbits import shooting as sh
-from vines.orbits.branches import orbit_at
-from vines.orbits.continuation import continue_branch
-from vines.orbits.maps import model_array
-from vines.orbits.periodic import find_1to1, symmetric_seeds
+from vines.orbits.continuation.follower import orbit_at
+from vines.orbits.continuation.one_to_one import continue_branch
+from vines.orbits.family.family import MIRROR_MATRIX
+from vines.orbits.family.periodic import find_1to1, symmetric_seeds
+from vines.orbits.jets import shooting as sh
+from vines.orbits.jets import taylor as jets
+from vines.orbits.maps.impact import model_array
 
 MODEL = sh.Model(R_DEFAULT, D_DEFAULT)
 
@@ -73,7 +74,7 @@ def test_shooting_system_on_the_maps_orbits(eta, omega, F):
             np.testing.assert_allclose(Ez[:, k], fd, rtol=1e-6, atol=1e-7)
         ref = orbit_at(p, fam, u)
         A = sh.jacobian_float(sh.monodromy_jets(MODEL, fam, u, eta, omega, F))
-        mono = sh.MIRROR @ ref.J1 if o.symmetric else ref.J2 @ ref.J1
+        mono = MIRROR_MATRIX @ ref.J1 if o.symmetric else ref.J2 @ ref.J1
         np.testing.assert_allclose(A, mono, atol=1e-10 * np.abs(mono).max())
         assert np.abs(np.linalg.eigvals(mono @ mono if o.symmetric else mono)).max() == \
             pytest.approx(o.lambda_max, rel=1e-9)
@@ -111,7 +112,7 @@ def test_events_along_the_arclength(fold_branch):
     ev = {e["type"]: e for e in br.events}
     sb, ns = ev["symmetry-breaking"], ev["neimark-sacker"]
     assert sb["connects"] == "asymmetric"
-    mu = np.linalg.eigvals(sh.MIRROR @ orbit_at(br.orbits[sb["index"]].params, "symmetric",
+    mu = np.linalg.eigvals(MIRROR_MATRIX @ orbit_at(br.orbits[sb["index"]].params, "symmetric",
                                                 br.orbits[sb["index"]].x_L).J1)
     assert np.min(np.abs(mu + 1.0)) < 1e-6
     o = br.orbits[ns["index"]]

@@ -1,4 +1,4 @@
-"""The orbit atlas's per-point answer (``vines.orbits.atlas``) against simulations from rest.
+"""The orbit atlas's per-point answer (``vines.orbits.atlas.atlas``) against simulations from rest.
 
 At points where the simulation from rest (the Fig 12 run: t_end 7000) ends on a periodic
 orbit, the family of its last period's wall sequence must be stable and admissible in the
@@ -12,8 +12,8 @@ import numpy as np
 import pytest
 
 from vines.core.params import ModelParams, ParameterError
-from vines.orbits.atlas import FAMILIES, PAPER_LABELS, atlas_arrays, atlas_point
-from vines.orbits.sequence import canonical_walls, has_half_symmetry
+from vines.orbits.atlas.atlas import FAMILIES, PAPER_LABELS, atlas_arrays, atlas_point
+from vines.orbits.family.family import canonical_walls, has_half_symmetry
 from vines.solvers import simulate
 
 # (eta, omega, F): regimes 2:2 (Fig 9), 2:2 asymmetric, 2:1, 3:2, period-2 of 2:1, of 2:2
@@ -56,7 +56,7 @@ def test_fig9_point_and_mirror_families():
         assert (fam[a].admissible, fam[a].stable) == (fam[b].admissible, fam[b].stable)
         if fam[a].admissible:
             assert math.isclose(fam[a].lambda_max, fam[b].lambda_max, rel_tol=1e-8)
-    assert set(orbits) == {w for w, _, _ in FAMILIES.values()}
+    assert set(orbits) == {f.walls for f in FAMILIES.values()}
 
 
 def test_sweep_equals_points_with_the_same_seeds_and_bad_input():

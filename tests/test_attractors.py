@@ -11,7 +11,7 @@ from vines.attractors import census, sample_states
 from vines.attractors.census import _same_orbit
 from vines.attractors.endstate import EndState
 from vines.core.params import ParameterError
-from vines.orbits.periodic import find_1to1
+from vines.orbits.family.periodic import find_1to1
 
 
 @pytest.fixture(scope="module")

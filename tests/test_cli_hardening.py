@@ -20,9 +20,9 @@ from conftest import run_vines
 import vines
 from vines.core import params as P
 from vines.core.simulation import window_measures
-from vines.orbits.continuation import continue_branch
-from vines.orbits.periodic import find_1to1
-from vines.orbits.stability_map import stability_map
+from vines.orbits.atlas.stability_map import stability_map
+from vines.orbits.continuation.one_to_one import continue_branch
+from vines.orbits.family.periodic import find_1to1
 
 TIMEOUT = 30
 BASE = ["--eta", "0.05", "--omega", "1", "--F", "0.05"]

@@ -7,8 +7,8 @@ from conftest import run_vines
 
 from vines import ParameterError
 from vines.cli import periodic as cmd
-from vines.orbits import sequence
-from vines.orbits.periodic import find_1to1
+from vines.orbits.family import family as sequence
+from vines.orbits.family.periodic import find_1to1
 
 SOLUTION_KEYS = {"walls", "periods", "dw", "phases", "eigenvalues", "lambda_max",
                  "admissible", "stable"}

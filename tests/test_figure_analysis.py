@@ -9,7 +9,7 @@ import xarray as xr
 
 import vines.plotting as P
 from vines.core.measures import time_histories
-from vines.orbits.stability_map import stability_map
+from vines.orbits.atlas.stability_map import stability_map
 from vines.plotting.sweep_regimes import (
     REGIME_CHATTER,
     REGIME_IRREGULAR,

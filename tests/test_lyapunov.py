@@ -1,6 +1,6 @@
 """Lyapunov spectra by saltation matrices (``core.variational``, ``attractors.lyapunov``).
 
-Oracles that share no code with the tangent pass: the map Jacobian of ``orbits.maps``
+Oracles that share no code with the tangent pass: the map Jacobian of ``orbits.maps.impact``
 (implicit differentiation of the impact-to-impact maps), central differences of the exact
 flow map, the phase-volume contraction (damping between impacts, det = r^2 per impact), the
 linear oscillator without impacts, and finite-difference estimates of lambda_1 and lambda_2
@@ -23,7 +23,7 @@ from vines.core.variational import (
     stick_projection,
 )
 from vines.core.walls import impact_velocities
-from vines.orbits.periodic import find_1to1
+from vines.orbits.family.periodic import find_1to1
 
 #: chaotic points found by a random search (irregular from rest, lambda_1 > 0 from every
 #: state tried, windows up to 3e4)

@@ -7,8 +7,14 @@ import pytest
 import vines
 from vines.core.params import ModelParams
 from vines.core.walls import WALL_L, WALL_R, impact_velocities
-from vines.orbits.maps import apply_map, is_admissible, map_jacobian, map_with_jacobian, mirror
-from vines.orbits.periodic import find_1to1
+from vines.orbits.family.periodic import find_1to1
+from vines.orbits.maps.impact import (
+    apply_map,
+    is_admissible,
+    map_jacobian,
+    map_with_jacobian,
+    mirror,
+)
 
 
 def test_impact_law_matches_spec():

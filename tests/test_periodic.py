@@ -8,8 +8,8 @@ import pytest
 import vines
 from vines.core.params import ModelParams
 from vines.core.walls import WALL_L, WALL_R
-from vines.orbits.maps import apply_map, mirror
-from vines.orbits.periodic import PeriodicOrbit, find_1to1
+from vines.orbits.family.periodic import PeriodicOrbit, find_1to1
+from vines.orbits.maps.impact import apply_map, mirror
 
 
 @pytest.mark.parametrize("eta, W, F", [(0.05, 1.0, 0.05), (0.035, 1.0, 0.05),
@@ -119,8 +119,8 @@ def test_no_forcing_no_orbit_and_bad_input():
 
 # --------------------------------------------------------------------------- continuation
 
-from vines.orbits.continuation import continue_branch  # noqa: E402
-from vines.orbits.stability_map import stability_map  # noqa: E402
+from vines.orbits.atlas.stability_map import stability_map  # noqa: E402
+from vines.orbits.continuation.one_to_one import continue_branch  # noqa: E402
 
 
 def _preferred(eta, W, F):

@@ -8,7 +8,7 @@ from vines.attractors import census, torus
 from vines.attractors.orbit import section_of_1to1
 from vines.core.exact import oscillators, run_exact
 from vines.core.params import ModelParams, SolverSettings
-from vines.orbits.periodic import find_1to1
+from vines.orbits.family.periodic import find_1to1
 
 GOLDEN = (math.sqrt(5.0) - 1.0) / 2.0
 FIBONACCI = {1, 2, 3, 5, 8, 13, 21, 34, 55, 89, 144, 233, 377, 610, 987, 1597, 2584}
@@ -150,7 +150,7 @@ def test_two_impact_regime_of_the_slow_flow_is_not_modulated():
 def test_torus_point_lies_past_a_neimark_sacker_curve_of_boundaries():
     """``vines boundaries`` at F = 0.484 has a Neimark-Sacker curve of the symmetric 1:1
     orbit crossing eta = 0.511 between Omega = 1.24 and TORUS's 1.26 (15 s)."""
-    from vines.orbits.boundaries import boundaries
+    from vines.orbits.curves.boundaries import boundaries
     b = boundaries(TORUS[2], [0.45, 0.55], [1.2, 1.3], n_scan=3, n_map=0)
     ns = [c for c in b.curves if c.type == "neimark-sacker" and c.family == "symmetric"]
     crossings = []

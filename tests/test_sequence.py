@@ -1,4 +1,4 @@
-"""Periodic orbits of any wall sequence (``vines.orbits.sequence``) against the simulation.
+"""Periodic orbits of any wall sequence (``vines.orbits.family.sequence``) against the simulation.
 
 Each family is checked at a point where a simulation from some state settles on it: the
 simulated steady-state impacts (pre-impact z_m', z_b', z_b and the impact time mod T) equal
@@ -15,13 +15,11 @@ import numpy as np
 import pytest
 
 from vines.core.params import ModelParams, ParameterError
-from vines.orbits.periodic import orbits_1to1
-from vines.orbits.sequence import (
-    canonical_walls,
-    family_name,
+from vines.orbits.family.family import canonical_walls, family_name, paper_label
+from vines.orbits.family.periodic import orbits_1to1
+from vines.orbits.family.sequence import (
     find_sequence,
     flip_seeds,
-    paper_label,
     record_seed,
     solve_sequence,
     state_at,
@@ -108,6 +106,9 @@ def test_LR_one_period_is_the_1to1_solver(eta, omega, F, simulation):
         assert (o.symmetric, o.admissible, o.stable, o.lambda_max) == \
             (q.symmetric, q.admissible, q.stable, q.lambda_max)
         assert list(o.dw) == [q.dw_L, q.dw_R] and list(o.phases) == [q.phase_L, q.phase_R]
+        # the 1:1 orbit reads as an orbit of its family LR/1 (the fields of any family)
+        for key in ("walls", "periods", "family", "states", "dw", "phases"):
+            assert np.array_equal(getattr(q, key), getattr(o, key)), key
 
 
 # --------------------------------------------------------------------------- families
@@ -191,7 +192,7 @@ def test_repeated_shorter_orbit_is_not_a_solution():
 
 
 def test_solution_is_a_fixed_point_of_the_composed_maps():
-    from vines.orbits.maps import apply_map
+    from vines.orbits.maps.impact import apply_map
     p = ModelParams(eta=0.2, omega=0.8, F=0.4)
     o = find_sequence(p, "LLRR", 1, simulation=False)[0]
     x = o.states[0]
@@ -219,8 +220,8 @@ def test_names_and_bad_input():
 # --------------------------------------------------------------------------- continuation
 
 def test_continuation_locates_the_1to1_flip_and_switches_to_period2():
-    from vines.orbits.continuation import continue_branch
-    from vines.orbits.sequence_branches import ContinueSettings, continue_sequence
+    from vines.orbits.continuation.one_to_one import continue_branch
+    from vines.orbits.continuation.sequence import ContinueSettings, continue_sequence
     p = ModelParams(eta=0.142, omega=0.74, F=0.2)
     one = next(o for o in find_sequence(p, "LR", 1, simulation=False)
            if o.admissible and not o.symmetric)

@@ -8,11 +8,11 @@ import numpy as np
 import pytest
 
 from vines.core.params import ModelParams, ParameterError
-from vines.orbits.arclength import NEWTON_TOL
-from vines.orbits.boundaries import boundaries
-from vines.orbits.sequence import pitchfork_seeds, solve_sequence
-from vines.orbits.sequence_boundaries import crossings, family_from_name
-from vines.orbits.sequence_curves import make_system, orbit_of
+from vines.orbits.continuation.arclength import NEWTON_TOL
+from vines.orbits.curves.boundaries import boundaries
+from vines.orbits.curves.sequence import crossings, family_from_name
+from vines.orbits.family.map_systems import make_system, orbit_of
+from vines.orbits.family.sequence import pitchfork_seeds, solve_sequence
 
 #: the 2:2 orbits of Fig 9 (eta 0.2, omega 0.8, F 0.4): a fold of the symmetric family
 LLRR = dict(F=0.4, box=((0.1, 0.3), (0.7, 0.9)), walls="LLRR", periods=1)
@@ -168,8 +168,8 @@ def test_continuation_switches_onto_the_asymmetric_pair_at_symmetry_breaking(llr
     (det(B - I) along the branch) is where the symmetry-breaking curve (det(H + I) with
     eta and omega free) crosses eta = 0.2; the branch switched onto there is asymmetric,
     comes with its mirror image, and leaves the symmetric orbit like a square root."""
-    from vines.orbits.sequence import find_sequence
-    from vines.orbits.sequence_branches import ContinueSettings, continue_sequence
+    from vines.orbits.continuation.sequence import ContinueSettings, continue_sequence
+    from vines.orbits.family.sequence import find_sequence
     (curve,) = [c for c in llrr if c.type == "symmetry-breaking"]
     p = ModelParams(eta=0.2, omega=0.8, F=0.4)
     (pt,) = crossings(curve, "LLRR", p, ("eta", 0.2))

@@ -6,12 +6,15 @@ import numpy as np
 import pytest
 from test_boundaries import CASES, MODEL, F, augmented_point
 
-from vines.orbits import boundaries as bnd
-from vines.orbits import jets
-from vines.orbits import shooting as sh
-from vines.orbits import shooting_kernels as sk
-from vines.orbits.periodic import find_1to1
-from vines.orbits.tape import record
+from vines.orbits.curves import boundaries as bnd
+from vines.orbits.curves import one_to_one
+from vines.orbits.curves.one_to_one import class_edges
+from vines.orbits.curves.tracer import in_box
+from vines.orbits.family.periodic import find_1to1
+from vines.orbits.jets import kernels as sk
+from vines.orbits.jets import shooting as sh
+from vines.orbits.jets import taylor as jets
+from vines.orbits.jets.tape import record
 
 
 def _formula(x, y, c):
@@ -70,7 +73,7 @@ def test_compiled_augmented_systems_match_python_jets(family, kind, graze, free)
     np.testing.assert_allclose(Gz, Gz_ref, rtol=0, atol=1e-13 * scale)
 
 
-@pytest.mark.parametrize("family", sh.FAMILIES)
+@pytest.mark.parametrize("family", sh.ORBIT_KINDS)
 def test_compiled_residual_jacobian_matches_python_jets(family):
     o = [o for o in find_1to1(0.3, 0.9, 0.2, simulation=False)
          if o.symmetric == (family == "symmetric")][0]
@@ -107,7 +110,7 @@ def test_class_changes_outside_the_box_seed_nothing(monkeypatch):
     """An edge of the class map with both cells outside the box is not continued (its
     events cannot lie in the box); an edge with a cell in the box is."""
     calls = []
-    monkeypatch.setattr(bnd, "_edge_seeds", lambda model, F_, edge: calls.append(edge) or [])
+    monkeypatch.setattr(one_to_one, "_edge_seeds", lambda model, F_, edge: calls.append(edge) or [])
     box = ((0.1, 0.4), (0.9, 1.2))
     eta, omega = np.array([0.8, 0.9]), np.array([1.0, 1.1])        # eta outside the box
     cls = np.array([[1, 3], [3, 1]])
@@ -115,8 +118,8 @@ def test_class_changes_outside_the_box_seed_nothing(monkeypatch):
     assert calls == []
     eta_in = np.array([0.35, 0.45])                                 # one cell inside
     res = bnd.boundaries(F, *box, n_scan=1, class_map=(eta_in, omega, cls))
-    inside = [e for e in bnd.class_edges(eta_in, omega, cls)
-              if bnd._in_box(e[0], box) or bnd._in_box(e[1], box)]
+    inside = [e for e in class_edges(eta_in, omega, cls)
+              if in_box(e[0], box) or in_box(e[1], box)]
     explained = [e for e in inside if _near(res.curves, e)]
     assert len(calls) == len(inside) - len(explained) and len(inside) == 3
 

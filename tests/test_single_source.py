@@ -48,7 +48,7 @@ def test_timehistory_defaults_equal_the_api():
 
 
 def test_boundaries_defaults_equal_the_api():
-    from vines.orbits.boundaries import boundaries
+    from vines.orbits.curves.boundaries import boundaries
     bd = PROPS["boundaries"]["additionalProperties"]["properties"]
     api = _defaults(boundaries)
     for key in ("n_scan", "step", "max_points", "n_map"):

@@ -11,7 +11,7 @@ from scipy.optimize import brentq
 from vines.core.flow import flow, make_osc
 from vines.core.params import ParameterError
 from vines.core.walls import impact_velocities
-from vines.orbits.periodic import find_1to1
+from vines.orbits.family.periodic import find_1to1
 from vines.slowflow import frc, manifold, optimal_F, response, rho
 from vines.slowflow.response import Model, fixed_points
 

@@ -13,11 +13,11 @@ from vines.core.exact import oscillators
 from vines.core.flow import I_NRES, I_W, flow, flow_zv, make_osc, s_factors
 from vines.core.params import ModelParams
 from vines.core.walls import WALL_L, WALL_R
-from vines.orbits import periodic as P
-from vines.orbits._lapack import eigvals, lambda_max_4, monodromy_eigvals
-from vines.orbits.affine import _chain, _lr_chain, affine_chain, chain_workspace
-from vines.orbits.maps import map_jacobian, model_array, pack_model
-from vines.orbits.stability_map import stability_map, stability_map_python
+from vines.orbits.atlas.stability_map import stability_map, stability_map_python
+from vines.orbits.family import periodic as P
+from vines.orbits.maps.affine import _chain, _lr_chain, affine_chain, chain_workspace
+from vines.orbits.maps.impact import map_jacobian, model_array, pack_model
+from vines.orbits.maps.lapack import eigvals, lambda_max_4, monodromy_eigvals
 
 KEYS = ("lambda_max", "cls", "dw_L", "symmetric")
 ETA = np.linspace(0.02, 0.9, 12)

@@ -67,7 +67,7 @@ def test_shooting_task_compiles_what_continuation_calls():
     """The shooting task compiles ``codim1`` for the argument types continuation passes, so
     map_solve and boundaries after it compile no other specialization of it."""
     from vines.core.params import D_DEFAULT
-    from vines.orbits import shooting_kernels
+    from vines.orbits.jets import kernels as shooting_kernels
     model = {"r": 0.65, "d": D_DEFAULT}
     simulation = {"t_end": 1000.0, "t_transient": 600.0, "v_stick": 1e-6,
                   "max_impacts": 2_000_000, "root_tol": 1e-13, "periodic_shortcut": True}

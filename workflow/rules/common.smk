@@ -42,7 +42,7 @@ from vines.pipeline.config import (
     validate_config,
 )
 from vines.pipeline.parts import CHUNKED_STAGES, chunk_plan
-from vines.pipeline.config_checks import ONE_TO_ONE, atlas_grid, boundary_family
+from vines.pipeline.config_checks import atlas_grid, boundary_family
 
 try:
     # Snakemake's YAML reading keeps the last of a key given twice: refuse that first

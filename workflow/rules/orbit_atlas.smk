@@ -1,5 +1,5 @@
 # orbit-atlas: which periodic families (1:1, 2:2, 2:1, 3:2, 3:3, period-2) are admissible
-# and stable over an eta-W grid at one F (vines.orbits.atlas, docs/bifurcation.md). Whole
+# and stable over an eta-W grid at one F (vines.orbits.atlas.atlas, docs/bifurcation.md). Whole
 # eta rows (each swept in W) in chunk jobs of about `chunks.orbit_atlas` points (rule
 # orbit_atlas_chunk), gathered into the atlas's dataset.
 

@@ -31,7 +31,7 @@ from ..core.exact import Oscillators, oscillators
 from ..core.params import ModelParams, SolverSettings, check_int
 from ..core.result import RawRun
 from ..core.simulation import run_measured
-from ..orbits.periodic import PeriodicOrbit
+from ..orbits.family.periodic import PeriodicOrbit
 from .orbit import polish_1to1
 
 KINDS = ("1:1", "orbit", "motion", "unsettled")

@@ -4,7 +4,7 @@
   ratio and x_max are exact time averages / maxima over that period, the regime follows
   from the period's events.
 * ``polish_1to1``: a run whose last impacts alternate L, R once per forcing period is
-  taken to the 1:1 orbit by the map's Newton solver (``orbits.periodic.solve_orbit``) from
+  taken to the 1:1 orbit by the map's Newton solver (``orbits.family.periodic.solve_orbit``) from
   its last L impact. Accepted when the orbit is admissible and stable and the run's impact
   lies within POLISH_TOL of it: a stable orbit attracts such a run, however slowly it
   converges (|lambda| near 1), so slow runs are not mistaken for other periods.
@@ -25,7 +25,7 @@ from ..core.params import ModelParams, SolverSettings
 from ..core.regime import CHATTER_RUN, longest_same_wall_run
 from ..core.shortcut import rel_diff
 from ..core.walls import WALL_L, impact_velocities
-from ..orbits.periodic import PeriodicOrbit, solve_orbit
+from ..orbits.family.periodic import PeriodicOrbit, solve_orbit
 
 #: last impacts a run must have alternating L, R (one pair per forcing period) for a polish
 N_TAIL = 16

@@ -48,7 +48,7 @@ def add_parser(subparsers) -> VinesArgumentParser:
 
 def run(args: argparse.Namespace) -> int:
     params = ModelParams(eta=0.1, omega=1.0, F=args.F, r=args.r, d=args.d)
-    from ..orbits.boundaries import boundaries
+    from ..orbits.curves.boundaries import boundaries
 
     with quiet_stdout():
         res = boundaries(params.F, args.eta_range, args.omega_range, r=params.r, d=params.d,

@@ -142,7 +142,7 @@ def run(args: argparse.Namespace) -> int:
                            f"--branch {args.branch} (only with --method arclength --branch "
                            "symmetric)")
     fixed = {q: getattr(params, q) for q in others}
-    from ..orbits.continuation import continue_branch
+    from ..orbits.continuation.one_to_one import continue_branch
 
     with quiet_stdout():
         br = continue_branch(args.param, values["start"], values["stop"], step, fixed,
@@ -155,8 +155,9 @@ def run(args: argparse.Namespace) -> int:
 def _run_walls(args: argparse.Namespace, values: dict, stop: ModelParams) -> dict:
     """The continued branch of a wall sequence (keys of ``SequenceBranch.to_dict``: walls,
     periods, family, param, branch, events, stopped, switched)."""
-    from ..orbits.sequence import check_periods, check_walls, find_sequence
-    from ..orbits.sequence_branches import ContinueSettings, continue_sequence
+    from ..orbits.continuation.sequence import ContinueSettings, continue_sequence
+    from ..orbits.family.family import check_periods, check_walls
+    from ..orbits.family.sequence import find_sequence
 
     walls = check_walls(args.walls)
     periods = check_periods(args.periods)

@@ -18,7 +18,7 @@ SOLUTION_KEYS = ("walls", "periods", "family", "paper_label", "symmetric", "admi
                  "stable", "lambda_max", "eigenvalues", "dw", "phases", "flight_times")
 
 
-#: limits of ``vines.orbits.sequence`` (repeated so that parsing loads no numba; a test
+#: limits of ``vines.orbits.family.sequence`` (repeated so that parsing loads no numba; a test
 #: checks that they agree)
 MAX_IMPACTS_PER_ORBIT, MAX_PERIODS = 64, 64
 WALLS_ALLOWED = f"1 to {MAX_IMPACTS_PER_ORBIT} letters L or R, e.g. LR, LLRR, LLR, RLRL"
@@ -57,7 +57,7 @@ def run(args: argparse.Namespace) -> int:
     if args.walls is not None:
         return emit(args.json, run_walls(args), text_walls)
     params = model_params(args)
-    from ..orbits.periodic import orbits_1to1
+    from ..orbits.family.periodic import orbits_1to1
 
     with quiet_stdout():
         orbits = orbits_1to1(params)
@@ -68,7 +68,8 @@ def run(args: argparse.Namespace) -> int:
 def run_walls(args: argparse.Namespace) -> dict:
     """Every orbit of the sequence found: {"walls", "periods", "family", "solutions",
     "params"}. Raises ParameterError (naming the option) on bad input."""
-    from ..orbits.sequence import check_periods, check_walls, family_name, find_sequence
+    from ..orbits.family.family import check_periods, check_walls, family_name
+    from ..orbits.family.sequence import find_sequence
 
     walls = check_walls(args.walls)
     periods = check_periods(args.periods)

@@ -259,7 +259,7 @@ def _branch_rows(br) -> list:
 
 
 def branch_dataset(br, attrs: dict) -> xr.Dataset:
-    """A continued 1:1 branch (``orbits.continuation.Branch``) and the asymmetric branches
+    """A continued 1:1 branch (``orbits.continuation.one_to_one.Branch``) and the asymmetric branches
     born at its symmetry-breaking points, as a CF contiguous ragged array: instance
     ``branch`` (row 0 the continued branch, ``row_size`` points each), samples ``point``
     in continuation order; events over ``event`` with the branch they lie on."""
@@ -299,7 +299,7 @@ def branch_dataset(br, attrs: dict) -> xr.Dataset:
 
 
 def boundaries_dataset(curves: list, F: float, attrs: dict) -> xr.Dataset:
-    """Boundary curves (``orbits.boundaries.Boundaries.curves``) at one F as a CF contiguous
+    """Boundary curves (``orbits.curves.boundaries.Boundaries.curves``) at one F as a CF contiguous
     ragged array: instance ``curve``, samples ``point`` = (eta, omega) along the curve."""
     pts = [np.asarray(c.points, float).reshape(-1, 2) for c in curves]
     allp = np.concatenate(pts) if pts else np.empty((0, 2))
@@ -324,7 +324,7 @@ def boundaries_dataset(curves: list, F: float, attrs: dict) -> xr.Dataset:
 
 
 def stability_dataset(eta, omega, res: dict, attrs: dict) -> xr.Dataset:
-    """A stability map (``orbits.stability_map``) over (eta, omega)."""
+    """A stability map (``orbits.atlas.stability_map``) over (eta, omega)."""
     D = ("eta", "omega")
     for k in STABILITY_ATTRS:
         if np.shape(res[k]) != (np.size(eta), np.size(omega)):

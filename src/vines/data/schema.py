@@ -373,7 +373,7 @@ UNCERTAINTY_ATTRS = {
     "tmd_eta": ("TMD mass ratio m_a/M (exact parts)", "1"),
 }
 
-#: orbit atlases (``vines.orbits.atlas``): per family, and per family and grid point
+#: orbit atlases (``vines.orbits.atlas.atlas``): per family, and per family and grid point
 ATLAS_FAMILY_ATTRS = {
     "family": ("periodic orbit family (wall sequence/forcing periods, -sym/-asym; "
                "docs/bifurcation.md)", ""),

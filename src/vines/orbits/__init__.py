@@ -1,2 +1,40 @@
-"""Periodic orbits on the exact impact maps: maps with Jacobians, 1:1 orbits and their
-stability, continuation of branches with events, stability maps over parameter planes."""
+"""Periodic orbits on the exact impact maps, one family at a time (docs/architecture.md):
+
+* ``maps``: one flight and impact with its Jacobian (``impact``), the one Newton on composed
+  maps (``newton``), the affine-form seeds (``affine``), the compiled eigenvalues (``lapack``);
+* ``jets``: the flight as closed-form shooting conditions with exact derivatives by Taylor
+  jets (``taylor``, recorded as a ``tape``, run compiled by ``kernels``; ``shooting``);
+* ``family``: the family object (``family``: walls, periods, symmetric; the 1:1 orbit is
+  the value LR/1 of it), its orbits (``periodic`` for 1:1, ``sequence`` for any wall
+  sequence) and its augmented systems (``augmented`` on jets, ``map_systems`` on the maps);
+* ``continuation``: the arclength tracer, branches and their events (``one_to_one``,
+  ``follower``, ``sequence``; results in ``branch``);
+* ``curves``: codimension-one curves in (eta, omega) on one tracer (``tracer``), seeded per
+  family (``one_to_one``, ``sequence``), entry point ``boundaries``;
+* ``atlas``: which families exist at a point (``atlas``), stability maps (``stability_map``).
+
+The public entry points below load their modules (numba) on first access.
+"""
+from .._lazy import lazy_attributes
+
+#: public names loaded on first access, and their modules
+_LAZY = {
+    "Family": ".family.family",
+    "find_1to1": ".family.periodic",
+    "PeriodicOrbit": ".family.periodic",
+    "find_sequence": ".family.sequence",
+    "SequenceOrbit": ".family.sequence",
+    "continue_branch": ".continuation.one_to_one",
+    "ContinuationSettings": ".continuation.one_to_one",
+    "Branch": ".continuation.branch",
+    "continue_sequence": ".continuation.sequence",
+    "ContinueSettings": ".continuation.sequence",
+    "SequenceBranch": ".continuation.branch",
+    "boundaries": ".curves.boundaries",
+    "atlas_point": ".atlas.atlas",
+    "stability_map": ".atlas.stability_map",
+}
+
+__all__ = sorted(_LAZY)
+
+__getattr__, __dir__ = lazy_attributes(__name__, _LAZY)

@@ -21,6 +21,7 @@ from ..core.params import (
     SolverSettings,
     check_int,
 )
+from ..orbits.family.family import Family
 from .axes import ConfigError, axis_values
 
 
@@ -231,13 +232,10 @@ def check_attractor_maps(config: dict, model: dict, limits: dict) -> None:
         _check_size(key, n, limits, "slice points")
 
 
-#: the family of a boundaries entry without walls/periods: the 1:1 orbits
-ONE_TO_ONE = ("LR", 1)
-
-
-def boundary_family(entry: dict) -> tuple[str, int]:
-    """(walls, periods) of the family whose curves a ``boundaries`` entry traces."""
-    return str(entry.get("walls", "LR")).upper(), int(entry.get("periods", 1))
+def boundary_family(entry: dict) -> Family:
+    """The family whose curves a ``boundaries`` entry traces (without walls/periods: the
+    1:1 orbits)."""
+    return Family(str(entry.get("walls", "LR")).upper(), int(entry.get("periods", 1)))
 
 
 def check_boundaries(config: dict, model: dict, limits: dict) -> None:
@@ -253,9 +251,9 @@ def check_boundaries(config: dict, model: dict, limits: dict) -> None:
         _check_param(f"{key}.F", "F", bd["F"], model)
         name_map = bd.get("stability_map")
         family = boundary_family(bd)
-        if name_map is not None and family != ONE_TO_ONE:
+        if name_map is not None and not family.one_to_one:
             raise ConfigError(f"{key}.stability_map", f"{name_map!r} seeds 1:1 curves only, "
-                              f"not those of walls {family[0]}, periods {family[1]} (drop "
+                              f"not those of walls {family.walls}, periods {family.periods} (drop "
                               "the key)")
         if name_map is not None:
             if name_map not in config["stability_maps"]:

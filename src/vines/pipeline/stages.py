@@ -266,7 +266,7 @@ def map_solve(spec: dict, *, model: dict, code: str, title: str):
     starts at the branch's first admissible point (a run started on a non-admissible
     stretch stops there and never meets the symmetry-breaking points beyond it) and may end
     before ``stop``, e.g. after a long non-admissible stretch."""
-    from ..orbits.continuation import continue_branch
+    from ..orbits.continuation.one_to_one import continue_branch
     fixed = {k: float(v) for k, v in spec["fixed"].items()}
     args = (spec["param"], spec["start"], spec["stop"], spec["step"], fixed)
     br = continue_branch(*args, r=model["r"], d=model["d"], method="natural",
@@ -287,7 +287,7 @@ def boundaries(spec: dict, *, model: dict, code: str, title: str, stability_path
     grazing) of 1:1 orbits (or of ``spec['walls']``/``spec['periods']``) in the box ``spec['eta_range']`` x ``spec['omega_range']`` at
     ``spec['F']``; the class changes of the stability map at ``stability_path`` (a
     ``stability_map`` dataset at this F), if given, seed the curves no scan line meets."""
-    from ..orbits.boundaries import boundaries as curves_at
+    from ..orbits.curves.boundaries import boundaries as curves_at
     kw = {k: spec[k] for k in ("n_scan", "step", "max_points", "n_map", "walls", "periods")
           if k in spec}
     if stability_path is not None:
@@ -301,7 +301,8 @@ def boundaries(spec: dict, *, model: dict, code: str, title: str, stability_path
     attrs = provenance_attrs(title=title, config_subset={"spec": spec, "model": model},
                              settings=model, code_version=code)
     attrs.update(eta_range=list(res.eta_range), omega_range=list(res.omega_range))
-    if (res.walls, res.periods) == ("LR", 1):       # 1:1 datasets as they always were
+    from ..orbits.family.family import Family
+    if Family(res.walls, res.periods).one_to_one:       # 1:1 datasets as they always were
         return builders.boundaries_dataset(res.curves, res.F, attrs)
     attrs.update(walls=res.walls, periods=res.periods)
     ds = builders.boundaries_dataset(res.curves, res.F, attrs)
@@ -316,7 +317,7 @@ def boundaries(spec: dict, *, model: dict, code: str, title: str, stability_path
 
 def stability_map(spec: dict, *, model: dict, code: str, title: str, n_workers: int = 1):
     """Dataset of one stability map over (eta, omega) at ``spec['F']``."""
-    from ..orbits.stability_map import stability_map as solve_map
+    from ..orbits.atlas.stability_map import stability_map as solve_map
     eta, omega = axis_values(spec["eta"]), axis_values(spec["omega"])
     res = solve_map(eta, omega, float(spec["F"]), r=model["r"], d=model["d"],
                     n_threads=n_workers)
@@ -612,13 +613,13 @@ def uncertainty(spec: dict, *, model: dict, simulation: dict, code: str, title: 
 # ------------------------------------------------------------------ orbit-atlas
 
 def _atlas_rows(eta, omega, F, kw):
-    from ..orbits.atlas import atlas_arrays
+    from ..orbits.atlas.atlas import atlas_arrays
     return atlas_arrays(eta, omega, F, **kw)
 
 
 def _atlas_kw(sim_t_end: float, model: dict) -> dict:
     """``atlas_arrays``'s keywords: r, d, and the simulation check (sim_t_end 0: none)."""
-    from ..orbits.sequence import SIM_T_END
+    from ..orbits.family.sequence import SIM_T_END
     return {"r": model["r"], "d": model["d"], "simulation": sim_t_end > 0,
             "sim_t_end": sim_t_end if sim_t_end > 0 else SIM_T_END}
 
@@ -642,12 +643,12 @@ def orbit_atlas(grid: dict, *, sim_t_end: float, model: dict, code: str, title: 
                 n_workers: int = 1, rows_per_task: int = 1, scheduler: str | None = None,
                 parts: list | None = None):
     """Dataset of one orbit atlas over ``grid``'s (eta, omega) at its F: every family of
-    ``orbits.atlas.FAMILIES`` found / admissible / stable at each point. Each eta row is
+    ``orbits.atlas.atlas.FAMILIES`` found / admissible / stable at each point. Each eta row is
     swept in omega from omega[0], seeded by the previous omega (``atlas_arrays``), so tasks
     and parts hold whole rows (``rows_per_task`` of them a task): the numbers do not
     depend on workers, task size, parts or scheduler. ``parts``: the ``orbit_atlas_part``
     results covering every row in order (else computed here)."""
-    from ..orbits.atlas import FAMILIES, PAPER_LABELS
+    from ..orbits.atlas.atlas import FAMILIES, PAPER_LABELS
     eta, omega = axis_values(grid["eta"]), axis_values(grid["omega"])
     F = float(grid["F"])
     if parts is None:
@@ -658,7 +659,7 @@ def orbit_atlas(grid: dict, *, sim_t_end: float, model: dict, code: str, title: 
     if next(iter(arrays.values())).shape[0] != eta.size:
         raise ValueError(f"parts hold {next(iter(arrays.values())).shape[0]} eta rows, "
                          f"the atlas {eta.size}")
-    families = {k: (walls, periods, PAPER_LABELS[k]) for k, (walls, periods, _) in FAMILIES.items()}
+    families = {k: (f.walls, f.periods, PAPER_LABELS[k]) for k, f in FAMILIES.items()}
     attrs = provenance_attrs(title=title, config_subset={"grid": grid, "sim_t_end": sim_t_end,
                                                          "model": model},
                              settings=model, code_version=code)

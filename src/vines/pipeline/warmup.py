@@ -115,14 +115,14 @@ def _lyapunov(model: dict, simulation: dict) -> None:
 
 def _seeds(model: dict, simulation: dict) -> None:
     """The 1:1 maps, seeds and orbit solver that branches and boundaries share."""
-    from ..orbits.periodic import find_1to1
+    from ..orbits.family.periodic import find_1to1
     find_1to1(**POINT, **model, simulation=False)
 
 
 def _shooting(model: dict, simulation: dict) -> None:
-    """The jet kernel of the 1:1 shooting systems (``shooting_kernels.codim1``: continuation
+    """The jet kernel of the 1:1 shooting systems (``kernels.codim1``: continuation
     and boundaries), on its own: it shares no kernel with the others."""
-    from ..orbits import shooting
+    from ..orbits.jets import shooting
     shooting.residual_jacobian(shooting.Model(model["r"], model["d"]), "symmetric",
                                [0.5, 0.1, 0.0, 0.0], POINT, free=("eta",))
 

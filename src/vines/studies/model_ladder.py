@@ -105,8 +105,8 @@ def _amplitudes(eta, F, r, d, pairs) -> tuple[np.ndarray, np.ndarray]:
 
 def map_solve_rows(eta, W, F, r, d) -> tuple[dict, list, float]:
     """(rows, orbits per frequency, seconds) of the exact symmetric admissible 1:1 orbits
-    found at each frequency of W (``orbits.periodic.find_1to1``) with their amplitudes."""
-    from ..orbits.periodic import find_1to1
+    found at each frequency of W (``orbits.family.periodic.find_1to1``) with their amplitudes."""
+    from ..orbits.family.periodic import find_1to1
     t0 = time.perf_counter()
     per_w, pairs, index = [], [], []
     for i, w in enumerate(W):
@@ -127,7 +127,7 @@ def continuation_rows(eta, W, F, r, d, per_w: list, step: float) -> tuple[dict, 
     from every orbit found at the band's first and last frequency with orbits, towards the
     other end; rows carry their curve's index and the points' amplitudes (NaN where not
     admissible)."""
-    from ..orbits.continuation import continue_branch
+    from ..orbits.continuation.one_to_one import continue_branch
     t0 = time.perf_counter()
     with_orbits = [i for i, found in enumerate(per_w) if found]
     starts = []

@@ -4,14 +4,14 @@
 
 1. seeds: at the n_scan x n_scan crossings of the scan lines, every admissible orbit of the
    sequence ``sequence.find_sequence`` finds (the first symmetric and the first asymmetric
-   one) is continued (``sequence_branches.continue_sequence``) both ways along both lines
+   one) is continued (``continuation.sequence.continue_sequence``) both ways along both lines
    through it; every event of those continuations becomes a seed, solved as a square
-   system with the line's parameter free (``sequence_curves``): fold -> fold,
+   system with the line's parameter free (``map_systems``): fold -> fold,
    flip -> flip (asymmetric orbits), symmetry-breaking -> symmetry-breaking,
    neimark-sacker -> neimark-sacker, admissibility-loss -> the grazing
-   of the flight closest to a wall contact (``sequence_curves.grazing_guess``);
+   of the flight closest to a wall contact (``map_systems.grazing_guess``);
 2. each seed not on a traced curve of its kind is continued both ways in (eta, omega)
-   (``boundaries.trace``: the same tracer and box handling as the 1:1 curves);
+   (``tracer.trace``: the same tracer and box handling as the 1:1 curves);
 3. fold, flip, symmetry-breaking and neimark-sacker curves keep their stretches on
    admissible orbits of the family's kind (neimark-sacker: where the pair on the unit
    circle is complex); grazing curves are kept whole, except one lying on a grazing curve
@@ -24,12 +24,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..core.params import ModelParams, ParameterError
-from . import augmented as ag
-from .sequence import find_sequence, same_orbit, solve_sequence
-from .sequence_branches import ContinueSettings, continue_sequence
-from .sequence_curves import (
-    SequenceFamily,
+from ...core.params import ModelParams, ParameterError
+from ..continuation.sequence import ContinueSettings, continue_sequence
+from ..family.family import Family
+from ..family.map_systems import (
     family_of,
     grazing_guess,
     make_system,
@@ -37,8 +35,11 @@ from .sequence_curves import (
     unknowns,
     with_values,
 )
+from ..family.sequence import find_sequence, same_orbit, solve_sequence
+from ..family.systems import solve
+from . import tracer
+from .tracer import NS_KEEP_TOL, Traced, pieces_of
 
-NS_TOL = 1e-6           # a kept neimark-sacker point has a complex pair this close to |mu| = 1
 GRAZE_MARGIN = 1e-3     # an admissibility loss seeds a grazing curve this close to contact
 EVENT_KINDS = {"fold": "fold", "flip": "flip", "symmetry-breaking": "symmetry-breaking",
                "neimark-sacker": "neimark-sacker", "admissibility-loss": "grazing"}
@@ -57,7 +58,6 @@ class _SequenceKit:
         return make_system(self.base, self.families[name], kind, graze, ("eta", "omega"))
 
     def keep(self, curve) -> list:
-        from .boundaries import pieces_of
         if curve.type == "grazing":
             if any(_same_points(curve, c, self.step) for c in self.grazing):
                 return []
@@ -78,22 +78,21 @@ def _same_points(a, b, step: float) -> bool:
     return bool(np.all(d.min(axis=1) <= 0.5 * step))
 
 
-def _on_family(system, z, fam: SequenceFamily) -> bool:
+def _on_family(system, z, fam: Family) -> bool:
     o = orbit_of(system, z)
     good = o is not None and o.admissible and o.symmetric == fam.symmetric
     if good and system.kind == "neimark-sacker":
         ev = o.eigenvalues
-        good = bool(np.any((np.abs(ev.imag) > 1e-9) & (np.abs(np.abs(ev) - 1.0) <= NS_TOL)))
+        good = bool(np.any((np.abs(ev.imag) > 1e-9) & (np.abs(np.abs(ev) - 1.0) <= NS_KEEP_TOL)))
     return good
 
 
 def sequence_boundaries(p: ModelParams, family: tuple, box, scan: tuple) -> list:
     """Kept curves of the family (walls, periods) in the box at p's F (module docstring);
-    scan = (n_scan, ``boundaries.CurveSettings``)."""
-    from .boundaries import _Traced
+    scan = (n_scan, ``tracer.CurveSettings``)."""
     n_scan, settings = scan
     kit = _SequenceKit(p, settings.step)
-    traced = _Traced(kit, box, settings)
+    traced = Traced(kit, box, settings)
     for seed in _seeds(kit, family, box, n_scan):
         traced.add(seed)
     return traced.kept
@@ -171,7 +170,7 @@ def _event_seed(kit: _SequenceKit, ev: dict, param: str):
         return None
     other = "omega" if param == "eta" else "eta"
     base = with_values(kit.base, {other: getattr(o.params, other)})
-    zs = ag.solve(make_system(base, fam, kind, graze, (param,)), u + [getattr(o.params, param)])
+    zs = solve(make_system(base, fam, kind, graze, (param,)), u + [getattr(o.params, param)])
     if zs is None:
         return None
     par = {other: getattr(o.params, other), param: float(zs[-1])}
@@ -179,29 +178,19 @@ def _event_seed(kit: _SequenceKit, ev: dict, param: str):
     return fam.name, kind, graze, np.array(list(zs[:-1]) + [par["eta"], par["omega"]])
 
 
-def family_from_name(name: str, walls: str) -> SequenceFamily:
+def family_from_name(name: str, walls: str) -> Family:
     """The family of a curve of ``walls`` from its name ("WALLS/N[-sym|-asym]")."""
     periods = int(name.split("/")[1].split("-")[0])
-    return SequenceFamily(walls, periods, name.endswith("-sym"))
+    return Family(walls, periods, name.endswith("-sym"))
 
 
 def crossings(curve, walls: str, base: ModelParams, line: tuple) -> list:
     """Exact points (eta, omega) where a curve of the sequence ``walls`` crosses the line
     param = value (line = (param, value), param eta or omega): the square system with the
-    other parameter free, from the interpolated curve points around each sign change."""
+    other parameter free (``tracer.crossings``), one system for all crossings."""
     param, value = line
-    k = 0 if param == "eta" else 1
-    other = ("eta", "omega")[1 - k]
+    other = "omega" if param == "eta" else "eta"
     fam = family_from_name(curve.family, walls)
     system = make_system(with_values(base, {param: value}), fam, curve.type, curve.graze,
                          (other,))
-    out = []
-    w = curve.points[:, k] - value
-    for i in np.nonzero(np.sign(w[:-1]) * np.sign(w[1:]) < 0)[0]:
-        f = w[i] / (w[i] - w[i + 1])
-        z = curve.z[i] + f * (curve.z[i + 1] - curve.z[i])
-        zs = ag.solve(system, np.append(z[:-2], z[-1 - k]))
-        if zs is not None:
-            pt = [value, float(zs[-1])] if k == 0 else [float(zs[-1]), value]
-            out.append(np.array(pt))
-    return out
+    return tracer.crossings(curve, line, lambda z: solve(system, z))

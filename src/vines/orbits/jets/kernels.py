@@ -21,8 +21,8 @@ import math
 
 import numpy as np
 
-from .._jit import njit
-from ..core.walls import WALL_L, WALL_R
+from ..._jit import njit
+from ...core.walls import WALL_L, WALL_R
 
 NL = 8                       # local variables of one flight
 N1 = 1 + NL                  # length of an order-1 jet
@@ -253,7 +253,7 @@ def _monodromy(fam, Y1, inner1, Y2, inner2):
 
 @njit(**INLINE)
 def _compound2(A, dA):
-    """Second compound matrix (``shooting.compound2``) and its gradients."""
+    """Second compound matrix (``family.systems.compound2``) and its gradients."""
     pairs = [(p, q) for p in range(4) for q in range(p + 1, 4)]
     C = np.empty((6, 6))
     dC = np.empty((6, 6, dA.shape[2]))

@@ -5,7 +5,7 @@ are explicit here, as in multi-segment shooting for hybrid periodic orbits: ever
 condition is then a closed-form function of the unknowns and of (eta, omega, F), so the
 derivatives with respect to the parameters, and the second derivatives needed by the
 augmented systems of ``boundaries``, come exactly from Taylor jets: ``flight`` is recorded
-once per ``Model`` as a tape (``tape``) that ``shooting_kernels`` runs on jets in compiled
+once per ``Model`` as a tape (``tape``) that ``kernels`` runs on jets in compiled
 code (``residual_jacobian``, ``augmented.Codim1System``); the pure-Python ``jets``
 evaluate these formulas directly (``residual_jacobian_jets``, ``monodromy_jets``: the
 reference of the compiled derivatives).
@@ -30,16 +30,16 @@ from collections.abc import Sequence
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..core.params import PARAM_NAMES, ParameterError
-from ..core.walls import WALL_L, WALL_R
-from . import jets
-from . import shooting_kernels as kernels
-from .jets import cos, exp, sin
+from ...core.params import PARAM_NAMES, ParameterError
+from ...core.walls import WALL_L, WALL_R
+from . import kernels
+from . import taylor as jets
 from .tape import record
+from .taylor import cos, exp, sin
 
-FAMILIES = ("symmetric", "asymmetric")
+#: the two kinds of 1:1 orbits, each with its own shooting system
+ORBIT_KINDS = ("symmetric", "asymmetric")
 N_UNKNOWNS = {"symmetric": 4, "asymmetric": 5}
-MIRROR = np.diag([-1.0, -1.0, -1.0, 1.0])
 #: a number of the closed forms: a float or a Taylor jet (``jets.Jet``)
 Num = float | jets.Jet
 
@@ -54,7 +54,7 @@ class Model:
         self.r, self.d, self.phi = float(r), float(d), float(phi)
         self.sigma = 0.5 * d
         self.wd = math.sqrt(1.0 - self.sigma ** 2)
-        # ``flight`` as the compiled kernels evaluate it (``shooting_kernels``)
+        # ``flight`` as the compiled kernels evaluate it (``kernels``)
         self.tape = record(lambda *v: _flight_outputs(self, v), 9)
 
 
@@ -125,9 +125,9 @@ def residual_jacobian(m: Model, family: str, u: ArrayLike, par: dict,
                       free: tuple) -> tuple[np.ndarray, np.ndarray]:
     """(E, dE/d(u, free params)) at u with par = {eta, omega, F}; ``free`` names the
     parameters differentiated (in that order, after u). Compiled
-    (``shooting_kernels.residual_jacobian``); ``residual_jacobian_jets`` is the reference."""
+    (``kernels.residual_jacobian``); ``residual_jacobian_jets`` is the reference."""
     u = np.asarray(u, dtype=float)
-    E, dE = kernels.residual_jacobian(m.tape, FAMILIES.index(family), u,
+    E, dE = kernels.residual_jacobian(m.tape, ORBIT_KINDS.index(family), u,
                                       float(par["eta"]), float(par["omega"]), float(par["F"]))
     n = len(u)
     return E, dE[:, list(range(n)) + [n + PARAM_NAMES.index(q) for q in free]]
@@ -198,12 +198,6 @@ def matmul(A: list, B: list) -> list:
 def shifted(A: list, c: Num) -> list:
     """A + c I (lists of floats/jets)."""
     return [[A[i][j] + (c if i == j else 0.0) for j in range(len(A))] for i in range(len(A))]
-
-
-def compound2(A: list) -> list:
-    """Second compound matrix (eigenvalues lambda_i lambda_j, i < j) of a 4x4 matrix."""
-    pairs = [(p, q) for p in range(len(A)) for q in range(p + 1, len(A))]
-    return [[A[p][r] * A[q][s] - A[p][s] * A[q][r] for (r, s) in pairs] for (p, q) in pairs]
 
 
 def jacobian_float(J: list) -> np.ndarray:

@@ -32,8 +32,8 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from .. import progress
-from ..core.params import (
+from ... import progress
+from ...core.params import (
     BRANCH_KINDS,
     CONTINUATION_METHODS,
     D_DEFAULT,
@@ -51,15 +51,15 @@ from ..core.params import (
     check_real,
     check_step_points,
 )
-from ..core.walls import WALL_L, WALL_R
-from . import shooting as sh
+from ...core.walls import WALL_L, WALL_R
+from ..family.family import MIRROR_MATRIX
+from ..family.periodic import PeriodicOrbit, orbits_1to1, solve_orbit
+from ..jets import shooting as sh
+from ..maps.impact import map_jacobian
 from .arclength import Tracer
-from .branch_result import EVENT_TYPES, Branch, make_branch
-from .branches import FamilySystem, Follower, start_unknowns, switch_direction
-from .maps import map_jacobian
-from .periodic import PeriodicOrbit, orbits_1to1, solve_orbit
+from .branch import EVENT_TYPES, Branch, make_branch
+from .follower import FamilySystem, Follower, start_unknowns, switch_direction
 
-MIRROR = np.diag([-1.0, -1.0, -1.0, 1.0])
 __all__ = ["continue_branch", "continue_orbit", "ContinuationSettings", "Branch", "EVENT_TYPES"]
 
 
@@ -76,7 +76,7 @@ def _crossing_type(o: PeriodicOrbit, J1=None) -> str:
     if lam.real < 0.0:
         return "flip"
     if o.symmetric and J1 is not None:
-        mu = np.linalg.eigvals(MIRROR @ J1)
+        mu = np.linalg.eigvals(MIRROR_MATRIX @ J1)
         j = int(np.argmin(np.abs(np.abs(mu) - 1.0)))
         if abs(mu[j].imag) < 1e-6 and mu[j].real < 0.0:
             return "symmetry-breaking"

@@ -15,7 +15,7 @@ The equations are the family's residual E(u) = 0 plus the defining condition of 
 With one free parameter the system is square (a point, ``solve``); with two it defines a
 curve in the parameter plane (``boundaries``). Every derivative is exact: first derivatives
 of E and of the grazing conditions, and the derivatives of the determinants (which need the
-flight's second derivatives), from Taylor jets, compiled (``shooting_kernels.codim1``);
+flight's second derivatives), from Taylor jets, compiled (``kernels.codim1``);
 ``Codim1System.evaluate_jets`` computes the same from the pure-Python jets behind
 ``shooting.monodromy_jets`` (the reference).
 """
@@ -23,16 +23,15 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..core.params import PARAM_NAMES
-from ..core.walls import WALL_L, WALL_R
-from . import jets
-from . import shooting as sh
-from . import shooting_kernels as sk
+from ...core.params import PARAM_NAMES
+from ...core.walls import WALL_L, WALL_R
+from ..jets import kernels as sk
+from ..jets import shooting as sh
+from ..jets import taylor as jets
+from .systems import KINDS, compound2, solve
 
-KINDS = {"symmetric": ("fold", "symmetry-breaking", "neimark-sacker", "grazing"),
-         "asymmetric": ("fold", "flip", "neimark-sacker", "grazing")}
 GRAZE_WALLS = ("start", "target", "arrival")
-# the condition codes of ``shooting_kernels.codim1`` (index) and the kinds they serve
+# the condition codes of ``kernels.codim1`` (index) and the kinds they serve
 CONDITIONS = (("fold",), ("symmetry-breaking", "flip"), ("neimark-sacker",), ("grazing",))
 
 
@@ -44,7 +43,7 @@ class Codim1System:
 
     def __init__(self, model: sh.Model, family: str, kind: str, free: tuple, fixed: dict,
                  graze=None):
-        if kind not in KINDS[family]:
+        if kind not in KINDS[family == "symmetric"]:
             raise ValueError(f"kind {kind!r} is not a condition of {family} orbits")
         self.m, self.family, self.kind = model, family, kind
         self.free, self.fixed = tuple(free), dict(fixed)
@@ -66,11 +65,11 @@ class Codim1System:
         return cols + [self.nu + PARAM_NAMES.index(q) for q in self.free]
 
     def __call__(self, z):
-        """(G, G_z) from the compiled kernel (``shooting_kernels.codim1``)."""
+        """(G, G_z) from the compiled kernel (``kernels.codim1``)."""
         z = np.asarray(z, dtype=float)
         p = self.par(z)
         k, wall = self.graze if self.graze is not None else (1, "arrival")
-        G, Gg = sk.codim1(self.m.tape, sh.FAMILIES.index(self.family), self._cond,
+        G, Gg = sk.codim1(self.m.tape, sh.ORBIT_KINDS.index(self.family), self._cond,
                           int(k), GRAZE_WALLS.index(wall), z[:self.nu],
                           (p["eta"], p["omega"], p["F"]),
                           float(z[self.nu]) if self.has_sg else 0.0)
@@ -97,7 +96,7 @@ class Codim1System:
     def _test(self, u, p, n_global):
         A = sh.monodromy_jets(self.m, self.family, list(u), p["eta"], p["omega"], p["F"])
         if self.kind == "neimark-sacker":
-            M = sh.shifted(sh.compound2(A), -1.0)
+            M = sh.shifted(compound2(A), -1.0)
         else:
             M = sh.shifted(A, -1.0 if self.kind == "fold" else 1.0)
         d = jets.det(M)
@@ -118,23 +117,6 @@ class Codim1System:
             return [sh.flight(self.m, x, s_k, eta, omega, F, w0)[2]]
         _, gap, wdot = sh.flight(self.m, x, gv[-1], eta, omega, F, w0)
         return [gap - (2.0 * w0 if wall == "start" else 0.0), wdot]
-
-
-def solve(system: Codim1System, z0, tol=1e-11, max_iter=30):
-    """Newton on the square system (one free parameter); the solution or None."""
-    z = np.asarray(z0, dtype=float).copy()
-    for _ in range(max_iter):
-        G, Gz = system(z)
-        if not np.all(np.isfinite(G)):
-            return None
-        try:
-            dz = np.linalg.solve(Gz, -G)
-        except np.linalg.LinAlgError:
-            return None
-        z += dz
-        if np.max(np.abs(dz)) <= tol * (1.0 + np.max(np.abs(z))):
-            return z
-    return None
 
 
 def grazing_point(model: sh.Model, family: str, u, param: str, par: dict, max_margin=1e-3):

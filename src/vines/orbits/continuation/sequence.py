@@ -31,12 +31,12 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
-from .. import progress
-from ..core.params import (
+from ... import progress
+from ...core.params import (
     MAX_INADMISSIBLE_DEFAULT,
     MAX_POINTS_MAX,
     PARAM_NAMES,
@@ -49,21 +49,24 @@ from ..core.params import (
     check_params_arg,
     check_real,
 )
-from . import augmented as ag
-from .arclength import Tracer
-from .sequence import (
+from ..family.family import Family, check_periods, check_walls
+from ..family.map_systems import MapSystem, orbit_residual, with_values
+from ..family.sequence import (
     SequenceOrbit,
-    check_periods,
-    check_walls,
     find_sequence,
     flip_seeds,
     pitchfork_seeds,
     solve_sequence,
 )
-from .sequence_curves import MapSystem, SequenceFamily, orbit_residual, with_values
+from ..family.systems import solve
+from ..maps.newton import monodromy
+from .arclength import Tracer
+from .branch import SequenceBranch
 
 FLIP_NEAR = 1e-3        # a located flip needs an eigenvalue this close to -1 (not a pole)
-MAX_POINTS_DEFAULT = 2000
+#: most points of a branch of ``continue_sequence`` (not ``core.params.MAX_POINTS_DEFAULT``,
+#: the most points one step of ``continue_branch`` may need)
+MAX_BRANCH_POINTS_DEFAULT = 2000
 
 
 @dataclass(frozen=True)
@@ -79,7 +82,7 @@ class ContinueSettings:
 
     step: float | None = None
     switch: bool = False
-    max_points: int = MAX_POINTS_DEFAULT
+    max_points: int = MAX_BRANCH_POINTS_DEFAULT
     max_inadmissible: int = MAX_INADMISSIBLE_DEFAULT
 
 
@@ -109,46 +112,13 @@ class _Run:
         return self.settings.step
 
 
-@dataclass
-class SequenceBranch:
-    """A continued family: points (orbits with their parameter point), events, why it
-    stopped, and the branches switched onto at its flip points."""
-
-    walls: str
-    periods: int
-    param: str
-    points: list
-    events: list
-    stopped: str
-    switched: list = field(default_factory=list)
-    born_at: dict | None = None
-
-    def to_dict(self) -> dict:
-        pts = []
-        for o in self.points:
-            p = o.params
-            d = o.to_dict()
-            pts.append({"eta": p.eta, "omega": p.omega, "F": p.F,
-                        **{k: d[k] for k in ("lambda_max", "stable", "symmetric", "admissible",
-                                             "dw", "phases", "flight_times")}})
-        out = {"walls": self.walls, "periods": self.periods,
-               "family": self.points[0].family if self.points else None,
-               "param": self.param, "branch": pts,
-               "events": [{k: v for k, v in e.items() if k != "_orbit"} for e in self.events],
-               "stopped": self.stopped,
-               "switched": [b.to_dict() for b in self.switched]}
-        if self.born_at is not None:
-            out["born_at"] = self.born_at
-        return out
-
-
 class _System:
     """R(z), z = (x_0, parameter value), with the flight-time guesses of the last point."""
 
     def __init__(self, base: ModelParams, param: str, walls: str, periods: int):
         self.base, self.param = base, param
         self.walls, self.periods = walls, periods
-        self.fam = SequenceFamily(walls, periods, False)
+        self.fam = Family(walls, periods, False)
         self.s = np.full(len(walls), -1.0)
 
     def params(self, v) -> ModelParams:
@@ -186,19 +156,12 @@ class _System:
 
 
 def _tests(o: SequenceOrbit, t) -> dict:
-    B = _monodromy(o)
+    B = monodromy(o.jacobians)
     ev = o.eigenvalues
     return {"fold": float(t[4]), "flip": float(np.linalg.det(B + np.eye(4))),
             "branch": float(np.linalg.det(B - np.eye(4))),
             "ns": int(np.sum((np.abs(ev.imag) > 1e-9) & (np.abs(ev) > 1.0))),
             "adm": bool(o.admissible)}
-
-
-def _monodromy(o):
-    P = o.jacobians[0]
-    for J in o.jacobians[1:]:
-        P = J @ P
-    return P
 
 
 def continue_sequence(params: ModelParams, walls: str, periods: int, param: str, stop, *,
@@ -318,7 +281,7 @@ def _events(tr, st, sys_, tests, events, index):
     if fold:
         got = tr.locate(st, lambda z, t: float(t[4]), prev["fold"], cur["fold"])
         _add(events, "fold", orbit_at(got[1] if got else None), index, st)
-    for key, typ in (("flip", "flip"), ("branch", "branch-point")):
+    for key, typ in (("flip", "flip"), ("branch", "branch-point")):     # EVENT_TYPES
         if key == "branch" and fold:
             continue
         if (prev[key] > 0) != (cur[key] > 0):
@@ -341,14 +304,14 @@ def _events(tr, st, sys_, tests, events, index):
 
 def _symmetry_breaking(sys_, st) -> SequenceOrbit | None:
     """The symmetry-breaking point within a step between symmetric orbits, solved as the
-    square system of ``sequence_curves.MapSystem`` (half-map eigenvalue -1, regular there,
+    square system of ``map_systems.MapSystem`` (half-map eigenvalue -1, regular there,
     where the bordered system of the full residual is singular), or None."""
     o1 = sys_.orbit(st.z1)
     if o1 is None or not o1.symmetric:
         return None
-    fam = SequenceFamily(sys_.walls, sys_.periods, True)
+    fam = Family(sys_.walls, sys_.periods, True)
     system = MapSystem(sys_.params(st.z1[4]), fam, "symmetry-breaking", (sys_.param,))
-    z = ag.solve(system, st.z1)
+    z = solve(system, st.z1)
     if z is None or not min(st.z0[4], st.z1[4]) <= z[4] <= max(st.z0[4], st.z1[4]):
         return None
     return solve_sequence(sys_.params(z[4]), sys_.walls, sys_.periods, z[:4],

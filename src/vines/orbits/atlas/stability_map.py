@@ -32,10 +32,10 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._jit import njit
-from ..core.exact import oscillators
-from ..core.flow import I_W, make_osc
-from ..core.params import (
+from ..._jit import njit
+from ...core.exact import oscillators
+from ...core.flow import I_W, make_osc
+from ...core.params import (
     D_DEFAULT,
     MAX_GAIN,
     R_DEFAULT,
@@ -46,8 +46,7 @@ from ..core.params import (
     check_conditioning,
     check_int,
 )
-from .maps import M_ETA, pack_model
-from .periodic import (
+from ..family.periodic import (
     N_ROW,
     N_SEED_MAX,
     ROW_ADM,
@@ -63,6 +62,7 @@ from .periodic import (
     seed_orbits,
     solve_orbit,
 )
+from ..maps.impact import M_ETA, pack_model
 
 CLS_NONE, CLS_SYM_STABLE, CLS_ASYM_STABLE, CLS_UNSTABLE = 0, 1, 2, 3
 

@@ -1,4 +1,6 @@
-"""The result object of a continued 1:1 branch (``continuation.continue_branch``)."""
+"""The results of continued branches: ``Branch`` (1:1, ``one_to_one.continue_branch``) and
+``SequenceBranch`` (any wall sequence, ``sequence.continue_sequence``); the event types of
+both."""
 from __future__ import annotations
 
 from dataclasses import dataclass, field
@@ -6,9 +8,12 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..core.params import PARAM_NAMES
+from ...core.params import PARAM_NAMES
 
-EVENT_TYPES = ("fold", "flip", "neimark-sacker", "admissibility-loss", "symmetry-breaking")
+#: every event type a continuation reports (branch-point: the wall-sequence continuation only,
+#: det(B - I) changing sign on an asymmetric orbit without a fold)
+EVENT_TYPES = ("fold", "flip", "neimark-sacker", "admissibility-loss", "symmetry-breaking",
+               "branch-point")
 
 
 @dataclass
@@ -95,3 +100,36 @@ def make_branch(param: str, pts: list, events: list, stopped: str, family: str =
                   phase_L=get("phase_L"), phase_R=get("phase_R"), events=events,
                   orbits=orbits, stopped=stopped, family=family,
                   arclength=np.asarray(arclength, float))
+
+
+@dataclass
+class SequenceBranch:
+    """A continued family: points (orbits with their parameter point), events, why it
+    stopped, and the branches switched onto at its flip points."""
+
+    walls: str
+    periods: int
+    param: str
+    points: list
+    events: list
+    stopped: str
+    switched: list = field(default_factory=list)
+    born_at: dict | None = None
+
+    def to_dict(self) -> dict:
+        pts = []
+        for o in self.points:
+            p = o.params
+            d = o.to_dict()
+            pts.append({"eta": p.eta, "omega": p.omega, "F": p.F,
+                        **{k: d[k] for k in ("lambda_max", "stable", "symmetric", "admissible",
+                                             "dw", "phases", "flight_times")}})
+        out = {"walls": self.walls, "periods": self.periods,
+               "family": self.points[0].family if self.points else None,
+               "param": self.param, "branch": pts,
+               "events": [{k: v for k, v in e.items() if k != "_orbit"} for e in self.events],
+               "stopped": self.stopped,
+               "switched": [b.to_dict() for b in self.switched]}
+        if self.born_at is not None:
+            out["born_at"] = self.born_at
+        return out

@@ -23,7 +23,7 @@ One solver serves both interfaces: ``orbit_solve``/``orbit_classify``/``seed_ker
 of the module) work nogil on float rows, for threaded per-point drivers
 (``stability_map``); ``solve_orbit``/``seed_orbits`` wrap the same compiled Newton and seeds
 into ``PeriodicOrbit`` objects (eigenvalues by numpy; the compiled ones by scipy's dgeev,
-``_lapack``: the same bits where numpy and scipy share a LAPACK build).
+``lapack``: the same bits where numpy and scipy share a LAPACK build).
 """
 from __future__ import annotations
 
@@ -34,9 +34,9 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._jit import njit
-from ..core.flow import I_F, I_W
-from ..core.params import (
+from ..._jit import njit
+from ...core.flow import I_F, I_W
+from ...core.params import (
     D_DEFAULT,
     R_DEFAULT,
     ModelParams,
@@ -45,12 +45,12 @@ from ..core.params import (
     check_bool,
     check_reals,
 )
-from ..core.walls import WALL_L, WALL_R
-from ._lapack import lambda_max_4
-from .affine import N_SEEDS_MAX, closed_form_kernel, closed_form_seeds, scan_seeds
-from .affine import scan as affine_scan
-from .maps import M_PHI, admissible_kernel, model_array
-from .newton import newton_sequence
+from ...core.walls import WALL_L, WALL_R
+from ..maps.affine import N_SEEDS_MAX, closed_form_kernel, closed_form_seeds, scan_seeds
+from ..maps.affine import scan as affine_scan
+from ..maps.impact import M_PHI, admissible_kernel, model_array
+from ..maps.lapack import lambda_max_4
+from ..maps.newton import monodromy, newton_sequence
 
 SYM_TOL = 1e-6          # flight times equal to this: symmetric
 DEDUP_TOL = 1e-8
@@ -105,6 +105,28 @@ class PeriodicOrbit:
     residual: float = 0.0
     params: ModelParams | None = field(default=None, repr=False)
 
+    # the fields of ``sequence.SequenceOrbit`` (any wall sequence), so that code written
+    # for any family reads a 1:1 orbit as the orbit of the family LR/1
+    walls = "LR"
+    periods = 1
+
+    @property
+    def family(self) -> str:
+        return "LR/1"
+
+    @property
+    def states(self) -> np.ndarray:
+        """Pre-impact states at L and R, as ``SequenceOrbit.states``."""
+        return np.array([self.x_L, self.x_R])
+
+    @property
+    def dw(self) -> np.ndarray:
+        return np.array([self.dw_L, self.dw_R])
+
+    @property
+    def phases(self) -> np.ndarray:
+        return np.array([self.phase_L, self.phase_R])
+
     def to_dict(self) -> dict:
         return {
             "symmetric": bool(self.symmetric),
@@ -133,17 +155,17 @@ def solve_orbit(p: ModelParams, x0: ArrayLike, s1: float = -1.0, s2: float = -1.
     if not math.isfinite(res):
         return None
     xs, Js, fl = ws[1], ws[2], ws[3]
-    return _orbit(p, mdl, xs[0], xs[1], (Js[0], Js[1]), fl, res)
+    return classify_orbit(p, mdl, xs[0], xs[1], (Js[0], Js[1]), fl, res)
 
 
 def monodromy_eigenvalues(J1: np.ndarray, J2: np.ndarray) -> np.ndarray:
     """Eigenvalues of the monodromy matrix J2 J1 by numpy (product and ``eigvals``); the
     compiled ``orbit_classify`` forms it with numba's np.dot and scipy's dgeev (the same
-    numbers to round-off; ``_lapack.monodromy_eigvals`` is that path for tests)."""
-    return np.linalg.eigvals(J2 @ J1)
+    numbers to round-off; ``lapack.monodromy_eigvals`` is that path for tests)."""
+    return np.linalg.eigvals(monodromy((J1, J2)))
 
 
-def _orbit(p: ModelParams, mdl: np.ndarray, x: np.ndarray, xR: np.ndarray, jacobians: tuple,
+def classify_orbit(p: ModelParams, mdl: np.ndarray, x: np.ndarray, xR: np.ndarray, jacobians: tuple,
            fl: np.ndarray, res: float) -> PeriodicOrbit:
     """The PeriodicOrbit with pre-impact states x (at L), xR (at R), map Jacobians
     (J_P1(x), J_P2(xR)), flight times fl and Newton residual res."""
@@ -152,7 +174,7 @@ def _orbit(p: ModelParams, mdl: np.ndarray, x: np.ndarray, xR: np.ndarray, jacob
                and admissible_kernel(mdl, xR, (WALL_R, WALL_L), fl[1]))
     ev = monodromy_eigenvalues(J1, J2)
     ev = ev[np.argsort(-np.abs(ev))]
-    lam = float(np.hypot(ev.real, ev.imag).max())      # as ``_lapack.lambda_max_4``
+    lam = float(np.hypot(ev.real, ev.imag).max())      # as ``lapack.lambda_max_4``
     two_pi = 2.0 * math.pi
     return PeriodicOrbit(
         x_L=x.copy(), x_R=xR.copy(), flight_times=[float(fl[0]), float(fl[1])],
@@ -190,12 +212,12 @@ def seed_orbits(p: ModelParams, osc: np.ndarray | None = None, simulation: bool 
         for vm, vb, zb, th, s1 in asymmetric_seeds(mdl):
             found.append(solve_orbit(p, [vm, vb, zb, theta_to_t(th, p)], s1, T - s1, mdl))
     if simulation:
-        found.extend(_simulation_seed(p, mdl))
+        found.extend(simulation_seed(p, mdl))
     return _dedup(found, T)
 
 
-def _simulation_seed(p: ModelParams, osc: np.ndarray, t_end: float = 600.0) -> list:
-    from ..core.simulation import simulate_exact
+def simulation_seed(p: ModelParams, osc: np.ndarray, t_end: float = 600.0) -> list:
+    from ...core.simulation import simulate_exact
     try:
         st = SolverSettings(t_end=t_end, t_transient=0.5 * t_end, max_impacts=200_000)
         res = simulate_exact(p, st)
@@ -277,7 +299,7 @@ def orbits_1to1(p: ModelParams, *, seeds: list | None = None,
 # nogil versions of solve_orbit / seed_orbits(simulation=False) for per-point drivers that
 # run on threads (``stability_map``). An orbit is a row of floats (ROW_* columns); the
 # arithmetic is that of the Python functions above, so the rows equal their PeriodicOrbits
-# (lambda_max of admissible orbits: scipy's dgeev, numpy's to round-off; see ``_lapack``).
+# (lambda_max of admissible orbits: scipy's dgeev, numpy's to round-off; see ``lapack``).
 
 ROW_X, ROW_FL, ROW_ADM, ROW_LAM, ROW_SYM, ROW_DWL = 0, 4, 6, 7, 8, 9
 N_ROW = 10                  # callers may append their own columns after these
@@ -327,7 +349,7 @@ def orbit_solve(mdl, flights, row, ws):
 @njit(cache=True, nogil=True)
 def orbit_classify(mdl, row, ws):
     """Admissibility, symmetry, dw_L and, for admissible orbits only, lambda_max (nan
-    otherwise) of the orbit the last ``orbit_solve`` with ws found (as ``_orbit``).
+    otherwise) of the orbit the last ``orbit_solve`` with ws found (as ``classify_orbit``).
 
     An admissible orbit whose monodromy matrix is not finite (numpy's eigvals would raise)
     is marked non-admissible.

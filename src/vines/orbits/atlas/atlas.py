@@ -1,7 +1,7 @@
 """Which periodic families exist, are admissible and stable at one (eta, omega, F) point.
 
 ``atlas_point`` solves every family of ``FAMILIES`` (docs/bifurcation.md, "Families of
-periodic orbits") on the maps (``orbits.sequence``) from:
+periodic orbits") on the maps (``orbits.family.sequence``) from:
 
 * the affine seeds of each sequence (closed form / flight-time scans where they exist);
 * one short simulation from rest, shared by all families (its impact record and its
@@ -26,42 +26,31 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..core.exact import oscillators
-from ..core.params import ModelParams, ParameterError, SolverSettings, check_bool
-from .sequence import (
+from ...core.exact import oscillators
+from ...core.params import ModelParams, ParameterError, SolverSettings, check_bool
+from ..family.family import Family, paper_label
+from ..family.sequence import (
     SIM_T_END,
     SequenceOrbit,
-    _mirror_record,
     affine_seeds,
     check_sim_t_end,
     flip_seeds,
-    paper_label,
+    mirror_record,
     pitchfork_seeds,
     record_seed,
     solve_seeds,
 )
 
-#: family key -> (walls, periods, symmetry: True symmetric only, False asymmetric only,
-#: None both); the keys are the family names of docs/bifurcation.md
-FAMILIES = {
-    "LR/1-sym": ("LR", 1, True),
-    "LR/1-asym": ("LR", 1, False),
-    "LLRR/1-sym": ("LLRR", 1, True),
-    "LLRR/1-asym": ("LLRR", 1, False),
-    "LLR/1": ("LLR", 1, None),
-    "LRR/1": ("LRR", 1, None),
-    "LLLRR/1": ("LLLRR", 1, None),
-    "LLRRR/1": ("LLRRR", 1, None),
-    "LLLRRR/1": ("LLLRRR", 1, None),
-    "LRLR/2": ("LRLR", 2, None),
-    "LLRLLR/2": ("LLRLLR", 2, None),
-    "LRRLRR/2": ("LRRLRR", 2, None),
-    "LLRRLLRR/2": ("LLRRLLRR", 2, None),
-    "LLLRRLLLRR/2": ("LLLRRLLLRR", 2, None),
-    "LLRRRLLRRR/2": ("LLRRRLLRRR", 2, None),
-}
+#: family name (docs/bifurcation.md) -> the family (``Family``; symmetric True: the
+#: symmetric orbits only, False: the asymmetric ones only, None: both)
+FAMILIES = {f.name: f for f in (
+    Family("LR", 1, True), Family("LR", 1, False), Family("LLRR", 1, True),
+    Family("LLRR", 1, False), Family("LLR", 1), Family("LRR", 1), Family("LLLRR", 1),
+    Family("LLRRR", 1), Family("LLLRRR", 1), Family("LRLR", 2), Family("LLRLLR", 2),
+    Family("LRRLRR", 2), Family("LLRRLLRR", 2), Family("LLLRRLLLRR", 2),
+    Family("LLRRRLLRRR", 2))}
 #: the paper's (``core.regime``'s) label of each family
-PAPER_LABELS = {key: paper_label(walls, periods) for key, (walls, periods, _) in FAMILIES.items()}
+PAPER_LABELS = {key: paper_label(f.walls, f.periods) for key, f in FAMILIES.items()}
 #: sequence -> (sequences whose orbits seed it, how): "flip" doubles, "mirror" mirrors
 _FLIPS = {"LRLR": "LR", "LLRLLR": "LLR", "LRRLRR": "LRR", "LLRRLLRR": "LLRR",
           "LLLRRLLLRR": "LLLRR", "LLRRRLLRRR": "LLRRR"}
@@ -77,8 +66,8 @@ for _a, _b in _MIRRORS:
 #: past a flip), displaced by FLIP_EPS (far past the flip the doubled orbit is far away)
 FLIP_FROM = 0.5
 FLIP_EPS = (1e-2, 0.1, 0.3)
-_SEQUENCES = tuple(dict.fromkeys(walls for walls, _, _ in FAMILIES.values()))
-_PERIODS = {walls: periods for walls, periods, _ in FAMILIES.values()}
+_SEQUENCES = tuple(dict.fromkeys(f.walls for f in FAMILIES.values()))
+_PERIODS = {f.walls: f.periods for f in FAMILIES.values()}
 
 
 @dataclass
@@ -98,10 +87,10 @@ class FamilyState:
 
 
 def _rest_records(p: ModelParams, t_end: float) -> list:
-    from ..core.simulation import simulate_exact
+    from ...core.simulation import simulate_exact
     st = SolverSettings(t_end=t_end, t_transient=0.5 * t_end, max_impacts=200_000)
     res = simulate_exact(p, st)
-    return [res.impacts, _mirror_record(res.impacts, p.period)]
+    return [res.impacts, mirror_record(res.impacts, p.period)]
 
 
 def sequence_orbits(p: ModelParams, seeds: dict | None = None, simulation: bool = True,
@@ -153,8 +142,9 @@ def _solve_family(p, osc, walls, starts, extra, *solved) -> list:
 def classify_families(orbits: dict) -> dict:
     """{family key: FamilyState} from ``sequence_orbits``."""
     out = {}
-    for key, (walls, _, sym) in FAMILIES.items():
-        mine = [o for o in orbits.get(walls, ()) if sym is None or o.symmetric == sym]
+    for key, fam in FAMILIES.items():
+        mine = [o for o in orbits.get(fam.walls, ())
+                if fam.symmetric is None or o.symmetric == fam.symmetric]
         adm = [o for o in mine if o.admissible]
         out[key] = FamilyState(
             found=bool(mine), admissible=bool(adm), stable=any(o.stable for o in adm),

@@ -25,12 +25,12 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .._jit import njit
-from ..core.exact import oscillators
-from ..core.flow import I_RATE, I_W, N_OSC, flow
-from ..core.kernel import first_contact
-from ..core.params import ModelParams
-from ..core.walls import WALL_L, WALL_R, impact_velocities
+from ..._jit import njit
+from ...core.exact import oscillators
+from ...core.flow import I_RATE, I_W, N_OSC, flow
+from ...core.kernel import first_contact
+from ...core.params import ModelParams
+from ...core.walls import WALL_L, WALL_R, impact_velocities
 
 ROOT_TOL = 1e-13
 ADMISSIBLE_TOL = 1e-8       # first contact and map root must agree to this (relative to 1+s)

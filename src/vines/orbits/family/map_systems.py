@@ -1,6 +1,6 @@
 """Augmented systems of codimension-one points of orbits of any wall sequence.
 
-A family (``SequenceFamily``) is a wall sequence, its number of forcing periods and whether
+A family (``Family``) is a wall sequence, its number of forcing periods and whether
 its orbits are symmetric (sequence with the half symmetry, odd periods, orbit invariant
 under the mirror z -> -z, t -> t + periods T / 2; ``sequence``). The orbit unknown is the
 pre-impact state x_0 at walls[0]; the orbit residual R(x_0) is
@@ -36,65 +36,25 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from dataclasses import dataclass
 
 import numpy as np
 
-from ..core.exact import oscillators
-from ..core.flow import flow
-from ..core.params import ModelParams, ParameterError
-from ..core.walls import impact_velocities
-from .maps import impact_map, model_array
-from .sequence import (
-    WALL_CODES,
-    SequenceOrbit,
-    family_name,
-    has_half_symmetry,
-    solve_sequence,
-)
+from ...core.exact import oscillators
+from ...core.flow import flow
+from ...core.params import ModelParams, ParameterError
+from ...core.walls import impact_velocities
+from ..maps.impact import impact_map, model_array
+from ..maps.newton import monodromy
+from .family import MIRROR_SIGNS, WALL_CODES, Family
+from .sequence import SequenceOrbit, solve_sequence
+from .systems import KINDS, compound2
 
-MIRROR = np.array([-1.0, -1.0, -1.0, 1.0])
 FD_PARAM = 1e-7         # relative central-difference step of a parameter column
 FD_STATE = 1e-6         # relative central-difference step of the condition's gradient
-KINDS = {True: ("fold", "symmetry-breaking", "neimark-sacker", "grazing"),
-         False: ("fold", "flip", "neimark-sacker", "grazing")}
 
 
-@dataclass(frozen=True)
-class SequenceFamily:
-    """Orbits of ``walls`` over ``periods`` forcing periods, symmetric or not."""
-
-    walls: str
-    periods: int
-    symmetric: bool
-
-    @property
-    def name(self) -> str:
-        """"WALLS/N", with "-sym"/"-asym" where both kinds exist (docs/bifurcation.md)."""
-        base = family_name(self.walls, self.periods)
-        if has_half_symmetry(self.walls) and self.periods % 2 == 1:
-            return base + ("-sym" if self.symmetric else "-asym")
-        return base
-
-    @property
-    def flights(self) -> int:
-        """Flights of the residual: half the sequence when symmetric."""
-        n = len(self.walls)
-        return n // 2 if self.symmetric else n
-
-    def span(self, p: ModelParams) -> float:
-        """Time covered by those flights (N T or N T / 2)."""
-        return self.periods * p.period * (0.5 if self.symmetric else 1.0)
-
-    def codes(self) -> np.ndarray:
-        return np.array([WALL_CODES[c] for c in self.walls], dtype=np.int64)
-
-    def full_flights(self, fl) -> np.ndarray:
-        return np.concatenate([fl, fl]) if self.symmetric else np.asarray(fl, float)
-
-
-def family_of(orbit: SequenceOrbit) -> SequenceFamily:
-    return SequenceFamily(orbit.walls, int(orbit.periods), bool(orbit.symmetric))
+def family_of(orbit: SequenceOrbit) -> Family:
+    return Family(orbit.walls, int(orbit.periods), bool(orbit.symmetric))
 
 
 def with_values(base: ModelParams, values: dict) -> ModelParams:
@@ -104,7 +64,7 @@ def with_values(base: ModelParams, values: dict) -> ModelParams:
 
 # --------------------------------------------------------------------------- maps
 
-def chain(p: ModelParams, fam: SequenceFamily, x0, s_guess):
+def chain(p: ModelParams, fam: Family, x0, s_guess):
     """(xs, Js, flights) of the family's flights from x0 (maps with Jacobians; flight
     guesses s_guess, <= 0: first contact), or None when a map fails."""
     mdl = model_array(p)
@@ -123,34 +83,25 @@ def chain(p: ModelParams, fam: SequenceFamily, x0, s_guess):
     return xs, Js, fl
 
 
-def orbit_residual(p: ModelParams, fam: SequenceFamily, x0, s_guess):
+def orbit_residual(p: ModelParams, fam: Family, x0, s_guess):
     """(R, A, flights) of the module docstring at x0, or None when a map fails."""
     got = chain(p, fam, x0, s_guess)
     if got is None:
         return None
     xs, Js, fl = got
-    A = Js[0]
-    for J in Js[1:]:
-        A = J @ A
+    A = monodromy(Js)
     end = xs[-1]
     if fam.symmetric:
-        end, A = MIRROR * end, MIRROR[:, None] * A
+        end, A = MIRROR_SIGNS * end, MIRROR_SIGNS[:, None] * A
     R = end - x0
     R[3] -= fam.span(p)
     return R, A, fl
 
 
-def compound2(A) -> np.ndarray:
-    """Second compound matrix of a 4 x 4 matrix (eigenvalues lambda_i lambda_j, i < j)."""
-    pairs = [(a, b) for a in range(4) for b in range(a + 1, 4)]
-    return np.array([[A[a, c] * A[b, e] - A[a, e] * A[b, c] for (c, e) in pairs]
-                     for (a, b) in pairs])
-
-
 def condition(kind: str, A) -> float:
     """The determinant of the module docstring for ``kind``."""
     if kind == "neimark-sacker":
-        return float(np.linalg.det(compound2(A) - np.eye(6)))
+        return float(np.linalg.det(np.array(compound2(A)) - np.eye(6)))
     return float(np.linalg.det(A + (-1.0 if kind == "fold" else 1.0) * np.eye(4)))
 
 
@@ -182,7 +133,7 @@ class MapSystem:
     """G(z) = (R, condition) of a fold, flip, symmetry-breaking or Neimark-Sacker point:
     z = (x_0, free parameters); G, G_z = self(z) (module docstring)."""
 
-    def __init__(self, base: ModelParams, fam: SequenceFamily, kind: str, free: tuple):
+    def __init__(self, base: ModelParams, fam: Family, kind: str, free: tuple):
         if kind not in KINDS[fam.symmetric] or kind == "grazing":
             raise ValueError(f"{kind!r} is not a map condition of {fam.name} orbits")
         self.fam, self.kind, self.graze = fam, kind, None
@@ -244,7 +195,7 @@ class GrazingSystem:
 
     kind = "grazing"
 
-    def __init__(self, base: ModelParams, fam: SequenceFamily, graze: tuple, free: tuple):
+    def __init__(self, base: ModelParams, fam: Family, graze: tuple, free: tuple):
         self.fam, self.graze = fam, (int(graze[0]), str(graze[1]))
         self.family = fam.name
         self.m = fam.flights
@@ -267,7 +218,7 @@ class GrazingSystem:
             if k + 1 == self.graze[0]:
                 E += self._graze(osc, p, x, codes[k], (wd, z))
             x = y
-        end = MIRROR * x if self.fam.symmetric else x
+        end = MIRROR_SIGNS * x if self.fam.symmetric else x
         E += list(end[:3] - z[:3]) + [float(np.sum(s)) - self.fam.span(p)]
         return np.array(E)
 
@@ -297,7 +248,7 @@ class GrazingSystem:
         return self.fam.full_flights(np.asarray(z[4:4 + self.m], float))
 
 
-def grazing_guess(orbit: SequenceOrbit, fam: SequenceFamily, n_sample=400):
+def grazing_guess(orbit: SequenceOrbit, fam: Family, n_sample=400):
     """The contact of the orbit's flights closest to a grazing: ((k, wall), s_g, margin);
     margin = |w'| at the arrival, or the distance to a wall at an interior minimum."""
     p = orbit.params
@@ -320,13 +271,13 @@ def grazing_guess(orbit: SequenceOrbit, fam: SequenceFamily, n_sample=400):
     return best
 
 
-def make_system(base: ModelParams, fam: SequenceFamily, kind: str, graze, free: tuple):
+def make_system(base: ModelParams, fam: Family, kind: str, graze, free: tuple):
     if kind == "grazing":
         return GrazingSystem(base, fam, graze, free)
     return MapSystem(base, fam, kind, free)
 
 
-def unknowns(orbit: SequenceOrbit, fam: SequenceFamily, graze=None, s_g=None) -> list:
+def unknowns(orbit: SequenceOrbit, fam: Family, graze=None, s_g=None) -> list:
     """The leading unknowns (x_0, [flights, s_g]) of an orbit for a system of ``fam``."""
     u = list(orbit.states[0])
     if graze is None:

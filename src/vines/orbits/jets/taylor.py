@@ -1,12 +1,12 @@
 """Second-order forward-mode differentiation (Taylor jets) for the small shooting systems.
 
 A ``Jet`` carries a value, its gradient and (order 2) its Hessian with respect to n
-independent variables. The closed-form residuals of ``vines.orbits.shooting`` are written
+independent variables. The closed-form residuals of ``vines.orbits.jets.shooting`` are written
 once, over numbers that support + - * / and ``sin``/``cos``/``exp``/``sqrt`` from this
 module, and evaluated on floats (values) or on jets (exact first and second derivatives,
 to rounding: no step size, no truncation error). Mixed float/jet arithmetic works. A
 third kind of number, ``tape.Node``, records the operations (``sin`` ... call its
-``unary``) for the compiled evaluation of ``shooting_kernels``.
+``unary``) for the compiled evaluation of ``kernels``.
 
 ``lift(J)`` turns the gradients of order-2 jets into order-1 jets of the first
 derivatives (value = d f_i / d v_k, gradient = the Hessian row), which is how derivatives

@@ -4,7 +4,7 @@ The formulas of ``shooting`` are written once, over numbers (floats, ``jets.Jet`
 Evaluated on ``Node`` inputs they record every + - * / and negation, and the ``jets``
 functions sin/cos/exp/sqrt, into a ``Tape``. Registers: 0 .. n_in - 1 are the inputs,
 register n_in + i holds the result of operation i (a constant is an operation too).
-``shooting_kernels`` evaluates a tape on Taylor jets in compiled code: one interpreter,
+``kernels`` evaluates a tape on Taylor jets in compiled code: one interpreter,
 whatever the formula.
 """
 from __future__ import annotations

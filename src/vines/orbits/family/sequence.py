@@ -2,7 +2,7 @@
 
 A family is named by its wall sequence and its number of forcing periods (docs/
 bifurcation.md, "Families of periodic orbits"): ``walls`` = "LLRR", ``periods`` = 1 is the
-orbit with pre-impact states x_0 .. x_{n-1} (x = (z_m', z_b', z_b, t), ``orbits.maps``) at
+orbit with pre-impact states x_0 .. x_{n-1} (x = (z_m', z_b', z_b, t), ``orbits.maps.impact``) at
 walls L, L, R, R, in that order, whose maps P(walls[k] -> walls[k+1]) (cyclically) bring
 x_0 back to x_0 + (0, 0, 0, periods T). Unknown x_0; Newton on the composed map with the
 exact Jacobian J_{n-1} ... J_0 - I (``newton.newton_sequence``, the iteration of
@@ -36,89 +36,46 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ..core.exact import oscillators
-from ..core.flow import flow
-from ..core.params import (
+from ...core.exact import oscillators
+from ...core.flow import flow
+from ...core.params import (
     T_END_MAX,
     ModelParams,
     ParameterError,
     SolverSettings,
     check_bool,
-    check_int,
     check_params_arg,
     check_real,
     check_reals,
 )
-from ..core.walls import WALL_L, WALL_R, impact_velocities
-from .affine import closed_form_seeds, scan, scan_seeds  # noqa: F401 (scan_seeds: re-export)
-from .maps import admissible_kernel, model_array
-from .newton import newton_sequence
+from ...core.walls import impact_velocities
+from ..maps.affine import closed_form_seeds, scan, scan_seeds  # noqa: F401 (scan_seeds: re-export)
+from ..maps.impact import admissible_kernel, model_array
+from ..maps.newton import monodromy, newton_sequence
+from .family import (
+    WALL_CODES,
+    WALL_NAMES,
+    Family,
+    check_periods,
+    check_walls,
+    family_name,
+    has_half_symmetry,
+    mirror_walls,
+    paper_label,
+)
 from .periodic import (
     DEDUP_TOL,
     SYM_TOL,
-    _simulation_seed,
     asymmetric_seeds,
+    simulation_seed,
     symmetric_seeds,
     theta_to_t,
 )
 
-WALL_CODES = {"L": WALL_L, "R": WALL_R}
-WALL_NAMES = {WALL_L: "L", WALL_R: "R"}
-MAX_IMPACTS_PER_ORBIT = 64      # longest wall sequence accepted
-MAX_PERIODS = 64                # most forcing periods accepted
 SIM_T_END = 600.0               # length of a seeding simulation
 #: initial states (z_m, z_m', z_b, z_b') of the seeding simulations (rest first)
 SIM_STATES = ((0.0, 0.0, 0.0, 0.0), (0.0, 0.0, 0.9, 0.0), (0.0, 0.5, 0.0, -0.5),
               (0.5, 0.0, -0.4, 0.0))
-
-
-# --------------------------------------------------------------------------- names
-
-def check_walls(walls: object) -> str:
-    """The wall sequence as an upper-case string of L and R; ParameterError otherwise."""
-    allowed = (f"must be a sequence of 1 to {MAX_IMPACTS_PER_ORBIT} walls, each L or R "
-               "(e.g. LR, LLRR, LLR)")
-    if not isinstance(walls, str):
-        raise ParameterError("walls", walls, allowed)
-    s = walls.strip().upper()
-    if not 1 <= len(s) <= MAX_IMPACTS_PER_ORBIT or set(s) - set("LR"):
-        raise ParameterError("walls", walls, allowed)
-    return s
-
-
-def check_periods(periods: object) -> int:
-    """The number of forcing periods as an int in [1, MAX_PERIODS]; ParameterError otherwise."""
-    return check_int("periods", periods, lo=1, hi=MAX_PERIODS)
-
-
-def mirror_walls(walls: str) -> str:
-    """L <-> R."""
-    return walls.translate(str.maketrans("LR", "RL"))
-
-
-def canonical_walls(walls: str) -> str:
-    """The rotation of the sequence that is first in alphabetical order (L before R)."""
-    return min(walls[k:] + walls[:k] for k in range(len(walls)))
-
-
-def family_name(walls: str, periods: int) -> str:
-    """Family name "WALLS/N" of the canonical rotation (docs/bifurcation.md)."""
-    return f"{canonical_walls(walls)}/{int(periods)}"
-
-
-def paper_label(walls: str, periods: int) -> str:
-    """The paper's (and ``core.regime``'s) wording: "p:q" (impacts per period on the wall
-    hit more often : on the other) for one period, "period-N" otherwise."""
-    if periods > 1:
-        return f"period-{periods}"
-    nl, nr = walls.count("L"), walls.count("R")
-    return f"{max(nl, nr)}:{min(nl, nr)}"
-
-
-def has_half_symmetry(walls: str) -> bool:
-    """True when the second half of the sequence is the mirror image of the first."""
-    n = len(walls)
-    return n % 2 == 0 and walls[n // 2:] == mirror_walls(walls[:n // 2])
 
 
 def _codes(walls: str) -> np.ndarray:
@@ -187,14 +144,6 @@ class SequenceOrbit:
             "flight_times": [float(v) for v in self.flight_times],
             "states": [[float(v) for v in x] for x in self.states],
         }
-
-
-def monodromy(jacobians: Sequence[np.ndarray]) -> np.ndarray:
-    """J_{n-1} ... J_0 by numpy matmul (for n = 2: J2 @ J1 as ``periodic._orbit``)."""
-    P = jacobians[0]
-    for J in jacobians[1:]:
-        P = J @ P
-    return P
 
 
 def is_symmetric(walls: str, periods: int, flight_times: ArrayLike) -> bool:
@@ -314,7 +263,7 @@ def affine_seeds(p: ModelParams, osc: np.ndarray | None, walls: str, periods: in
     ansatz when the sequence has the half symmetry and periods is odd (closed form for two
     impacts, a scan for four), the full two-flight scan for two impacts."""
     mdl = model_array(p, osc)
-    if (walls, periods) == ("LR", 1):
+    if Family(walls, periods).one_to_one:
         return _seeds_1to1(p, mdl)
     n = len(walls)
     NT = periods * p.period
@@ -342,7 +291,7 @@ def _scan(p: ModelParams, mdl: np.ndarray, chain: tuple, flights) -> list:
             for vm, vb, zb, th, s0 in scan(mdl, *chain)]
 
 
-def _mirror_record(imp, T) -> dict:
+def mirror_record(imp, T) -> dict:
     return {"wall": -imp["wall"], "v_m": -imp["v_m"], "v_b": -imp["v_b"],
             "z_b": -imp["z_b"], "t": imp["t"] + 0.5 * T}
 
@@ -363,7 +312,7 @@ def record_seed(imp: Mapping[str, np.ndarray], walls: str) -> tuple[list, list] 
 def simulation_seeds(p: ModelParams, walls: str, states: Sequence = SIM_STATES,
                      t_end: float = SIM_T_END) -> list:
     """Seeds from short exact simulations from ``states`` (and their mirror images)."""
-    from ..core.simulation import simulate_exact
+    from ...core.simulation import simulate_exact
     out = []
     for state0 in states:
         try:
@@ -372,7 +321,7 @@ def simulation_seeds(p: ModelParams, walls: str, states: Sequence = SIM_STATES,
             res = simulate_exact(p, st)
         except (ParameterError, RuntimeError):     # pragma: no cover - a seed is optional
             continue
-        for rec in (res.impacts, _mirror_record(res.impacts, p.period)):
+        for rec in (res.impacts, mirror_record(res.impacts, p.period)):
             sd = record_seed(rec, walls)
             if sd is not None:
                 out.append(sd)
@@ -405,8 +354,8 @@ def find_sequence(params: ModelParams, walls: str, periods: int = 1, *,
         return []
     starts = affine_seeds(p, mdl, walls, periods)
     if simulation:
-        if (walls, periods) == ("LR", 1):
-            found_sim = _simulation_seed(p, mdl)
+        if Family(walls, periods).one_to_one:
+            found_sim = simulation_seed(p, mdl)
             starts += [(o.x_L, o.flight_times) for o in found_sim if o is not None]
         else:
             starts += simulation_seeds(p, walls, sim_states)

@@ -3,7 +3,7 @@ family's system, the test functions and the ``Follower`` that ``continuation.fol
 
 The unknowns are those of the family's shooting system (``shooting``) plus the continued
 parameter; ``arclength.Tracer`` follows the curve, through folds. Every accepted point is
-classified on the exact maps (``periodic._orbit``: admissibility, eigenvalues of
+classified on the exact maps (``periodic.classify_orbit``: admissibility, eigenvalues of
 J_P2 J_P1). Test functions of consecutive points (A = Mirror J_P1 the half-map of a
 symmetric orbit, B = J_P2 J_P1):
 
@@ -40,17 +40,20 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .. import progress
-from ..core.params import ModelParams, ParameterError
-from ..core.walls import WALL_L, WALL_R
-from . import shooting as sh
+from ... import progress
+from ...core.params import ModelParams, ParameterError
+from ...core.walls import WALL_L, WALL_R
+from ..family.augmented import Codim1System, grazing_point
+from ..family.family import MIRROR_MATRIX
+from ..family.periodic import PeriodicOrbit, classify_orbit
+from ..family.systems import compound2, solve
+from ..jets import shooting as sh
+from ..maps.impact import impact_map, model_array
 from .arclength import Step, Tracer
-from .maps import impact_map, model_array
-from .periodic import PeriodicOrbit, _orbit
 
 TESTS = {"symmetric": ("fold", "symmetry-breaking", "neimark-sacker"),
          "asymmetric": ("fold", "flip", "neimark-sacker", "symmetry-breaking")}
-NS_TOL = 1e-3          # |(|lambda| - 1)| of the complex pair at a located neimark-sacker
+NS_LOCATE_TOL = 1e-3   # |(|lambda| - 1)| of the complex pair at a located neimark-sacker
 
 
 class FamilySystem:
@@ -92,7 +95,7 @@ def orbit_at(p: ModelParams, family: str, u: ArrayLike) -> PeriodicOrbit | None:
     if not (math.isfinite(f1) and math.isfinite(f2)):
         return None
     res = float(np.max(np.abs(y2 - x - np.array([0.0, 0.0, 0.0, p.period]))))
-    o = _orbit(p, mdl, x, xR, (J1, J2), np.array([f1, f2]), res)
+    o = classify_orbit(p, mdl, x, xR, (J1, J2), np.array([f1, f2]), res)
     o.J1, o.J2 = J1, J2
     return o
 
@@ -100,20 +103,20 @@ def orbit_at(p: ModelParams, family: str, u: ArrayLike) -> PeriodicOrbit | None:
 def test_values(family: str, o: PeriodicOrbit, z: np.ndarray, t: np.ndarray) -> dict:
     """The test functions of the module docstring at one point."""
     if family == "symmetric":
-        A = sh.MIRROR @ o.J1
+        A = MIRROR_MATRIX @ o.J1
         out = {"symmetry-breaking": np.linalg.det(A + np.eye(4))}
     else:
         A = o.J2 @ o.J1
         out = {"flip": np.linalg.det(A + np.eye(4)),
                "symmetry-breaking": o.flight_times[0] - o.flight_times[1]}
-    out["neimark-sacker"] = np.linalg.det(np.array(sh.compound2(A.tolist())) - np.eye(6))
+    out["neimark-sacker"] = np.linalg.det(np.array(compound2(A.tolist())) - np.eye(6))
     out["fold"] = float(t[-1])
     return out
 
 
-def is_ns(family: str, o: PeriodicOrbit, tol: float = NS_TOL) -> bool:
+def is_ns(family: str, o: PeriodicOrbit, tol: float = NS_LOCATE_TOL) -> bool:
     """A complex eigenvalue pair of A (symmetric) or B on the unit circle."""
-    A = sh.MIRROR @ o.J1 if family == "symmetric" else o.J2 @ o.J1
+    A = MIRROR_MATRIX @ o.J1 if family == "symmetric" else o.J2 @ o.J1
     ev = np.linalg.eigvals(A)
     k = int(np.argmin(np.abs(np.abs(ev) - 1.0)))
     return abs(ev[k].imag) > 1e-6 and abs(abs(ev[k]) - 1.0) < tol
@@ -280,7 +283,6 @@ class Follower:
     def _grazing(self, st: Step, z):
         """The solved grazing near the branch point z, as (tau, z, t) on the step, or None
         (no grazing there, or the solution lies off the step)."""
-        from .augmented import grazing_point
         p = self.sys.par(z)
         got = grazing_point(self.sys.m, self.sys.family, z[:-1], self.sys.param, p)
         if got is None:
@@ -297,7 +299,6 @@ class Follower:
         """The symmetry-breaking point on the symmetric branch near the located point of
         an asymmetric branch (where the bordered system becomes singular): solved on the
         symmetric family's augmented system; (tau, z as an asymmetric point, t) or None."""
-        from .augmented import Codim1System, solve
         if isinstance(loc, Step):
             tau, z, t = loc.h, loc.z1, loc.t1
         else:

@@ -10,12 +10,13 @@ other families (``sequence``) the rest.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 
 import numpy as np
 
-from .._jit import njit
-from ..core.flow import I_W
-from .maps import impact_map
+from ..._jit import njit
+from ...core.flow import I_W
+from .impact import impact_map
 
 
 @njit(cache=True, nogil=True)
@@ -130,3 +131,11 @@ def _product(Js, P, Q):
         for i in range(4):
             for k in range(4):
                 P[i, k] = Q[i, k]
+
+
+def monodromy(jacobians: Sequence[np.ndarray]) -> np.ndarray:
+    """J_{n-1} ... J_0 by numpy matmul (for n = 2: J2 @ J1 as ``family.periodic``)."""
+    P = jacobians[0]
+    for J in jacobians[1:]:
+        P = J @ P
+    return P

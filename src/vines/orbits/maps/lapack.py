@@ -20,7 +20,7 @@ from numba import types
 from numba.core import cgutils
 from numba.extending import get_cython_function_address, intrinsic
 
-from .._jit import njit
+from ..._jit import njit
 
 _SYMBOL = "vines_scipy_dgeev"
 _ll.add_symbol(_SYMBOL, get_cython_function_address("scipy.linalg.cython_lapack", "dgeev"))

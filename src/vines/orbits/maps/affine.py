@@ -21,10 +21,10 @@ import math
 
 import numpy as np
 
-from .._jit import njit
-from ..core.flow import I_NRES, I_W, flow, flow_zv, s_factors
-from ..core.walls import impact_velocities
-from .maps import M_ETA, M_R
+from ..._jit import njit
+from ...core.flow import I_NRES, I_W, flow, flow_zv, s_factors
+from ...core.walls import impact_velocities
+from .impact import M_ETA, M_R
 from .newton import solve_into
 
 N_SCAN = 96             # s0 samples of a scan

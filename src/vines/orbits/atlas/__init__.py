@@ -1,0 +1,1 @@
+"""Which families exist at a point, and stability maps over (eta, omega)."""

@@ -1,0 +1,1 @@
+"""Continuation of branches of periodic orbits with events and branch switching."""
