@@ -3,6 +3,7 @@
 are aliases equal to the new ones; the 1:1 output only gains keys (the CLI runs of both
 routes are in tests/test_cli_walls.py)."""
 import pytest
+from conftest import json_paths
 
 from vines.cli import orbit_json as oj
 from vines.cli.common import jsonable
@@ -17,15 +18,6 @@ SEQ = {"walls": "LR", "periods": 1, "family": "LR/1", "paper_label": "1:1", "sym
        "admissible": True, "stable": True, "lambda_max": 0.51, "eigenvalues": EIG,
        "dw": [1.5, -1.5], "phases": [0.25, 3.39], "flight_times": [3.1, 3.2],
        "states": [[0.0] * 4] * 2}
-
-
-def _paths(x, prefix="") -> set:
-    """Every key path of a JSON value (list elements share the path ``[]``)."""
-    if isinstance(x, dict):
-        return set().union(*({prefix + k} | _paths(v, prefix + k + ".") for k, v in x.items()))
-    if isinstance(x, list):
-        return set().union(set(), *(_paths(v, prefix + "[].") for v in x))
-    return set()
 
 
 def test_periodic_both_routes_same_keys_and_values():
@@ -62,7 +54,7 @@ def test_boundaries_both_routes_same_keys():
     plain = {"F": 0.3, "eta_range": [0.1, 0.4], "omega_range": [0.9, 1.2], "curves": [curve]}
     walls = dict(plain, walls="LLRR", periods=1, curves=[dict(curve, family="LLRR/1-sym")])
     a, b = oj.boundaries_json(plain, "LR", 1), oj.boundaries_json(walls, "LLRR", 1)
-    assert list(a) == list(b) and _paths(a) == _paths(b)
+    assert list(a) == list(b) and json_paths(a) == json_paths(b)
     assert (a["walls"], a["periods"], a["family"]) == ("LR", 1, "LR/1")
     assert {k: a[k] for k in plain} == plain
 
@@ -134,7 +126,7 @@ def test_1to1_branch_only_gains_keys(switched_branch):
     new = jsonable(oj.branch_json(br))
     assert br.switched and any(e.get("connects") for e in old["events"])
     assert _restrict(new, old) == old
-    assert _paths(new) - _paths(old) == ADDED
+    assert json_paths(new) - json_paths(old) == ADDED
     for p, o in zip(new["branch"], br.orbits, strict=True):
         assert p["dw"] == [o.dw_L, o.dw_R] and p["phases"] == [o.phase_L, o.phase_R]
     sb = [e for e in new["events"] if e["type"] == "symmetry-breaking"]
