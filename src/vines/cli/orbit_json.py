@@ -33,8 +33,10 @@ ALIASES_OF = {"solution": ("dw_L", "dw_R", "phase_L", "phase_R"), "point": ("dw_
               "event": ("connects",)}
 #: the wall sequence whose orbits carry the aliases (one impact at L, one at R)
 ALIAS_WALLS = "LR"
-#: the family of the 1:1 orbits
+#: the family of the 1:1 orbits (as ``pipeline.config_checks.ONE_TO_ONE``)
 ONE_TO_ONE = ("LR", 1)
+#: the model parameters of a branch point
+PARAMS = ("eta", "omega", "F")
 
 
 def family_keys(walls: str, periods: int) -> dict:
@@ -118,8 +120,7 @@ def _born_at(br) -> dict | None:
     ev = getattr(br, "born_at", None)
     if ev is None:
         return None
-    return {k: float(ev[k]) if k != "type" else ev[k] for k in ("type", "at", "eta", "omega",
-                                                                  "F")}
+    return {k: ev[k] if k == "type" else float(ev[k]) for k in ("type", "at", *PARAMS)}
 
 
 def _events(d: dict, values: list, switched: list) -> list:
@@ -131,7 +132,7 @@ def _events(d: dict, values: list, switched: list) -> list:
     out = []
     for e in d["events"]:
         full = dict(e)
-        if values and any(k not in e for k in ("eta", "omega", "F")):
+        if any(k not in e for k in PARAMS):
             full.update(_fixed(d, e["at"]))
         if "index" not in e:
             full["index"] = _index(values, e["at"])
@@ -141,9 +142,10 @@ def _events(d: dict, values: list, switched: list) -> list:
 
 
 def _fixed(d: dict, at: float) -> dict:
-    """eta, omega, F of an event at ``at`` (the fixed ones are those of every point)."""
-    first = d["branch"][0]
-    return {q: float(at) if q == d["param"] else first[q] for q in ("eta", "omega", "F")}
+    """eta, omega, F of an event at ``at`` (the fixed ones are those of every point; None
+    without points)."""
+    first = d["branch"][0] if d["branch"] else dict.fromkeys(PARAMS)
+    return {q: float(at) if q == d["param"] else first[q] for q in PARAMS}
 
 
 def _index(values: list, at: float) -> int | None:
