@@ -55,7 +55,8 @@ def test_walls_lr_gives_the_1to1_numbers():
 
 def test_continue_walls():
     args = ("continue", "--param", "omega", "--start", "0.75", "--stop", "0.77",
-            "--eta", "0.142", "--F", "0.2", "--branch", "asymmetric", "--max-points", "20")
+            "--eta", "0.142", "--F", "0.2", "--branch", "asymmetric", "--step", "0.001",
+            "--max-points", "20")
     d = _json(*args, "--walls", "LR", "--periods", "1")
     plain = _json(*args)
     # one JSON shape: `--walls LR --periods 1` prints the keys of the 1:1 output
