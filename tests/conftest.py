@@ -1,5 +1,6 @@
 """Shared test helpers: ``run_vines`` runs the command line of this checkout,
-``run_on_terminal`` the same with stderr on a pseudo-terminal."""
+``run_on_terminal`` the same with stderr on a pseudo-terminal, ``json_paths`` the key paths
+of a JSON value."""
 import fcntl
 import os
 import pathlib
@@ -64,3 +65,12 @@ def run_on_terminal(*args, timeout=600, interrupt_on: str | None = None):
         if proc.poll() is None:
             proc.kill()
     return proc.returncode, out, received.decode(errors="replace")
+
+
+def json_paths(x, prefix: str = "") -> set:
+    """Every key path of a JSON value ("branch.[].dw": list elements share ``[]``)."""
+    if isinstance(x, dict):
+        return set().union(*({prefix + k} | json_paths(v, prefix + k + ".") for k, v in x.items()))
+    if isinstance(x, list):
+        return set().union(set(), *(json_paths(v, prefix + "[].") for v in x))
+    return set()

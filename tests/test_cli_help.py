@@ -24,7 +24,7 @@ def test_help_has_no_doubled_percent(command):
 def test_switched_branch_header_names_where_it_is_born():
     from vines.cli.continue_ import _text
     pt = {"eta": 0.0, "lambda_max": 0.5, "stable": True, "symmetric": False,
-          "admissible": True, "dw_L": 1.0}
+          "admissible": True, "dw": [1.0, -1.0]}
     sw = {"param": "eta", "family": "asymmetric", "events": [], "stopped": "done",
           "switched": [], "branch": [dict(pt, eta=0.1496), dict(pt, eta=0.12)]}
     d = dict(sw, family="symmetric", switched=[sw], branch=[dict(pt, eta=0.12)])

@@ -109,7 +109,7 @@ def test_continue_through_the_fold_and_asymmetric_branch():
     assert out["family"] == "asymmetric"
     assert out["branch"][0]["lambda_max"] == pytest.approx(0.821, abs=5e-4)
     assert out["events"][-1]["type"] == "symmetry-breaking"
-    assert out["events"][-1]["connects"] == "symmetric"
+    assert out["events"][-1]["connects"] == "symmetric" == out["events"][-1]["meets"]
     assert abs(out["events"][-1]["at"] - 0.1496) < 1e-4
     proc = run_vines("continue", "--param", "eta", "--start", "0.12", "--stop", "0.3",
                      "--omega", "1.1", "--F", "0.3077", "--switch")

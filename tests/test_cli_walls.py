@@ -3,7 +3,7 @@ the JSON keys, the 1:1 numbers for ``--walls LR --periods 1``, one-line errors."
 import json
 
 import pytest
-from conftest import run_vines
+from conftest import json_paths, run_vines
 
 from vines import ParameterError
 from vines.cli import periodic as cmd
@@ -41,15 +41,28 @@ def test_walls_lr_gives_the_1to1_numbers():
     ref = find_1to1(0.55, 1.0, 0.4)
     assert [s["lambda_max"] for s in one["solutions"]] == [o.lambda_max for o in ref]
     assert [s["dw"] for s in one["solutions"]] == [[o.dw_L, o.dw_R] for o in ref]
-    plain = _json("periodic", *point)["solutions"]
+    whole = _json("periodic", *point)
+    plain = whole["solutions"]
     assert [s["lambda_max"] for s in plain] == [s["lambda_max"] for s in one["solutions"]]
     assert [[s["dw_L"], s["dw_R"]] for s in plain] == [s["dw"] for s in one["solutions"]]
+    # one JSON shape: the same keys, the old 1:1 keys equal to the new ones
+    assert json_paths(whole) == json_paths(one) and whole["family"] == "LR/1"
+    for d in (whole, one):
+        for s in d["solutions"]:
+            assert [s["phase_L"], s["phase_R"]] == s["phases"]
+            assert [s["dw_L"], s["dw_R"]] == s["dw"]
 
 
 def test_continue_walls():
-    d = _json("continue", "--param", "omega", "--start", "0.75", "--stop", "0.77",
-              "--eta", "0.142", "--F", "0.2", "--walls", "LR", "--periods", "1",
-              "--branch", "asymmetric", "--max-points", "20")
+    args = ("continue", "--param", "omega", "--start", "0.75", "--stop", "0.77",
+            "--eta", "0.142", "--F", "0.2", "--branch", "asymmetric", "--step", "0.001",
+            "--max-points", "20")
+    d = _json(*args, "--walls", "LR", "--periods", "1")
+    plain = _json(*args)
+    # one JSON shape: `--walls LR --periods 1` prints the keys of the 1:1 output
+    assert json_paths(d) == json_paths(plain), json_paths(d) ^ json_paths(plain)
+    for p in d["branch"] + plain["branch"]:
+        assert p["dw_L"] == p["dw"][0]
     assert d["walls"] == "LR" and d["periods"] == 1 and d["param"] == "omega"
     assert 1 < len(d["branch"]) <= 20
     assert all({"dw", "phases", "flight_times", "lambda_max"} <= set(p) for p in d["branch"])

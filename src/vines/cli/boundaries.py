@@ -6,6 +6,7 @@ import argparse
 
 from ..core.params import D_DEFAULT, R_DEFAULT, ModelParams
 from .common import VinesArgumentParser, emit, param_allowed, quiet_stdout
+from .orbit_json import ONE_TO_ONE, boundaries_json
 from .periodic import add_walls_args
 
 NAME = "boundaries"
@@ -41,8 +42,8 @@ def add_parser(subparsers) -> VinesArgumentParser:
                       "1:1 orbits; other families are seeded on the n_scan x n_scan crossings "
                       "of the scan lines)")
     p.add_argument("--json", action="store_true",
-                   help="print one JSON object on stdout (key: curves; with --walls other "
-                        "than LR/1 also walls, periods)")
+                   help="print one JSON object on stdout (keys: F, eta_range, omega_range, "
+                        "walls, periods, family, curves)")
     return p
 
 
@@ -50,10 +51,12 @@ def run(args: argparse.Namespace) -> int:
     params = ModelParams(eta=0.1, omega=1.0, F=args.F, r=args.r, d=args.d)
     from ..orbits.curves.boundaries import boundaries
 
+    walls = ONE_TO_ONE[0] if args.walls is None else args.walls
     with quiet_stdout():
         res = boundaries(params.F, args.eta_range, args.omega_range, r=params.r, d=params.d,
-                         walls="LR" if args.walls is None else args.walls, periods=args.periods)
-    return emit(args.json, res.to_dict(), lambda d: _text(d, params.F))
+                         walls=walls, periods=args.periods)
+    d = boundaries_json(res.to_dict(), res.walls, res.periods)
+    return emit(args.json, d, lambda d: _text(d, params.F))
 
 
 def _text(d: dict, F: float) -> str:
@@ -65,6 +68,5 @@ def _text(d: dict, F: float) -> str:
         lines.append(f"  {c['type']}{where} of {c['family']} orbits: {len(c['points'])} "
                      f"points from (eta, omega) = ({e0:.4g}, {w0:.4g}) to ({e1:.4g}, "
                      f"{w1:.4g})")
-    if "walls" in d:
-        lines[0] += f" (family {d['walls']}/{d['periods']})"
+    lines[0] += f" (family {d['family']})"
     return "\n".join(lines)

@@ -22,6 +22,7 @@ from ..core.params import (
     check_step_points,
 )
 from .common import VinesArgumentParser, add_model_args, emit, quiet_stdout
+from .orbit_json import branch_json, family_keys
 from .periodic import add_walls_args
 
 NAME = "continue"
@@ -77,7 +78,8 @@ def add_parser(subparsers) -> VinesArgumentParser:
                    help="text output: every point of every branch (default: a summary with "
                         f"the events and {N_SAMPLES} points per branch)")
     p.add_argument("--json", action="store_true",
-                   help="print one JSON object on stdout (keys: branch, events)")
+                   help="print one JSON object on stdout (keys: walls, periods, family, "
+                        "param, branch, events, stopped, switched, born_at)")
     p.set_defaults(_parser=p)
     return p
 
@@ -149,12 +151,11 @@ def run(args: argparse.Namespace) -> int:
                              r=params.r, d=params.d, max_points=max_points,
                              method=args.method, branch=args.branch, switch=args.switch,
                              max_inadmissible=max_inadmissible)
-    return emit(args.json, br.to_dict(), lambda d: _text(d, values, every=args.all))
+    return emit(args.json, branch_json(br), lambda d: _text(d, values, every=args.all))
 
 
 def _run_walls(args: argparse.Namespace, values: dict, stop: ModelParams) -> dict:
-    """The continued branch of a wall sequence (keys of ``SequenceBranch.to_dict``: walls,
-    periods, family, param, branch, events, stopped, switched)."""
+    """The continued branch of a wall sequence (``orbit_json.branch_json``)."""
     from ..orbits.continuation.sequence import ContinueSettings, continue_sequence
     from ..orbits.family.family import check_periods, check_walls
     from ..orbits.family.sequence import find_sequence
@@ -171,20 +172,18 @@ def _run_walls(args: argparse.Namespace, values: dict, stop: ModelParams) -> dic
         found = find_sequence(start, walls, periods)
         cands = [o for o in found if o.symmetric == symmetric] or found
         if not cands:
-            return {"walls": walls, "periods": periods, "param": args.param, "branch": [],
-                    "events": [], "stopped": f"no {walls}/{periods} orbit at start",
-                    "switched": []}
+            return branch_json(dict(family_keys(walls, periods), param=args.param, branch=[],
+                                    events=[], stopped=f"no {walls}/{periods} orbit at start",
+                                    switched=[]))
         settings = ContinueSettings(step=step, switch=bool(args.switch),
                                     max_points=max_points, max_inadmissible=max_inadmissible)
         br = continue_sequence(start, walls, periods, args.param, values["stop"],
                                orbit=cands[0], settings=settings)
-    return br.to_dict()
+    return branch_json(br)
 
 
 def _dw(pt: dict) -> str:
-    """The impact velocities of a point: dw_L (1:1) or dw, one per impact (a sequence)."""
-    if "dw_L" in pt:
-        return f"dw_L = {pt['dw_L']:.6g}"
+    """The impact velocities of a point, one per impact in sequence order."""
     return "dw = [" + ", ".join(f"{v:.6g}" for v in pt["dw"]) + "]"
 
 
@@ -201,10 +200,10 @@ def _samples(points: list) -> list:
 
 
 def _text(d: dict, values: dict, indent: str = "", every: bool = False) -> str:
-    """Summary of a ``Branch.to_dict()`` (and of the branches switched to): its ends, its
+    """Summary of a ``branch_json`` object (and of the branches switched to): its ends, its
     events and N_SAMPLES points; every point with ``every``."""
     param = d["param"]
-    name = d.get("family") or f"{d.get('walls')}/{d.get('periods')}"
+    name = d["family"]
     if indent and d["branch"]:
         # a switched branch starts where it is born, not at --start, and runs either way
         first, last = d["branch"][0][param], d["branch"][-1][param]
@@ -223,7 +222,7 @@ def _text(d: dict, values: dict, indent: str = "", every: bool = False) -> str:
                      f"{pt['lambda_max']:.6g}  stable = {pt['stable']}  symmetric = "
                      f"{pt['symmetric']}  admissible = {pt['admissible']}  {_dw(pt)}")
     for ev in d["events"]:
-        con = f" (meets the {ev['connects']} branch)" if ev.get("connects") else ""
+        con = f" (meets the {ev['meets']} branch)" if ev["meets"] else ""
         lines.append(f"{indent}  event {ev['type']} at {param} = {ev['at']:.7g}{con}")
     for sw in d["switched"]:
         lines.append(_text(sw, values, indent + "  ", every))

@@ -7,15 +7,9 @@ import argparse
 
 from ..core.params import ModelParams
 from .common import VinesArgumentParser, add_model_args, emit, model_params, quiet_stdout
+from .orbit_json import ONE_TO_ONE, periodic_json
 
 NAME = "periodic"
-
-#: keys of each orbit in the JSON output
-ORBIT_KEYS = ("symmetric", "admissible", "stable", "lambda_max", "eigenvalues", "dw_L", "dw_R",
-              "phase_L", "phase_R", "flight_times")
-#: keys of each solution of a wall sequence in the JSON output
-SOLUTION_KEYS = ("walls", "periods", "family", "paper_label", "symmetric", "admissible",
-                 "stable", "lambda_max", "eigenvalues", "dw", "phases", "flight_times")
 
 
 #: limits of ``vines.orbits.family.sequence`` (repeated so that parsing loads no numba; a test
@@ -48,8 +42,8 @@ def add_parser(subparsers) -> VinesArgumentParser:
     add_model_args(p)
     add_walls_args(p, "wall sequence of the orbit, impact by impact")
     p.add_argument("--json", action="store_true",
-                   help="print one JSON object on stdout (keys: solutions, params; with "
-                        "--walls also walls, periods, family)")
+                   help="print one JSON object on stdout (keys: walls, periods, family, "
+                        "solutions, params)")
     return p
 
 
@@ -61,14 +55,14 @@ def run(args: argparse.Namespace) -> int:
 
     with quiet_stdout():
         orbits = orbits_1to1(params)
-    sols = [{k: o.to_dict()[k] for k in ORBIT_KEYS} for o in orbits]
-    return emit(args.json, {"solutions": sols, "params": params.as_dict()}, _text)
+    d = periodic_json([o.to_dict() for o in orbits], *ONE_TO_ONE, params.as_dict())
+    return emit(args.json, d, _text)
 
 
 def run_walls(args: argparse.Namespace) -> dict:
     """Every orbit of the sequence found: {"walls", "periods", "family", "solutions",
     "params"}. Raises ParameterError (naming the option) on bad input."""
-    from ..orbits.family.family import check_periods, check_walls, family_name
+    from ..orbits.family.family import check_periods, check_walls
     from ..orbits.family.sequence import find_sequence
 
     walls = check_walls(args.walls)
@@ -77,9 +71,7 @@ def run_walls(args: argparse.Namespace) -> dict:
                          phi=getattr(args, "phi", 0.0))
     with quiet_stdout():
         orbits = find_sequence(params, walls, periods)
-    sols = [{k: o.to_dict()[k] for k in SOLUTION_KEYS} for o in orbits]
-    return {"walls": walls, "periods": periods, "family": family_name(walls, periods),
-            "solutions": sols, "params": params.as_dict()}
+    return periodic_json([o.to_dict() for o in orbits], walls, periods, params.as_dict())
 
 
 def _text(d: dict) -> str:
@@ -91,8 +83,8 @@ def _text(d: dict) -> str:
         adm = "admissible" if s["admissible"] else "NOT admissible"
         st = "stable" if s["stable"] else "unstable"
         lines.append(f"  {family:10s} {adm:14s} {st:8s} |lambda_max| = {s['lambda_max']:.6g}  "
-                     f"dw_L = {s['dw_L']:.6g}  dw_R = {s['dw_R']:.6g}  "
-                     f"phase_L = {s['phase_L']:.6g}  flights = "
+                     f"dw_L = {s['dw'][0]:.6g}  dw_R = {s['dw'][1]:.6g}  "
+                     f"phase_L = {s['phases'][0]:.6g}  flights = "
                      f"{s['flight_times'][0]:.6g}, {s['flight_times'][1]:.6g}")
     return "\n".join(lines)
 
