@@ -113,7 +113,7 @@ ADDED = {"walls", "periods", "born_at", "branch.[].dw", "branch.[].phases", "eve
 
 @pytest.fixture(scope="module")
 def switched_branch():
-    from vines.orbits.continuation import continue_branch
+    from vines.orbits import continue_branch
     return continue_branch("eta", 0.12, 0.3, 0.02, {"omega": 1.1, "F": 0.3077}, switch=True,
                            max_points=40)
 
