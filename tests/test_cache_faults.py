@@ -239,6 +239,8 @@ def _can_mount_tmpfs(folder) -> bool:
     return r.returncode == 0
 
 
+@pytest.mark.slow   # the same save failure (errno line, nothing half-written) runs in the fast
+#                   suite as test_cache_write_failing_midway_keeps_the_kernels_in_memory
 def test_full_disk_while_numba_writes_its_cache(warm, tmp_path):
     """A real full disk (a 64 kB tmpfs in a user and mount namespace: no root needed where
     unprivileged namespaces are allowed) as the cache folder, from an empty cache: the command

@@ -117,8 +117,9 @@ def test_a_truncated_numba_cache_file_is_a_finding(tmp_path):
     pytest.importorskip("numba")
     (tmp_path / "kern.py").write_text(
         "from numba import njit\n\n\n@njit(cache=True)\ndef f(x):\n    return x + 1\n")
+    env = {k: v for k, v in os.environ.items() if k != "NUMBA_CACHE_DIR"}  # cache beside kern.py
     subprocess.run([sys.executable, "-c", "import kern; kern.f(1)"], cwd=tmp_path, check=True,
-                   env=dict(os.environ, PYTHONPATH=str(tmp_path)))
+                   env=dict(env, PYTHONPATH=str(tmp_path)))
     report = fi.Report(seed=0, faults_asked=0)
     fi.check_cache(tmp_path, report)
     assert report.findings == []                          # a sound cache loads

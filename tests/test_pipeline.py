@@ -405,7 +405,8 @@ def test_reruns_only_what_changed(tmp_path):
     assert _planned(_smk(tmp_path, "-n", cfg=TINY)) == {}
 
 
-@needs_snakemake
+@pytest.mark.slow   # fast suite: test_reruns_only_what_changed plans one missing chunk alone;
+@needs_snakemake    # CI: tests/fault_injection.py kills a real run 3 times
 def test_killed_run_keeps_finished_chunks(tmp_path):
     """An interrupted run restarts with only the unfinished chunks (no partial files)."""
     _copy_workflow(tmp_path)
