@@ -72,11 +72,13 @@ import numpy as np
 from .._jit import njit
 from .flow import (
     I_D,
+    I_FAMP,
     I_NRES,
     I_RATE,
     I_RES,
     deriv_bound,
     flow,
+    flow_at_zero,
     flow_from,
     flow_start,
     forcing,
@@ -559,13 +561,18 @@ def _advance_segment(osc, sg, s_stop, root_tol, acc, step0, s_pause, stack):
             acc[A_SEG_J], acc[A_SEG_B1]
     else:
         s = 0.0
-        z, v, a, j, b1 = flow_from(osc, start, 0.0)
+        z, v, a, j, b1 = flow_at_zero(osc, start)
     B4 = 0.0
     gap = 0.0
     closing = 0.0
     for steps in range(step0, MAX_STEPS_PER_SEGMENT + 1):
         if s >= s_pause:
             return EV_PAUSE, 0, (s, z, v, a, j, b1), gap, closing, steps
+        # the closed form one full step on (h_cap), computed before the step rule decides:
+        # most steps are full, and the processor then evaluates it beside the rule's chain
+        # of square roots and divisions instead of after it (the same numbers either way)
+        s_full = s + h_cap
+        full = flow_from(osc, start, s_full)
         if mode == MODE_FREE:
             h, pressed, B2, B4 = free_step_local(osc, (s, z, v, a, j, b1), ball, h_cap,
                                                  root_tol, sg.released and steps == 1)
@@ -584,7 +591,10 @@ def _advance_segment(osc, sg, s_stop, root_tol, acc, step0, s_pause, stack):
                 if wall != 0:
                     return EV_IMPACT, wall, (s, z, v, a, j, b1), gap, closing, steps
             break
-        z1, v1, a1, j1, b11 = flow_from(osc, start, s_new)
+        if s_new == s_full:
+            z1, v1, a1, j1, b11 = full
+        else:
+            z1, v1, a1, j1, b11 = flow_from(osc, start, s_new)
         if in_window:
             m = _running_max(osc, start, (s, z, v), (s_new, z1, v1), B2, B4,
                              acc[A_XMAX_WIN], stack)
@@ -719,13 +729,19 @@ def _impact(cur, acc, cnt, imp, osc_f, law, sg, hit):
     vm_p, vb_p = impact_velocities(eta, r, v, vb)      # Newton's law, restitution r
     mode_new = MODE_FREE
     vc = _common_velocity(eta, v, vb)
-    g = forcing(osc_f, sg.sth0, sg.cth0, s) - osc_f[I_D] * vc - z    # free LO acceleration
-    v_floor = _stick_speed_floor(osc_f, g, z, zb_imp, b1, abs(vm_p - v))
-    if abs(vm_p - vb_p) <= max(v_stick, v_floor) and wall * g > 0.0:
-        mode_new = wall
-        vm_p = vc
-        vb_p = vc
-        acc[A_NSTICK] += 1.0
+    rebound = abs(vm_p - vb_p)
+    dvm = abs(vm_p - v)
+    # the floor grows with |g| <= FAMP + d |vc| + |z| (|forcing| <= FAMP): a rebound above
+    # the floor of twice that bound cannot stick, and g (a sin and cos) is not needed
+    g_max = 2.0 * (osc_f[I_FAMP] + osc_f[I_D] * abs(vc) + abs(z))
+    if rebound <= max(v_stick, _stick_speed_floor(osc_f, g_max, z, zb_imp, b1, dvm)):
+        g = forcing(osc_f, sg.sth0, sg.cth0, s) - osc_f[I_D] * vc - z  # free LO acceleration
+        v_floor = _stick_speed_floor(osc_f, g, z, zb_imp, b1, dvm)
+        if rebound <= max(v_stick, v_floor) and wall * g > 0.0:
+            mode_new = wall
+            vm_p = vc
+            vb_p = vc
+            acc[A_NSTICK] += 1.0
     _set_state(cur, t_new, z, vm_p, zb_imp, vb_p, mode_new)
 
 
