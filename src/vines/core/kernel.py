@@ -568,11 +568,6 @@ def _advance_segment(osc, sg, s_stop, root_tol, acc, step0, s_pause, stack):
     for steps in range(step0, MAX_STEPS_PER_SEGMENT + 1):
         if s >= s_pause:
             return EV_PAUSE, 0, (s, z, v, a, j, b1), gap, closing, steps
-        # the closed form one full step on (h_cap), computed before the step rule decides:
-        # most steps are full, and the processor then evaluates it beside the rule's chain
-        # of square roots and divisions instead of after it (the same numbers either way)
-        s_full = s + h_cap
-        full = flow_from(osc, start, s_full)
         if mode == MODE_FREE:
             h, pressed, B2, B4 = free_step_local(osc, (s, z, v, a, j, b1), ball, h_cap,
                                                  root_tol, sg.released and steps == 1)
@@ -591,10 +586,7 @@ def _advance_segment(osc, sg, s_stop, root_tol, acc, step0, s_pause, stack):
                 if wall != 0:
                     return EV_IMPACT, wall, (s, z, v, a, j, b1), gap, closing, steps
             break
-        if s_new == s_full:
-            z1, v1, a1, j1, b11 = full
-        else:
-            z1, v1, a1, j1, b11 = flow_from(osc, start, s_new)
+        z1, v1, a1, j1, b11 = flow_from(osc, start, s_new)
         if in_window:
             m = _running_max(osc, start, (s, z, v), (s_new, z1, v1), B2, B4,
                              acc[A_XMAX_WIN], stack)
