@@ -146,8 +146,6 @@ MAX_STEPS_PER_SEGMENT = 200_000
 # evaluations of the step rule per step (``free_step_local``; odd: ends on a safe step)
 N_STEP_ITER = 3
 ROUNDOFF = 8.0 * 2.220446049250313e-16   # a few ulps: contact/release at this gap is exact
-# relative margin of ``_gap_clears`` (its test and the step's own round-off: ~1e-15)
-CLEAR_MARGIN = 1e-13
 
 
 @njit(cache=True, nogil=True, inline="always")
@@ -378,37 +376,6 @@ def _third(x):
 
 
 @njit(cache=True, nogil=True, inline="always")
-def _gap_clears(gap, closing, B, H):
-    """True when ``_safe_step(gap, closing, B) >= H`` for certain, found without its square
-    root and division: the gap's bound g - c H - B H^2/2 at H (>= 0 exactly when the step
-    is >= H) exceeds CLEAR_MARGIN times the size of its terms, which covers the round-off
-    of both (a few ulps each)."""
-    cH = closing * H
-    bH = 0.5 * B * H * H
-    return gap >= 0.0 and gap - cH - bH > CLEAR_MARGIN * (gap + abs(cH) + bH)
-
-
-@njit(cache=True, nogil=True, inline="always")
-def _full_step_clear(pt, ball, bounds, H, floors):
-    """True when ``free_step`` with bounds = (BL, BR) over [s, s + H] certainly allows the
-    whole step H and finds the ball not pressed (``_gap_clears`` for both walls, and not at
-    rest on a wall, where its departure rule applies): most steps are full, and this spares
-    them two square roots and two divisions (arguments as ``free_step``)."""
-    s, z, v, _, _, _ = pt
-    zb0, vb0 = ball
-    BL, BR = bounds
-    tol_z, floor_v, _ = floors
-    w = z - (zb0 + vb0 * s)
-    wd = v - vb0
-    gL = 1.0 - w
-    gR = 1.0 + w
-    sw = 1.0 if gL <= gR else -1.0
-    if min(gL, gR) <= tol_z and sw * wd <= floor_v:
-        return False
-    return _gap_clears(gL, wd, BL, H) and _gap_clears(gR, -wd, BR, H)
-
-
-@njit(cache=True, nogil=True, inline="always")
 def _wall_bounds(a, j, H, B2g, B4, floor_a, floor_j):
     """(BL, BR, B) for steps h <= H from a point where w'' = z_m'' = a, w''' = j.
 
@@ -448,8 +415,6 @@ def free_step_local(osc, pt, ball, h_cap, root_tol, released, parts):
     floors = (tol_z, floor_v, floor_a)
     H = h_cap
     BL, BR, B = _wall_bounds(a, j, H, B2g, B4, floor_a, floor_j)
-    if _full_step_clear(pt, ball, (BL, BR), H, floors):
-        return H, 0, B, B4          # what the first round below returns (free_step's h >= H)
     h_best, B_best = H, B
     for it in range(N_STEP_ITER):
         h, pressed = free_step(pt, ball, (BL, BR, B3, B4), floors, released)
