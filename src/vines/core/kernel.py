@@ -641,8 +641,8 @@ def _land_on_event(osc, sg, s_end, pt, gap, closing, acc):
         ds = max(s_end - s, 0.0)
     if ds > 0.0:
         s_new = s + ds
-        zm0, vm0, sth0, cth0 = _start(sg)         # ``flow``, inlined (no call)
-        z1, v1, a1, j1, b11 = flow_from(osc, flow_start(osc, zm0, vm0, sth0, cth0), s_new)
+        zm0, vm0, sth0, cth0 = _start(sg)
+        z1, v1, a1, j1, b11 = flow(osc, zm0, vm0, sth0, cth0, s_new)
         m_ref = acc[A_XMAX_WIN] if sg.in_window else acc[A_XMAX_ALL]
         if abs(z1) > m_ref:
             if sg.in_window:
