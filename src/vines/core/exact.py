@@ -37,7 +37,8 @@ def oscillators(p: ModelParams) -> tuple[np.ndarray, np.ndarray]:
 
 
 class Trajectory:
-    """Dense evaluation of a recorded trajectory (piecewise closed form)."""
+    """Dense evaluation of a recorded trajectory (piecewise closed form); ``osc``: the
+    run's ``oscillators(params)`` when at hand (else computed)."""
 
     def __init__(self, params: ModelParams, segments: np.ndarray, t_last: float,
                  osc: Oscillators | None = None):
