@@ -247,3 +247,19 @@ def test_start_on_a_wall_moving_into_it_is_an_impact_at_t0(state0, wall, d):
     rk = vines.simulate(0.1, 1.0, 0.0, solver="rk", rtol=1e-12, **kw)
     assert ex.n_impacts == rk.n_impacts
     assert np.max(np.abs(ex.impacts["t"] - rk.impacts["t"])) < 1e-9
+
+
+@pytest.mark.parametrize("n", [0, 1, 7])
+def test_impact_records_are_the_rows_field_by_field(n):
+    from vines.core.exact import impact_records
+    from vines.core.result import IMPACT_DTYPE
+    rng = np.random.default_rng(n)
+    rows = rng.normal(size=(n, 6))
+    rows[:, 5] = rng.choice([-1.0, 1.0], size=n)
+    expected = np.empty(n, dtype=IMPACT_DTYPE)
+    for k, name in enumerate(IMPACT_DTYPE.names):
+        expected[name] = rows[:, k]
+    got = impact_records(rows)
+    assert got.dtype == IMPACT_DTYPE
+    assert got.tobytes() == expected.tobytes()
+    assert impact_records(rows[::2]).tobytes() == expected[::2].tobytes()   # strided rows

@@ -144,3 +144,19 @@ def test_exponential_modes_far_in_the_decay(x):
     exact = math.exp(-x.real) * complex(math.cos(x.imag), -math.sin(x.imag))
     # e^-Re(x) and cos, sin of Im(x) to a few ulps each: 1e-14 relative
     assert abs(m_m - exact) <= 1e-14 * abs(exact)
+
+
+def _bits(values) -> bytes:
+    """The float64 bytes of ``values`` (tells +0.0 from -0.0)."""
+    return np.asarray(values, dtype=np.float64).tobytes()
+
+
+@pytest.mark.parametrize("m,d,W,F", CASES + [(1.0, 0.0, 1.0002, 0.2)])   # + near resonance
+def test_flow_at_zero_is_the_closed_form_at_zero_bit_for_bit(m, d, W, F):
+    # the kernel starts each segment with flow_at_zero (no exp, sin, cos): it must return
+    # the numbers of the general closed form at s = 0, signed zeros included
+    osc = fl.make_osc(m, d, W, F)
+    for x0, v0, th0 in ((X0, V0, TH0), (0.0, 0.0, 0.0), (-0.0, -0.0, math.pi),
+                        (0.0, -0.0, -2.0), (-1.5, 0.0, 0.5 * math.pi), (2.0, 3.0, 4.0)):
+        start = fl.flow_start(osc, x0, v0, math.sin(th0), math.cos(th0))
+        assert _bits(fl.flow_at_zero(osc, start)) == _bits(fl.flow_from(osc, start, 0.0))

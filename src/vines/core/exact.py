@@ -37,13 +37,15 @@ def oscillators(p: ModelParams) -> tuple[np.ndarray, np.ndarray]:
 
 
 class Trajectory:
-    """Dense evaluation of a recorded trajectory (piecewise closed form)."""
+    """Dense evaluation of a recorded trajectory (piecewise closed form); ``osc``: the
+    run's ``oscillators(params)`` when at hand (else computed)."""
 
-    def __init__(self, params: ModelParams, segments: np.ndarray, t_last: float):
+    def __init__(self, params: ModelParams, segments: np.ndarray, t_last: float,
+                 osc: Oscillators | None = None):
         self.params = params
         self.segments = segments
         self.t_last = t_last
-        self._osc_f, self._osc_s = oscillators(params)
+        self._osc_f, self._osc_s = oscillators(params) if osc is None else osc
 
     def __call__(self, times) -> np.ndarray:
         times = np.ascontiguousarray(np.atleast_1d(times), dtype=float)
@@ -61,6 +63,28 @@ class Trajectory:
         eng.dense_states(self.segments, np.ascontiguousarray(idx, dtype=np.int64), times,
                          self._osc_f, self._osc_s, self.params.omega, self.params.phi, out)
         return out
+
+
+# The kernel's impact rows (t, z_m, z_m', z_b, z_b', wall: six float64) seen as two
+# fields, the five state columns as one block of 40 bytes and the wall, and the same two
+# fields of an IMPACT_DTYPE record (``impact_records``).
+_ROW_FIELDS = np.dtype({"names": ["state", "wall"], "formats": ["V40", "f8"],
+                        "offsets": [0, 40], "itemsize": 48})
+_RECORD_FIELDS = np.dtype({"names": ["state", "wall"], "formats": ["V40", "i1"],
+                           "offsets": [0, 40], "itemsize": IMPACT_DTYPE.itemsize})
+
+
+def impact_records(rows: np.ndarray) -> np.ndarray:
+    """The kernel's impact rows (n, 6) as an IMPACT_DTYPE array: each row's five state
+    numbers copied as one block of bytes and the wall cast to int8 (three times faster than
+    column by column; the same bytes)."""
+    rows = np.ascontiguousarray(rows, dtype=np.float64)
+    out = np.empty(rows.shape[0], dtype=IMPACT_DTYPE)
+    src = rows.view(_ROW_FIELDS)[:, 0]
+    dst = out.view(_RECORD_FIELDS)
+    dst["state"] = src["state"]
+    dst["wall"] = src["wall"]
+    return out
 
 
 def kernel_params(osc, p: ModelParams, st: SolverSettings, t_end: float, t_tr: float,
@@ -145,11 +169,7 @@ class KernelRun:
     def impacts(self, n: int | None = None) -> np.ndarray:
         """The first n (default all) recorded impacts as an IMPACT_DTYPE array."""
         n = int(self.cnt[eng.C_NIMP_REC]) if n is None else int(n)
-        out = np.empty(n, dtype=IMPACT_DTYPE)
-        for k, name in enumerate(("t", "z_m", "v_m", "z_b", "v_b")):
-            out[name] = self.imp[:n, k]
-        out["wall"] = self.imp[:n, 5].astype(np.int8)
-        return out
+        return impact_records(self.imp[:n])
 
     def segments(self, n: int | None = None) -> np.ndarray:
         n = int(self.cnt[eng.C_NSEG_REC]) if n is None else int(n)
@@ -169,7 +189,7 @@ class KernelRun:
             t_stuck_total=float(acc[eng.A_TSTUCK_ALL]), n_impacts=int(cnt[eng.C_NIMP_TOTAL]),
             status=eng.STATUS_TEXT[rc], t_last=t_last,
             # the stroboscopic section and dense output need the segment active at the end
-            state_at=Trajectory(self.p, self.segments(), t_last),
+            state_at=Trajectory(self.p, self.segments(), t_last, self.osc),
             n_sticks=int(acc[eng.A_NSTICK]),
             solver_info={"root_tol": self.st.root_tol, "n_steps": int(acc[eng.A_NEVAL]),
                          "final_state": self.cur[1:5].copy(), "final_mode": int(self.cur[5])},
@@ -376,11 +396,7 @@ def _periodic_records(run: KernelRun, sec, orbit: _Orbit) -> tuple:
     rep_seg = rep_seg[max(np.searchsorted(rep_seg[:, 0], lo, side="right") - 1, 0):]
     imp_all = np.concatenate([imp[imp[:, 0] < t_s], rep_imp])
     seg_all = np.concatenate([seg[seg[:, 0] < t_s], rep_seg])
-    impacts = np.empty(imp_all.shape[0], dtype=IMPACT_DTYPE)
-    for k, name in enumerate(("t", "z_m", "v_m", "z_b", "v_b")):
-        impacts[name] = imp_all[:, k]
-    impacts["wall"] = imp_all[:, 5].astype(np.int8)
-    return impacts, seg_all
+    return impact_records(imp_all), seg_all
 
 
 def _streamed_records(run: KernelRun, orbit: _Orbit, imp, seg, one_imp, one_seg) -> tuple:
@@ -429,7 +445,7 @@ def _periodic_raw(run: KernelRun, sec: np.ndarray, orbit: _Orbit) -> RawRun:
         t_stuck_window=pre["t_stuck_win"] + win["t_stuck"],
         t_stuck_total=pre["t_stuck_all"] + whole["t_stuck"],
         n_impacts=pre["n_impacts"] + whole["n_impacts"], status="ok", t_last=t_end,
-        state_at=Trajectory(run.p, segments, t_end),
+        state_at=Trajectory(run.p, segments, t_end, run.osc),
         n_sticks=pre["n_sticks"] + whole["n_sticks"],
         solver_info={"root_tol": st.root_tol,
                      "n_steps": pre["n_steps"] + sum(int(g.acc[eng.A_NEVAL])

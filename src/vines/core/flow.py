@@ -115,6 +115,14 @@ def fundamentals(osc, s):
         e = math.exp(-sigma * s)
         ecs = e
         esn = e * s
+    return _fundamentals_from(osc, ecs, esn)
+
+
+@njit(cache=True, nogil=True, inline="always")
+def _fundamentals_from(osc, ecs, esn):
+    """(C, C', S, S') from ecs = e^(-sigma s) cos|cosh(sq s) and esn = e^(-sigma s)
+    sin|sinh(sq s)/sq (e^(-sigma s) s when critically damped): ``fundamentals``."""
+    sigma = osc[I_SIGMA]
     S = esn
     C = ecs + sigma * esn
     dS = ecs - sigma * esn
@@ -129,8 +137,13 @@ def particular(osc, sth0, cth0, s):
     sth0, cth0 are sin and cos of the forcing phase theta0 at s = 0.
     """
     omega = osc[I_W]
-    sw = math.sin(omega * s)
-    cw = math.cos(omega * s)
+    return _particular_from(osc, sth0, cth0, s, math.sin(omega * s), math.cos(omega * s))
+
+
+@njit(cache=True, nogil=True, inline="always")
+def _particular_from(osc, sth0, cth0, s, sw, cw):
+    """``particular`` given sw, cw = sin, cos of omega s."""
+    omega = osc[I_W]
     sth = sth0 * cw + cth0 * sw
     cth = cth0 * cw - sth0 * sw
     if osc[I_RES] > 0.5:
@@ -206,17 +219,39 @@ def flow_start(osc, x0, v0, sth0, cth0):
 def flow_from(osc, start, s):
     """``flow`` at local time s from start = ``flow_start(osc, x0, v0, sin, cos)``, bit for
     bit: flows of one start at many s (the kernel's steps) compute the start once."""
-    x0, v0, sth0, cth0, xh, vh = start
+    x0, v0, sth0, cth0, _, _ = start
     if osc[I_NRES] > 0.5:
         return _flow_nres(osc, x0, v0, sth0, cth0, s)
-    C, dC, S, dS = fundamentals(osc, s)
+    return _flow_sum(osc, start, fundamentals(osc, s), particular(osc, sth0, cth0, s))
+
+
+@njit(cache=True, nogil=True, inline="always")
+def flow_at_zero(osc, start):
+    """``flow_from(osc, start, 0.0)`` bit for bit without its exp, sin and cos calls. Their
+    arguments are then +-0 (sigma, sq, omega finite; sq > 0 unless critically damped), where
+    exp and cos are 1 and sin is its argument: ecs = 1 and esn = +0 in ``fundamentals``,
+    sin(omega s) = omega 0 (+0) and cos(omega s) = 1 in ``particular``, exactly."""
+    x0, v0, sth0, cth0, _, _ = start
+    if osc[I_NRES] > 0.5:
+        return _flow_nres(osc, x0, v0, sth0, cth0, 0.0)
+    part = _particular_from(osc, sth0, cth0, 0.0, osc[I_W] * 0.0, 1.0)
+    return _flow_sum(osc, start, _fundamentals_from(osc, 1.0, 0.0), part)
+
+
+@njit(cache=True, nogil=True, inline="always")
+def _flow_sum(osc, start, fund, part):
+    """(z, z', z'', z''', b1) of ``flow_from`` from the start's homogeneous parts, the
+    fundamentals fund = (C, C', S, S') and the particular solution's part = (z_p, z_p',
+    z_p'', z_p''') at the same local time."""
+    _, _, _, _, xh, vh = start
+    C, dC, S, dS = fund
     zh = xh * C + vh * S
     zh1 = xh * dC + vh * dS
     om2 = osc[I_OM2]
     two_sigma = 2.0 * osc[I_SIGMA]
     zh2 = -two_sigma * zh1 - om2 * zh
     zh3 = -two_sigma * zh2 - om2 * zh1
-    zp, zp1, zp2, zp3 = particular(osc, sth0, cth0, s)
+    zp, zp1, zp2, zp3 = part
     b1 = math.sqrt(zh1 * zh1 + om2 * zh * zh)
     return zp + zh, zp1 + zh1, zp2 + zh2, zp3 + zh3, b1
 

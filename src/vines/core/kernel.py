@@ -72,11 +72,13 @@ import numpy as np
 from .._jit import njit
 from .flow import (
     I_D,
+    I_FAMP,
     I_NRES,
     I_RATE,
     I_RES,
     deriv_bound,
     flow,
+    flow_at_zero,
     flow_from,
     flow_start,
     forcing,
@@ -157,12 +159,13 @@ def _floor(part, s, x, rate):
 
 
 @njit(cache=True, nogil=True, inline="always")
-def _step_bounds(osc, z, v, b1, s, h_cap):
+def _step_bounds(osc, z, v, b1, s, h_cap, parts):
     """Bounds for a step from local time s: the parts' sizes P0 ... P3 at s (for the
     floors), and bounds B2, B3, B4 of |z''|, |z'''|, |z''''| on [s, s + h_cap], each the
-    smaller of the parts' bound (``part_bounds``) and the whole state's (``state_bounds``,
-    far tighter near resonance, where the parts nearly cancel)."""
-    P0, P1, P2, P3, P4 = part_bounds(osc, b1, s)
+    smaller of the parts' bound (``part_bounds``; parts = ``part_bounds(osc, b1, s)``) and
+    the whole state's (``state_bounds``, far tighter near resonance, where the parts nearly
+    cancel)."""
+    P0, P1, P2, P3, P4 = parts
     Q2, Q3, Q4 = P2, P3, P4
     if osc[I_RES] > 0.5 or osc[I_NRES] > 0.5:      # these parts' bounds grow with s
         _, _, Q2, Q3, Q4 = part_bounds(osc, b1, s + h_cap)
@@ -366,6 +369,13 @@ def free_step(pt, ball, bounds, floors, released):
 
 
 @njit(cache=True, nogil=True, inline="always")
+def _third(x):
+    """x / 3, without the division when x = +-0 (then x itself: the jerk term of
+    ``_wall_bounds`` is 0 for one wall or the other at almost every step)."""
+    return x / 3.0 if x != 0.0 else x
+
+
+@njit(cache=True, nogil=True, inline="always")
 def _wall_bounds(a, j, H, B2g, B4, floor_a, floor_j):
     """(BL, BR, B) for steps h <= H from a point where w'' = z_m'' = a, w''' = j.
 
@@ -378,24 +388,25 @@ def _wall_bounds(a, j, H, B2g, B4, floor_a, floor_j):
     B = min(B2g, |a| + |j| H + B4 H^2/2) bounds |w''| itself on [s, s + H].
     """
     rest = B4 * H * H / 12.0
-    BL = min(B2g, max(0.0, a + floor_a + max(j + floor_j, 0.0) * H / 3.0 + rest))
-    BR = min(B2g, max(0.0, -a + floor_a + max(floor_j - j, 0.0) * H / 3.0 + rest))
+    BL = min(B2g, max(0.0, a + floor_a + _third(max(j + floor_j, 0.0) * H) + rest))
+    BR = min(B2g, max(0.0, -a + floor_a + _third(max(floor_j - j, 0.0) * H) + rest))
     return BL, BR, min(B2g, abs(a) + abs(j) * H + 0.5 * B4 * H * H)
 
 
 @njit(cache=True, nogil=True, inline="always")
-def free_step_local(osc, pt, ball, h_cap, root_tol, released):
+def free_step_local(osc, pt, ball, h_cap, root_tol, released, parts):
     """``free_step`` with bounds for the step length H itself (``_wall_bounds``).
 
     The bounds over [s, s + H] shrink with H, so the step phi(H) they allow grows as H
     shrinks: any H with phi(H) >= H is a safe step, and the odd iterates of
     H -> min(phi(H), h_cap) from h_cap are such steps, approaching the longest one
     (N_STEP_ITER evaluations). Returns (h, pressed, B2, B4) with B2 bounding |w''| on
-    [s, s + h] and B4 (bound of |z''''|) valid on [s, s + h_cap].
+    [s, s + h] and B4 (bound of |z''''|) valid on [s, s + h_cap]. parts:
+    ``part_bounds(osc, b1, s)`` at the point pt.
     """
     s, z, v, a, j, b1 = pt
     zb0, vb0 = ball
-    P0, P1, P2, P3, B2g, B3, B4 = _step_bounds(osc, z, v, b1, s, h_cap)
+    P0, P1, P2, P3, B2g, B3, B4 = _step_bounds(osc, z, v, b1, s, h_cap, parts)
     zb = zb0 + vb0 * s
     tol_z = max(root_tol, _floor(P0, s, abs(z) + abs(zb), v - vb0))
     floor_v = _floor(P1, s, abs(v) + abs(vb0), a)
@@ -420,11 +431,11 @@ def free_step_local(osc, pt, ball, h_cap, root_tol, released):
 
 
 @njit(cache=True, nogil=True, inline="always")
-def free_contact(osc, pt, ball, B2, root_tol):
+def free_contact(osc, pt, ball, B2, root_tol, parts):
     """(wall, gap, closing speed) when contact is accepted at the point pt = (s, z, z',
-    z'', z''', b1) of the LO's closed form, the ball at ball = (z_b, z_b') there; else
-    wall = 0."""
-    s, z, v, _, _, b1 = pt
+    z'', z''', b1) of the LO's closed form (parts: ``part_bounds(osc, b1, s)`` there), the
+    ball at ball = (z_b, z_b') there; else wall = 0."""
+    s, z, v, _, _, _ = pt
     zb, vb = ball
     w = z - zb
     wd = v - vb
@@ -436,7 +447,7 @@ def free_contact(osc, pt, ball, B2, root_tol):
         gap = max(1.0 + w, 0.0)
         closing = -wd
         wall = WALL_R
-    P0, P1, _, _, _ = part_bounds(osc, b1, s)
+    P0, P1 = parts[0], parts[1]
     floor = _floor(P0, s, abs(z) + abs(zb), closing)
     # a closing speed at round-off level is no impact (the departure rule handles it)
     if closing > _floor(P1, s, abs(v) + abs(vb), 0.0) and gap <= max(root_tol, floor) \
@@ -461,9 +472,10 @@ def first_contact(osc, x0, phase0, s_max, root_tol):
     h_cap = 1.0 / osc[I_RATE]
     s = 0.0
     z, v, a, j, b1 = flow(osc, zm0, vm0, sth0, cth0, 0.0)
+    parts = part_bounds(osc, b1, s)
     for _ in range(MAX_STEPS_PER_SEGMENT):
         h, pressed, B2, _ = free_step_local(osc, (s, z, v, a, j, b1), ball, h_cap,
-                                            root_tol, False)
+                                            root_tol, False, parts)
         if pressed != 0:
             return CONTACT_PRESSED * pressed, s, z, v
         h = min(h, h_cap)
@@ -474,8 +486,9 @@ def first_contact(osc, x0, phase0, s_max, root_tol):
             break
         s = s + h
         z, v, a, j, b1 = flow(osc, zm0, vm0, sth0, cth0, s)
+        parts = part_bounds(osc, b1, s)
         wall, gap, closing = free_contact(osc, (s, z, v, a, j, b1), (zb0 + vb0 * s, vb0), B2,
-                                          root_tol)
+                                          root_tol, parts)
         if wall != 0:
             s = s + gap / closing
             z, v, a, j, b1 = flow(osc, zm0, vm0, sth0, cth0, s)
@@ -559,7 +572,8 @@ def _advance_segment(osc, sg, s_stop, root_tol, acc, step0, s_pause, stack):
             acc[A_SEG_J], acc[A_SEG_B1]
     else:
         s = 0.0
-        z, v, a, j, b1 = flow_from(osc, start, 0.0)
+        z, v, a, j, b1 = flow_at_zero(osc, start)
+    parts = part_bounds(osc, b1, s)     # at the current point, for the step and the test
     B4 = 0.0
     gap = 0.0
     closing = 0.0
@@ -568,11 +582,11 @@ def _advance_segment(osc, sg, s_stop, root_tol, acc, step0, s_pause, stack):
             return EV_PAUSE, 0, (s, z, v, a, j, b1), gap, closing, steps
         if mode == MODE_FREE:
             h, pressed, B2, B4 = free_step_local(osc, (s, z, v, a, j, b1), ball, h_cap,
-                                                 root_tol, sg.released and steps == 1)
+                                                 root_tol, sg.released and steps == 1, parts)
             if pressed != 0:
                 return EV_STICK, pressed, (s, z, v, a, j, b1), gap, closing, steps
         else:
-            _, _, _, _, B2, _, B4 = _step_bounds(osc, z, v, b1, s, h_cap)
+            _, _, _, _, B2, _, B4 = _step_bounds(osc, z, v, b1, s, h_cap, parts)
             gap = mode * a                    # contact force, > 0 while stuck
             closing = -mode * j
             h = _safe_step(gap, closing, B4)
@@ -580,7 +594,8 @@ def _advance_segment(osc, sg, s_stop, root_tol, acc, step0, s_pause, stack):
         if s_new <= s:
             if mode == MODE_FREE:   # no step at all: on a wall, approaching it (a start
                 wall, gap, closing = free_contact(  # state there): an impact right now
-                    osc, (s, z, v, a, j, b1), (sg.zb0 + sg.vb0 * s, sg.vb0), B2, root_tol)
+                    osc, (s, z, v, a, j, b1), (sg.zb0 + sg.vb0 * s, sg.vb0), B2, root_tol,
+                    parts)
                 if wall != 0:
                     return EV_IMPACT, wall, (s, z, v, a, j, b1), gap, closing, steps
             break
@@ -595,16 +610,18 @@ def _advance_segment(osc, sg, s_stop, root_tol, acc, step0, s_pause, stack):
             acc[A_XMAX_ALL] = _running_max(osc, start, (s, z, v), (s_new, z1, v1), B2, B4,
                                            acc[A_XMAX_ALL], stack)
         s, z, v, a, j, b1 = s_new, z1, v1, a1, j1, b11
+        parts = part_bounds(osc, b1, s)
         acc[A_NEVAL] += 1.0
         if mode == MODE_FREE:
             wall, gap, closing = free_contact(osc, (s, z, v, a, j, b1),
-                                              (sg.zb0 + sg.vb0 * s, sg.vb0), B2, root_tol)
+                                              (sg.zb0 + sg.vb0 * s, sg.vb0), B2, root_tol,
+                                              parts)
             if wall != 0:
                 return EV_IMPACT, wall, (s, z, v, a, j, b1), gap, closing, steps
         else:                                 # release test on the contact force
             gap = mode * a
             closing = -mode * j
-            floor = _floor(part_bounds(osc, b1, s)[2], s, a, closing)
+            floor = _floor(parts[2], s, a, closing)
             if closing > 0.0 and gap <= max(root_tol, floor) and (
                     gap <= floor or closing * closing >= 2.0 * B4 * gap):
                 return EV_RELEASE, 0, (s, z, v, a, j, b1), max(gap, 0.0), closing, steps
@@ -719,13 +736,19 @@ def _impact(cur, acc, cnt, imp, osc_f, law, sg, hit):
     vm_p, vb_p = impact_velocities(eta, r, v, vb)      # Newton's law, restitution r
     mode_new = MODE_FREE
     vc = _common_velocity(eta, v, vb)
-    g = forcing(osc_f, sg.sth0, sg.cth0, s) - osc_f[I_D] * vc - z    # free LO acceleration
-    v_floor = _stick_speed_floor(osc_f, g, z, zb_imp, b1, abs(vm_p - v))
-    if abs(vm_p - vb_p) <= max(v_stick, v_floor) and wall * g > 0.0:
-        mode_new = wall
-        vm_p = vc
-        vb_p = vc
-        acc[A_NSTICK] += 1.0
+    rebound = abs(vm_p - vb_p)
+    dvm = abs(vm_p - v)
+    # the floor grows with |g| <= FAMP + d |vc| + |z| (|forcing| <= FAMP): a rebound above
+    # the floor of twice that bound cannot stick, and g (a sin and cos) is not needed
+    g_max = 2.0 * (osc_f[I_FAMP] + osc_f[I_D] * abs(vc) + abs(z))
+    if rebound <= max(v_stick, _stick_speed_floor(osc_f, g_max, z, zb_imp, b1, dvm)):
+        g = forcing(osc_f, sg.sth0, sg.cth0, s) - osc_f[I_D] * vc - z  # free LO acceleration
+        v_floor = _stick_speed_floor(osc_f, g, z, zb_imp, b1, dvm)
+        if rebound <= max(v_stick, v_floor) and wall * g > 0.0:
+            mode_new = wall
+            vm_p = vc
+            vb_p = vc
+            acc[A_NSTICK] += 1.0
     _set_state(cur, t_new, z, vm_p, zb_imp, vb_p, mode_new)
 
 

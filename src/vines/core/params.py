@@ -105,19 +105,22 @@ def _as_float(name, value) -> float:
     return x
 
 
-def check_real(name, value, *, lo=None, hi=None, lo_open=False, hi_open=False) -> float:
-    """Return ``value`` as a float or raise ParameterError naming ``name``."""
-    x = _as_float(name, value)
+def _allowed(lo, hi, lo_open, hi_open) -> str:
+    """The range ``check_real`` allows, in words (for its error message)."""
     parts = []
     if lo is not None:
         parts.append(f"> {lo:g}" if lo_open else f">= {lo:g}")
     if hi is not None:
         parts.append(f"< {hi:g}" if hi_open else f"<= {hi:g}")
-    allowed = "must be a finite number" + (" " + " and ".join(parts) if parts else "")
-    if lo is not None and (x < lo or (lo_open and x == lo)):
-        raise ParameterError(name, value, allowed)
-    if hi is not None and (x > hi or (hi_open and x == hi)):
-        raise ParameterError(name, value, allowed)
+    return "must be a finite number" + (" " + " and ".join(parts) if parts else "")
+
+
+def check_real(name, value, *, lo=None, hi=None, lo_open=False, hi_open=False) -> float:
+    """Return ``value`` as a float or raise ParameterError naming ``name``."""
+    x = _as_float(name, value)
+    if (lo is not None and (x < lo or (lo_open and x == lo))) \
+            or (hi is not None and (x > hi or (hi_open and x == hi))):
+        raise ParameterError(name, value, _allowed(lo, hi, lo_open, hi_open))
     return x
 
 
