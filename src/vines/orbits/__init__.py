@@ -25,7 +25,7 @@ _LAZY = {
     "find_sequence": ".family.sequence",
     "SequenceOrbit": ".family.sequence",
     "continue_branch": ".continuation.one_to_one",
-    "ContinuationSettings": ".continuation.one_to_one",
+    "ContinuationSettings": ".continuation.settings",
     "Branch": ".continuation.branch",
     "continue_sequence": ".continuation.sequence",
     "ContinueSettings": ".continuation.sequence",
