@@ -177,8 +177,8 @@ def continue_sequence(params: ModelParams, walls: str, periods: int, param: str,
     if orbit is None:
         found = find_sequence(params, walls, periods)
         if not found:
-            return SequenceBranch(walls, periods, param, [], [],
-                                  f"no {walls}/{periods} orbit at start")
+            return SequenceBranch(walls=walls, periods=periods, param=param, points=[],
+                                  stopped=f"no {walls}/{periods} orbit at start")
         orbit = found[0]
     with progress.task(None, f"{walls}/{periods} branch in {param}", "points"):
         return _trace(_Run(params, walls, periods, param, start, stop, settings), orbit)
@@ -206,14 +206,14 @@ def _trace(run: _Run, orbit: SequenceOrbit) -> SequenceBranch:
     tr = Tracer(sys_, z0, np.array([0, 0, 0, 0, sign]), step, step * 1e-6, step, np.ones(5))
     o = sys_.orbit(z0)
     if o is None:
-        return SequenceBranch(run.walls, run.periods, run.param, [], [],
-                              "the orbit does not converge")
+        return SequenceBranch(walls=run.walls, periods=run.periods, param=run.param,
+                              points=[], stopped="the orbit does not converge")
     points, events = [o], []
     stopped = _follow(run, (tr, sys_), points, events)
     for ev in events:
         ev["at"] = float(getattr(ev["_orbit"].params, run.param))
-    br = SequenceBranch(run.walls, run.periods, run.param, points, events, stopped,
-                        born_at=run.born_at)
+    br = SequenceBranch(walls=run.walls, periods=run.periods, param=run.param, points=points,
+                        events=events, stopped=stopped, born_at=run.born_at)
     if run.settings.switch:
         for ev in events:
             sub = _switch(run, ev)
