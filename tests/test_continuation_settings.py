@@ -5,6 +5,7 @@ import pytest
 from vines import ParameterError
 from vines.core.params import MAX_POINTS_DEFAULT, ModelParams
 from vines.orbits.continuation import sequence as seq
+from vines.orbits.continuation.branch import BranchBase
 from vines.orbits.continuation.one_to_one import continue_branch
 from vines.orbits.continuation.settings import ContinuationSettings
 
@@ -59,3 +60,13 @@ def test_sequence_refuses_bound_settings():
         seq.continue_sequence(P, "LR", 1, "F", 0.09, settings=ContinuationSettings(
             param="F", start=0.1, stop=0.09, fixed={"eta": 0.2, "omega": 1.0}))
     assert err.value.name == "settings"
+
+
+@FAMILIES
+def test_max_points_caps_an_arclength_branch_of_either_family(run):
+    """The default step (|stop - start|/100) is not refused; the branch stops at 3 points,
+    and both results are branches (``BranchBase``)."""
+    br = run(max_points=3)
+    assert isinstance(br, BranchBase) and br.param == "F" and br.born_at is None
+    n = len(br.points) if isinstance(br, seq.SequenceBranch) else len(br)
+    assert n == 3 and "max_points" in br.stopped
