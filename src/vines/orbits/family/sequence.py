@@ -53,6 +53,7 @@ from ..maps.affine import closed_form_seeds, scan, scan_seeds  # noqa: F401 (sca
 from ..maps.impact import admissible_kernel, model_array
 from ..maps.newton import monodromy, newton_sequence
 from .family import (
+    JETS,
     WALL_CODES,
     WALL_NAMES,
     Family,
@@ -263,7 +264,7 @@ def affine_seeds(p: ModelParams, osc: np.ndarray | None, walls: str, periods: in
     ansatz when the sequence has the half symmetry and periods is odd (closed form for two
     impacts, a scan for four), the full two-flight scan for two impacts."""
     mdl = model_array(p, osc)
-    if Family(walls, periods).one_to_one:
+    if Family(walls, periods).engine == JETS:
         return _seeds_1to1(p, mdl)
     n = len(walls)
     NT = periods * p.period
@@ -354,7 +355,7 @@ def find_sequence(params: ModelParams, walls: str, periods: int = 1, *,
         return []
     starts = affine_seeds(p, mdl, walls, periods)
     if simulation:
-        if Family(walls, periods).one_to_one:
+        if Family(walls, periods).engine == JETS:
             found_sim = simulation_seed(p, mdl)
             starts += [(o.x_L, o.flight_times) for o in found_sim if o is not None]
         else:
