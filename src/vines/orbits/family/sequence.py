@@ -64,6 +64,7 @@ from .family import (
     mirror_walls,
     paper_label,
 )
+from .orbit import OrbitBase
 from .periodic import (
     DEDUP_TOL,
     SYM_TOL,
@@ -88,9 +89,9 @@ def _codes(walls: str) -> np.ndarray:
 
 # --------------------------------------------------------------------------- orbits
 
-@dataclass
-class SequenceOrbit:
-    """One periodic orbit of a wall sequence and its stability.
+@dataclass(kw_only=True)
+class SequenceOrbit(OrbitBase):
+    """One periodic orbit of a wall sequence and its stability (``OrbitBase``).
 
     walls         the wall sequence ("LLRR"), impact k at wall walls[k]
     periods       forcing periods of the orbit (its period is periods * T)
@@ -109,17 +110,9 @@ class SequenceOrbit:
     walls: str
     periods: int
     states: np.ndarray
-    flight_times: np.ndarray
-    symmetric: bool
-    admissible: bool
-    eigenvalues: np.ndarray
-    lambda_max: float
-    stable: bool
     dw: np.ndarray
     phases: np.ndarray
-    residual: float = 0.0
     jacobians: np.ndarray = field(default=None, repr=False)
-    params: ModelParams | None = field(default=None, repr=False)
 
     @property
     def family(self) -> str:
