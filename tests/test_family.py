@@ -3,7 +3,7 @@ checks. Expected names from docs/bifurcation.md ("Families of periodic orbits").
 import pytest
 
 from vines.core.params import ModelParams, ParameterError
-from vines.orbits.family.family import ONE_TO_ONE, Family
+from vines.orbits.family.family import JETS, MAPS, ONE_TO_ONE, Family
 
 # (family, name, has symmetric orbits, flights of its residual)
 CASES = [
@@ -39,6 +39,14 @@ def test_only_lr_over_one_period_is_one_to_one():
     assert not Family("LR", 3).one_to_one and not Family("LRLR", 2).one_to_one
     assert Family.checked(" lr ", 1) == ONE_TO_ONE
     assert not Family("RL", 1).one_to_one       # a rotation: the sequence solver's business
+
+
+@pytest.mark.parametrize("fam, engine", [(ONE_TO_ONE, JETS), (Family("LR", 1, True), JETS),
+                                         (Family("LR", 1, False), JETS), (Family("RL", 1), MAPS),
+                                         (Family("LLRR", 1, True), MAPS),
+                                         (Family("LRLR", 2), MAPS), (Family("LR", 3), MAPS)])
+def test_engine_follows_the_family(fam, engine):
+    assert fam.engine == engine
 
 
 @pytest.mark.parametrize("walls,periods,name", [("LXR", 1, "walls"), ("", 1, "walls"),

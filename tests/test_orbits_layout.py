@@ -82,3 +82,16 @@ def test_one_place_tells_the_one_to_one_family_apart():
             for f in list(root.rglob("*.py")) + list(root.rglob("*.smk"))
             if pattern.search(f.read_text()) and f != ORBITS / "family" / "family.py"]
     assert not hits, hits
+
+
+def test_only_the_family_asks_one_to_one():
+    """Callers dispatch on ``Family.engine``; ``Family.one_to_one`` is read in family.py
+    alone (attribute reads in the sources; the .smk files by their text)."""
+    own = ORBITS / "family" / "family.py"
+    hits = [str(f) for f in SRC.rglob("*.py") if f != own
+            for node in ast.walk(ast.parse(f.read_text()))
+            if isinstance(node, ast.Attribute) and node.attr == "one_to_one"]
+    workflow = SRC.parent.parent / "workflow"
+    if workflow.is_dir():
+        hits += [str(f) for f in workflow.rglob("*.smk") if ").one_to_one" in f.read_text()]
+    assert not hits, hits

@@ -63,7 +63,7 @@ def _family_boundaries():
     return [
         dataset("boundaries", n)
         for n, b in sorted(BOUNDARIES.items())
-        if not boundary_family(b).one_to_one
+        if boundary_family(b).engine != JETS
     ]
 
 

@@ -5,10 +5,11 @@
 * ``jets``: the flight as closed-form shooting conditions with exact derivatives by Taylor
   jets (``taylor``, recorded as a ``tape``, run compiled by ``kernels``; ``shooting``);
 * ``family``: the family object (``family``: walls, periods, symmetric; the 1:1 orbit is
-  the value LR/1 of it), its orbits (``periodic`` for 1:1, ``sequence`` for any wall
-  sequence) and its augmented systems (``augmented`` on jets, ``map_systems`` on the maps);
-* ``continuation``: the arclength tracer, branches and their events (``one_to_one``,
-  ``follower``, ``sequence``; results in ``branch``);
+  the value LR/1 of it; its ``engine``), its orbits (``orbit``: what every orbit holds;
+  ``periodic`` for 1:1, ``sequence`` for any wall sequence) and its augmented systems
+  (``augmented`` on jets, ``map_systems`` on the maps);
+* ``continuation``: the arclength tracer, one settings object (``settings``), branches and
+  their events (``one_to_one``, ``follower``, ``sequence``; results in ``branch``);
 * ``curves``: codimension-one curves in (eta, omega) on one tracer (``tracer``), seeded per
   family (``one_to_one``, ``sequence``), entry point ``boundaries``;
 * ``atlas``: which families exist at a point (``atlas``), stability maps (``stability_map``).
@@ -25,7 +26,7 @@ _LAZY = {
     "find_sequence": ".family.sequence",
     "SequenceOrbit": ".family.sequence",
     "continue_branch": ".continuation.one_to_one",
-    "ContinuationSettings": ".continuation.one_to_one",
+    "ContinuationSettings": ".continuation.settings",
     "Branch": ".continuation.branch",
     "continue_sequence": ".continuation.sequence",
     "ContinueSettings": ".continuation.sequence",

@@ -301,8 +301,8 @@ def boundaries(spec: dict, *, model: dict, code: str, title: str, stability_path
     attrs = provenance_attrs(title=title, config_subset={"spec": spec, "model": model},
                              settings=model, code_version=code)
     attrs.update(eta_range=list(res.eta_range), omega_range=list(res.omega_range))
-    from ..orbits.family.family import Family
-    if Family(res.walls, res.periods).one_to_one:       # 1:1 datasets as they always were
+    from ..orbits.family.family import JETS, Family
+    if Family(res.walls, res.periods).engine == JETS:   # 1:1 datasets as they always were
         return builders.boundaries_dataset(res.curves, res.F, attrs)
     attrs.update(walls=res.walls, periods=res.periods)
     ds = builders.boundaries_dataset(res.curves, res.F, attrs)

@@ -1,6 +1,8 @@
-"""The results of continued branches: ``Branch`` (1:1, ``one_to_one.continue_branch``) and
-``SequenceBranch`` (any wall sequence, ``sequence.continue_sequence``); the event types of
-both."""
+"""The results of continued branches: what every branch holds, ``BranchBase`` (the
+continued parameter, events, why it stopped, the branches switched onto and where it was
+born), and its two forms: ``Branch`` (1:1, ``one_to_one.continue_branch``: per-point
+arrays) and ``SequenceBranch`` (any wall sequence, ``sequence.continue_sequence``: the
+orbits); the event types of both."""
 from __future__ import annotations
 
 from dataclasses import dataclass, field
@@ -16,19 +18,35 @@ EVENT_TYPES = ("fold", "flip", "neimark-sacker", "admissibility-loss", "symmetry
                "branch-point")
 
 
-@dataclass
-class Branch:
+@dataclass(kw_only=True)
+class BranchBase:
+    """What every continued branch holds (keyword fields).
+
+    param       the continued parameter (eta, omega or F)
+    events      dicts {type (``EVENT_TYPES``), at (parameter value), eta, omega, F, index
+                (the branch point where it was located), ...}
+    stopped     why the continuation ended
+    switched    branches started at this branch's switching points (``switch``)
+    born_at     the event of the parent branch where this one was switched onto, or None
+    """
+
+    param: str
+    events: list = field(default_factory=list)
+    stopped: str = "done"
+    switched: list = field(default_factory=list)
+    born_at: dict | None = None
+
+
+@dataclass(kw_only=True)
+class Branch(BranchBase):
     """A continued 1:1 branch: one entry per point, in continuation order.
 
     family      "symmetric" or "asymmetric" (the orbit family followed)
     arclength   pseudo-arclength of each point from the start (natural mode: |param - start|)
-    events      dicts {type, at (parameter value), eta, omega, F, index (the branch point
-                where it was located), connects (the family met there, symmetry-breaking)}
-    switched    branches started at this branch's symmetry-breaking points (``switch``)
-    stopped     why the continuation ended
+    events      also connects (the family met there, symmetry-breaking)
+    switched    the asymmetric branches born at its symmetry-breaking points
     """
 
-    param: str
     values: np.ndarray
     eta: np.ndarray
     omega: np.ndarray
@@ -42,12 +60,9 @@ class Branch:
     dw_R: np.ndarray
     phase_L: np.ndarray
     phase_R: np.ndarray
-    events: list = field(default_factory=list)
     orbits: list = field(default_factory=list, repr=False)
-    stopped: str = "done"
     family: str = "symmetric"
     arclength: np.ndarray | None = None
-    switched: list = field(default_factory=list)
 
     def __len__(self):
         return len(self.values)
@@ -102,19 +117,15 @@ def make_branch(param: str, pts: list, events: list, stopped: str, family: str =
                   arclength=np.asarray(arclength, float))
 
 
-@dataclass
-class SequenceBranch:
-    """A continued family: points (orbits with their parameter point), events, why it
-    stopped, and the branches switched onto at its flip points."""
+@dataclass(kw_only=True)
+class SequenceBranch(BranchBase):
+    """A continued family of any wall sequence: its points (``SequenceOrbit``s with their
+    parameter point); switched: the branches born at its flip and symmetry-breaking
+    points."""
 
     walls: str
     periods: int
-    param: str
     points: list
-    events: list
-    stopped: str
-    switched: list = field(default_factory=list)
-    born_at: dict | None = None
 
     def to_dict(self) -> dict:
         pts = []

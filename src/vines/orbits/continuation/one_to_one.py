@@ -28,37 +28,27 @@ the parameter:
 """
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+from dataclasses import replace
 
 import numpy as np
 
 from ... import progress
 from ...core.params import (
-    BRANCH_KINDS,
-    CONTINUATION_METHODS,
     D_DEFAULT,
     MAX_INADMISSIBLE_DEFAULT,
     MAX_POINTS_DEFAULT,
-    MAX_POINTS_MAX,
-    PARAM_NAMES,
     R_DEFAULT,
     ModelParams,
     ParameterError,
-    check_bool,
-    check_choice,
-    check_int,
-    check_param,
-    check_real,
-    check_step_points,
 )
 from ...core.walls import WALL_L, WALL_R
 from ..family.family import MIRROR_MATRIX
 from ..family.periodic import PeriodicOrbit, orbits_1to1, solve_orbit
 from ..jets import shooting as sh
 from ..maps.impact import map_jacobian
-from .arclength import Tracer
 from .branch import EVENT_TYPES, Branch, make_branch
 from .follower import FamilySystem, Follower, start_unknowns, switch_direction
+from .settings import ContinuationSettings
 
 __all__ = ["continue_branch", "continue_orbit", "ContinuationSettings", "Branch", "EVENT_TYPES"]
 
@@ -199,86 +189,6 @@ def _check_fixed(fixed) -> dict:
     return dict(fixed)
 
 
-@dataclass(frozen=True)
-class ContinuationSettings:
-    """How one branch is continued (the keywords of ``continue_branch``), validated once on
-    construction: ``step`` becomes the positive step (default |stop - start|/100),
-    ``fixed`` the two parameters not continued."""
-
-    param: str
-    start: float
-    stop: float
-    step: float | None = None
-    fixed: dict = field(default_factory=dict)
-    min_step: float = 1e-6
-    event_tol: float = 1e-6
-    max_points: int = MAX_POINTS_DEFAULT
-    method: str = "arclength"
-    branch: str = "symmetric"
-    switch: bool = False
-    max_inadmissible: int = MAX_INADMISSIBLE_DEFAULT
-
-    def __post_init__(self):
-        set_ = object.__setattr__
-        param = self.param
-        if not isinstance(param, str) or param not in PARAM_NAMES:
-            raise ParameterError("param", param, "must be one of eta, omega, F")
-        set_(self, "method", check_choice("method", self.method, CONTINUATION_METHODS))
-        set_(self, "branch", check_choice("branch", self.branch, BRANCH_KINDS))
-        set_(self, "switch", check_bool("switch", self.switch))
-        set_(self, "max_inadmissible", check_int("max_inadmissible", self.max_inadmissible,
-                                                 lo=1, hi=MAX_POINTS_MAX))
-        set_(self, "fixed", _fixed_others(param, self.fixed))
-        start = check_param(param, self.start)
-        try:
-            stop = check_param(param, self.stop)
-        except ParameterError as err:
-            raise ParameterError("stop", self.stop, f"{err.allowed} ({param})") from None
-        max_points = check_int("max_points", self.max_points, lo=1, hi=MAX_POINTS_MAX)
-        set_(self, "max_points", max_points)
-        set_(self, "min_step", check_real("min_step", self.min_step, lo=1e-12, hi=1.0))
-        set_(self, "event_tol", check_real("event_tol", self.event_tol, lo=1e-12, hi=1.0))
-        step = self.step
-        if step is None:
-            step = (stop - start) / 100.0 if stop != start else 1.0
-        step = abs(check_real("step", step))
-        if step == 0.0:
-            raise ParameterError("step", step, "must be a number != 0")
-        check_step_points(step, abs(stop - start), step, max_points)
-        set_(self, "start", start)
-        set_(self, "stop", stop)
-        set_(self, "step", step)
-
-    @property
-    def bounds(self) -> tuple[float, float]:
-        return (min(self.start, self.stop), max(self.start, self.stop))
-
-    @property
-    def sign(self) -> float:
-        """+1 when the parameter increases from start to stop, else -1."""
-        return 1.0 if self.stop >= self.start else -1.0
-
-    def tracer(self, system: FamilySystem, z0: np.ndarray, direction: np.ndarray) -> Tracer:
-        """The arclength tracer of ``system`` from z0 with these steps."""
-        return Tracer(system, z0, direction, h=self.step, h_min=self.min_step, h_max=self.step)
-
-
-def _fixed_others(param: str, fixed: dict) -> dict:
-    """The two parameters not continued, from ``fixed`` (exactly those two)."""
-    if param in fixed:
-        raise ParameterError(param, fixed[param],
-                             f"must not be fixed when continuing in {param} (it runs from "
-                             f"start to stop; fix only {' and '.join(q for q in PARAM_NAMES if q != param)})")
-    others = [q for q in PARAM_NAMES if q != param]
-    for q in others:
-        if q not in fixed:
-            raise ParameterError(q, None, f"is required when continuing in {param}")
-    unknown = [k for k in fixed if k not in others]
-    if unknown:
-        raise ParameterError("fixed", unknown[0], f"is not a parameter; fix only {' and '.join(others)}")
-    return {q: fixed[q] for q in others}
-
-
 def _arclength(cs: ContinuationSettings, p0: ModelParams, orbit: PeriodicOrbit) -> Branch:
     """Pseudo-arclength continuation from orbit (and the switched branches)."""
     model = sh.Model(p0.r, p0.d, p0.phi)
@@ -322,7 +232,7 @@ def switch_at(model: sh.Model, cs: ContinuationSettings, z_sym: np.ndarray) -> B
     z, v = switch_direction(model, cs.param, cs.fixed, z_sym)
     system = FamilySystem(model, "asymmetric", cs.param, cs.fixed)
     tracer = cs.tracer(system, z, v)
-    h = cs.step
+    h = cs.step_size
     while h >= cs.min_step:
         got = tracer.correct(z + h * v, v, z, h)
         if got is not None and abs(got[0][4] - z[4]) > 0.1 * h * abs(v[4]):
@@ -336,7 +246,7 @@ def switch_at(model: sh.Model, cs: ContinuationSettings, z_sym: np.ndarray) -> B
 
 def _natural(cont: _Continuer, cs: ContinuationSettings, orbit: PeriodicOrbit) -> Branch:
     """Natural-parameter continuation (module docstring)."""
-    start, stop, step, min_step = cs.start, cs.stop, cs.step, cs.min_step
+    start, stop, step, min_step = cs.start, cs.stop, cs.step_size, cs.min_step
     sign = cs.sign
     param = cs.param
     pts = [(start, orbit)]

@@ -19,7 +19,7 @@ test function, or ``Tracer.bisect`` on a flag):
 | neimark-sacker | the number of complex eigenvalues outside the unit circle (flag) |
 | admissibility-loss | the admissibility flag |
 
-With ``switch`` (``ContinueSettings``), at every flip point the period-doubled family (the
+With ``switch`` (``ContinuationSettings``), at every flip point the period-doubled family (the
 sequence twice over, twice the periods) is solved just past the flip from
 ``sequence.flip_seeds`` and continued; at every symmetry-breaking point the asymmetric
 orbit born there (one of the mirror pair; the other is its mirror image) is solved just
@@ -37,17 +37,12 @@ import numpy as np
 
 from ... import progress
 from ...core.params import (
-    MAX_INADMISSIBLE_DEFAULT,
-    MAX_POINTS_MAX,
     PARAM_NAMES,
     ModelParams,
     ParameterError,
-    check_bool,
     check_choice,
-    check_int,
     check_param,
     check_params_arg,
-    check_real,
 )
 from ..family.family import Family, check_periods, check_walls
 from ..family.map_systems import MapSystem, orbit_residual, with_values
@@ -62,33 +57,23 @@ from ..family.systems import solve
 from ..maps.newton import monodromy
 from .arclength import Tracer
 from .branch import SequenceBranch
+from .settings import ContinuationSettings
 
 FLIP_NEAR = 1e-3        # a located flip needs an eigenvalue this close to -1 (not a pole)
-#: most points of a branch of ``continue_sequence`` (not ``core.params.MAX_POINTS_DEFAULT``,
-#: the most points one step of ``continue_branch`` may need)
+#: the default ``max_points`` of ``continue_sequence`` (``continue_branch``'s:
+#: ``core.params.MAX_POINTS_DEFAULT``)
 MAX_BRANCH_POINTS_DEFAULT = 2000
 
 
-@dataclass(frozen=True)
-class ContinueSettings:
-    """How ``continue_sequence`` follows a family.
-
-    step              largest arclength step (None: |stop - start| / 100)
-    switch            switch onto the period-doubled branch at flips and onto the
-                      asymmetric orbit at symmetry-breaking points
-    max_points        most points of a branch
-    max_inadmissible  stop after this many consecutive non-admissible points
-    """
-
-    step: float | None = None
-    switch: bool = False
-    max_points: int = MAX_BRANCH_POINTS_DEFAULT
-    max_inadmissible: int = MAX_INADMISSIBLE_DEFAULT
+#: the settings of ``continue_sequence``: one ``ContinuationSettings`` for every family (this
+#: name kept for one release)
+ContinueSettings = ContinuationSettings
 
 
 @dataclass(frozen=True)
 class _Run:
-    """One branch to follow: the family, the parameter interval and the settings."""
+    """One branch to follow: the family, the parameter interval and the settings (bound to
+    the first branch's interval: a switched branch keeps its step)."""
 
     params: ModelParams         # the starting point
     walls: str
@@ -96,7 +81,7 @@ class _Run:
     param: str
     start: float
     stop: float
-    settings: ContinueSettings
+    settings: ContinuationSettings
     born_at: dict | None = None
 
     @property
@@ -109,7 +94,7 @@ class _Run:
 
     @property
     def step(self) -> float:
-        return self.settings.step
+        return self.settings.step_size
 
 
 class _System:
@@ -166,11 +151,12 @@ def _tests(o: SequenceOrbit, t) -> dict:
 
 def continue_sequence(params: ModelParams, walls: str, periods: int, param: str, stop, *,
                       orbit: SequenceOrbit | None = None,
-                      settings: ContinueSettings | None = None) -> SequenceBranch:
+                      settings: ContinuationSettings | None = None) -> SequenceBranch:
     """Follow an orbit of ``walls``/``periods`` from ``params`` along ``param`` (eta, omega
     or F) towards ``stop``. ``orbit``: the starting orbit (default: the first of
     ``find_sequence`` at ``params``: stable admissible first). ``settings``
-    (``ContinueSettings``): step, switching and limits. Ends when the parameter leaves
+    (``ContinuationSettings`` without param): step, switching and limits (default
+    ``max_points``: ``MAX_BRANCH_POINTS_DEFAULT``). Ends when the parameter leaves
     [start, stop], after ``max_points`` points, ``max_inadmissible`` consecutive
     non-admissible points, or when the step cannot be corrected."""
     params = check_params_arg("params", params)
@@ -183,7 +169,7 @@ def continue_sequence(params: ModelParams, walls: str, periods: int, param: str,
         raise ParameterError("stop", stop, f"{err.allowed} ({param})") from None
     if stop == start:
         raise ParameterError("stop", stop, f"must differ from the start {param} = {start:g}")
-    settings = _check_settings(settings, abs(stop - start))
+    settings = _check_settings(settings, params, param, stop)
     if orbit is not None and not (isinstance(orbit, SequenceOrbit)
                                   and len(orbit.flight_times) == len(walls)):
         raise ParameterError("orbit", orbit, f"must be None or a SequenceOrbit of {walls}/"
@@ -191,27 +177,24 @@ def continue_sequence(params: ModelParams, walls: str, periods: int, param: str,
     if orbit is None:
         found = find_sequence(params, walls, periods)
         if not found:
-            return SequenceBranch(walls, periods, param, [], [],
-                                  f"no {walls}/{periods} orbit at start")
+            return SequenceBranch(walls=walls, periods=periods, param=param, points=[],
+                                  stopped=f"no {walls}/{periods} orbit at start")
         orbit = found[0]
     with progress.task(None, f"{walls}/{periods} branch in {param}", "points"):
         return _trace(_Run(params, walls, periods, param, start, stop, settings), orbit)
 
 
-def _check_settings(settings, span: float) -> ContinueSettings:
-    """Validated settings, the default step |stop - start| / 100 filled in."""
+def _check_settings(settings, params: ModelParams, param: str,
+                    stop: float) -> ContinuationSettings:
+    """The settings bound to ``param`` from its value in ``params`` to ``stop``."""
     if settings is None:
-        settings = ContinueSettings()
-    if not isinstance(settings, ContinueSettings):
-        raise ParameterError("settings", settings, "must be None or a ContinueSettings")
-    step = settings.step
-    step = abs(check_real("step", step, lo=0.0, lo_open=True)) if step is not None \
-        else span / 100.0
-    return ContinueSettings(
-        step=step, switch=check_bool("switch", settings.switch),
-        max_points=check_int("max_points", settings.max_points, lo=2, hi=MAX_POINTS_MAX),
-        max_inadmissible=check_int("max_inadmissible", settings.max_inadmissible, lo=1,
-                                   hi=MAX_POINTS_MAX))
+        settings = ContinuationSettings()
+    if not isinstance(settings, ContinuationSettings) or settings.param is not None:
+        raise ParameterError("settings", settings,
+                             "must be None or a ContinuationSettings without param")
+    fixed = {q: getattr(params, q) for q in PARAM_NAMES if q != param}
+    return settings.bound(param, getattr(params, param), stop, fixed,
+                          MAX_BRANCH_POINTS_DEFAULT)
 
 
 def _trace(run: _Run, orbit: SequenceOrbit) -> SequenceBranch:
@@ -223,14 +206,14 @@ def _trace(run: _Run, orbit: SequenceOrbit) -> SequenceBranch:
     tr = Tracer(sys_, z0, np.array([0, 0, 0, 0, sign]), step, step * 1e-6, step, np.ones(5))
     o = sys_.orbit(z0)
     if o is None:
-        return SequenceBranch(run.walls, run.periods, run.param, [], [],
-                              "the orbit does not converge")
+        return SequenceBranch(walls=run.walls, periods=run.periods, param=run.param,
+                              points=[], stopped="the orbit does not converge")
     points, events = [o], []
     stopped = _follow(run, (tr, sys_), points, events)
     for ev in events:
         ev["at"] = float(getattr(ev["_orbit"].params, run.param))
-    br = SequenceBranch(run.walls, run.periods, run.param, points, events, stopped,
-                        born_at=run.born_at)
+    br = SequenceBranch(walls=run.walls, periods=run.periods, param=run.param, points=points,
+                        events=events, stopped=stopped, born_at=run.born_at)
     if run.settings.switch:
         for ev in events:
             sub = _switch(run, ev)

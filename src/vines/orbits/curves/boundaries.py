@@ -25,7 +25,7 @@ from ...core.params import (
     check_real,
     check_reals,
 )
-from ..family.family import Family
+from ..family.family import JETS, Family
 from .one_to_one import one_to_one_curves
 from .sequence import sequence_boundaries
 from .tracer import CurveSettings
@@ -46,7 +46,7 @@ class Boundaries:
         out = {"F": self.F, "eta_range": list(self.eta_range),
                "omega_range": list(self.omega_range),
                "curves": [c.to_dict() for c in self.curves]}
-        if not Family(self.walls, self.periods).one_to_one:     # 1:1 as it always was
+        if Family(self.walls, self.periods).engine != JETS:     # 1:1 as it always was
             out.update(walls=self.walls, periods=self.periods)
         return out
 
@@ -75,7 +75,7 @@ def boundaries(F: float, eta_range: Sequence[float], omega_range: Sequence[float
     class_map = check_class_map(class_map)
     family = Family.checked(walls, periods)
     p = ModelParams(eta=1.0, omega=1.0, F=F, r=r, d=d)     # validates r and d
-    if family.one_to_one:
+    if family.engine == JETS:
         curves = one_to_one_curves(p, box, settings, (n_scan, n_map, class_map))
     elif class_map is not None:
         raise ParameterError("class_map", "(eta, omega, cls)", "must be None for a "

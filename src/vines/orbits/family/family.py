@@ -3,8 +3,11 @@ which of its orbits (symmetric, asymmetric or both); its name, its mirror image,
 of its walls and periods (docs/bifurcation.md, "Families of periodic orbits").
 
 The 1:1 orbit is the value LR/1 of it (``ONE_TO_ONE``); ``Family.one_to_one`` is
-the one place that tells it apart (it alone has the shooting engine on exact Taylor jets
-and the compiled stability map, ``orbits.jets``, ``orbits.atlas.stability_map``).
+the one place that tells it apart, and ``Family.engine`` names what follows from it: ``JETS``
+for 1:1 (the shooting engine on exact Taylor jets, ``orbits.jets``, with its own seeds, the
+compiled stability map, curves seeded from class-map edges and the output formats it
+always had), ``MAPS`` for every other family (the impact maps); the code that differs per
+family asks ``engine``.
 Numba-free (numpy only): the pipeline's config checks read it at parse time.
 """
 from __future__ import annotations
@@ -15,6 +18,10 @@ import numpy as np
 
 from ...core.conventions import WALL_L, WALL_R
 from ...core.params import ModelParams, ParameterError, check_int
+
+#: the engines of a family (``Family.engine``): shooting on exact Taylor jets (1:1), the
+#: impact maps (every other family)
+JETS, MAPS = "jets", "maps"
 
 #: the mirror z -> -z (positions and velocities) of a pre-impact state (z_m', z_b', z_b, t):
 #: as signs (multiply a state) and as a matrix (multiply a Jacobian from the left)
@@ -92,6 +99,11 @@ class Family:
     def one_to_one(self) -> bool:
         """The 1:1 family (walls LR, one period): the one place that decides it."""
         return self.key == ONE_TO_ONE.key
+
+    @property
+    def engine(self) -> str:
+        """``JETS`` for the 1:1 family, ``MAPS`` for every other (module docstring)."""
+        return JETS if self.one_to_one else MAPS
 
     @property
     def name(self) -> str:

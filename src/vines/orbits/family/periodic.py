@@ -29,7 +29,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -51,6 +51,7 @@ from ..maps.affine import scan as affine_scan
 from ..maps.impact import M_PHI, admissible_kernel, model_array
 from ..maps.lapack import lambda_max_4
 from ..maps.newton import monodromy, newton_sequence
+from .orbit import OrbitBase
 
 SYM_TOL = 1e-6          # flight times equal to this: symmetric
 DEDUP_TOL = 1e-8
@@ -78,9 +79,9 @@ def asymmetric_seeds(mdl: np.ndarray) -> np.ndarray:
 
 # --------------------------------------------------------------------------- orbits
 
-@dataclass
-class PeriodicOrbit:
-    """One 1:1 orbit (fixed point of P2∘P1) and its stability.
+@dataclass(kw_only=True)
+class PeriodicOrbit(OrbitBase):
+    """One 1:1 orbit (fixed point of P2∘P1) and its stability (``OrbitBase``).
 
     x_L, x_R        pre-impact states (z_m', z_b', z_b, t) at L and at R (t_L in [0, T))
     flight_times    [L->R, R->L]
@@ -92,18 +93,10 @@ class PeriodicOrbit:
 
     x_L: np.ndarray
     x_R: np.ndarray
-    flight_times: list
-    symmetric: bool
-    admissible: bool
-    eigenvalues: np.ndarray
-    lambda_max: float
-    stable: bool
     dw_L: float
     dw_R: float
     phase_L: float
     phase_R: float
-    residual: float = 0.0
-    params: ModelParams | None = field(default=None, repr=False)
 
     # the fields of ``sequence.SequenceOrbit`` (any wall sequence), so that code written
     # for any family reads a 1:1 orbit as the orbit of the family LR/1

@@ -53,6 +53,7 @@ from ..maps.affine import closed_form_seeds, scan, scan_seeds  # noqa: F401 (sca
 from ..maps.impact import admissible_kernel, model_array
 from ..maps.newton import monodromy, newton_sequence
 from .family import (
+    JETS,
     WALL_CODES,
     WALL_NAMES,
     Family,
@@ -63,6 +64,7 @@ from .family import (
     mirror_walls,
     paper_label,
 )
+from .orbit import OrbitBase
 from .periodic import (
     DEDUP_TOL,
     SYM_TOL,
@@ -87,9 +89,9 @@ def _codes(walls: str) -> np.ndarray:
 
 # --------------------------------------------------------------------------- orbits
 
-@dataclass
-class SequenceOrbit:
-    """One periodic orbit of a wall sequence and its stability.
+@dataclass(kw_only=True)
+class SequenceOrbit(OrbitBase):
+    """One periodic orbit of a wall sequence and its stability (``OrbitBase``).
 
     walls         the wall sequence ("LLRR"), impact k at wall walls[k]
     periods       forcing periods of the orbit (its period is periods * T)
@@ -108,17 +110,9 @@ class SequenceOrbit:
     walls: str
     periods: int
     states: np.ndarray
-    flight_times: np.ndarray
-    symmetric: bool
-    admissible: bool
-    eigenvalues: np.ndarray
-    lambda_max: float
-    stable: bool
     dw: np.ndarray
     phases: np.ndarray
-    residual: float = 0.0
     jacobians: np.ndarray = field(default=None, repr=False)
-    params: ModelParams | None = field(default=None, repr=False)
 
     @property
     def family(self) -> str:
@@ -263,7 +257,7 @@ def affine_seeds(p: ModelParams, osc: np.ndarray | None, walls: str, periods: in
     ansatz when the sequence has the half symmetry and periods is odd (closed form for two
     impacts, a scan for four), the full two-flight scan for two impacts."""
     mdl = model_array(p, osc)
-    if Family(walls, periods).one_to_one:
+    if Family(walls, periods).engine == JETS:
         return _seeds_1to1(p, mdl)
     n = len(walls)
     NT = periods * p.period
@@ -354,7 +348,7 @@ def find_sequence(params: ModelParams, walls: str, periods: int = 1, *,
         return []
     starts = affine_seeds(p, mdl, walls, periods)
     if simulation:
-        if Family(walls, periods).one_to_one:
+        if Family(walls, periods).engine == JETS:
             found_sim = simulation_seed(p, mdl)
             starts += [(o.x_L, o.flight_times) for o in found_sim if o is not None]
         else:
