@@ -3,12 +3,12 @@ them are run by test_figures, test_stage_* and the smoke run), the package's imp
 structure, and the grid cells of core.grids."""
 from __future__ import annotations
 
-import ast
 from pathlib import Path
 
 import numpy as np
 import pytest
 import xarray as xr
+from test_import_graph import circles_within, private_imports
 
 import vines.plotting as P
 from vines.core.grids import cell_edges, log_cell_edges
@@ -108,31 +108,6 @@ def test_plain_log_ticks_label_1_2_5_as_plain_numbers():
 
 # ------------------------------------------------------------------ import structure
 
-def _imports(path: Path) -> list[tuple[str, list[str]]]:
-    """(module of vines.plotting, names) of every relative import, in functions too."""
-    out = []
-    for node in ast.walk(ast.parse(path.read_text())):
-        if isinstance(node, ast.ImportFrom) and node.level == 1:
-            if node.module:
-                out.append((node.module, [a.name for a in node.names]))
-            else:
-                out += [(a.name, []) for a in node.names]
-    return out
-
-
 def test_plotting_has_no_import_circle_and_imports_no_private_name():
-    graph = {}
-    for f in PLOTTING.glob("*.py"):
-        imports = _imports(f)
-        graph[f.stem] = {m for m, _ in imports}
-        private = [(m, n) for m, names in imports for n in names if n.startswith("_")]
-        assert not private, (f.name, private)
-
-    def reach(m, seen):
-        for d in graph.get(m, ()):
-            if d not in seen:
-                seen.add(d)
-                reach(d, seen)
-        return seen
-
-    assert [m for m in graph if m in reach(m, set())] == []
+    assert circles_within("vines.plotting") == []
+    assert private_imports("vines.plotting") == []

@@ -99,15 +99,29 @@ def test_no_import_circles_in_vines():
     assert _circles(_graph()) == []
 
 
-def test_no_private_names_imported_across_modules():
-    """A module's private names (``_name``) stay its own: no ``from .x import _name``."""
+def circles_within(package: str) -> list:
+    """The import circles among the modules of ``package`` (e.g. ``"vines.orbits"``)."""
+    inside = {m: e for m, e in _graph().items() if m.startswith(package)}
+    return _circles({m: {t for t in e if t in inside} for m, e in inside.items()})
+
+
+def private_imports(package: str = "vines") -> list:
+    """``"module: name"`` for every private name (``_name``) a module of ``package``
+    imports from another module: ``from .x import _name``."""
     mods = _modules()
     private = []
     for module, (path, is_pkg) in mods.items():
+        if not module.startswith(package):
+            continue
         for node in ast.walk(ast.parse(path.read_text())):
             if isinstance(node, ast.ImportFrom) and _targets(node, module, is_pkg, mods):
                 private += [f"{module}: {a.name}" for a in node.names
                             if a.name.startswith("_") and not a.name.startswith("__")
                             and not any(t.endswith(f".{a.name}") for t in
                                         _targets(node, module, is_pkg, mods))]
-    assert private == []
+    return private
+
+
+def test_no_private_names_imported_across_modules():
+    """A module's private names (``_name``) stay its own: no ``from .x import _name``."""
+    assert private_imports() == []
