@@ -50,6 +50,9 @@ from ..family.systems import compound2, solve
 from ..jets import shooting as sh
 from ..maps.impact import impact_map, model_array
 from .arclength import Step, Tracer
+from .branch import Branch, make_branch
+from .loop import Follower, Found, Problem
+from .settings import ContinuationSettings
 
 TESTS = {"symmetric": ("fold", "symmetry-breaking", "neimark-sacker"),
          "asymmetric": ("fold", "flip", "neimark-sacker", "symmetry-breaking")}
@@ -122,149 +125,128 @@ def is_ns(family: str, o: PeriodicOrbit, tol: float = NS_LOCATE_TOL) -> bool:
     return abs(ev[k].imag) > 1e-6 and abs(abs(ev[k]) - 1.0) < tol
 
 
-class Follower:
-    """State of one branch continuation (points, events, termination)."""
+class OneToOneProblem(Problem):
+    """The 1:1 family's part of the one loop (``loop.Follower``; module docstring):
+    events located along the arclength with the pole check, the grazing solved, the
+    located points inserted into the branch in arclength order; the branch ends where the
+    parameter leaves [lo, hi], where it closes, and (asymmetric) on the symmetric branch.
+    Switching: the asymmetric branch born at each symmetry-breaking point."""
 
-    def __init__(self, system: FamilySystem, tracer: Tracer,
-                 bounds: tuple[float, float]) -> None:
-        self.sys, self.tr = system, tracer
-        self.lo, self.hi = bounds
-        self.tr_start = tracer.z.copy()
-        self.pts, self.arc, self.events = [], [], []
-        self.stopped = "done"
+    stops = {"start": "the start point is no orbit",
+             "max_points": "max_points = {max_points} reached",
+             "min_step": "step below min_step (singular point or end of the branch)",
+             "inadmissible": "admissibility lost for good ({max_inadmissible} points)"}
 
-    def add(self, z: np.ndarray, t: np.ndarray, s: float) -> tuple | None:
-        """Append the orbit at z (arclength s) and return it with its test values, or None."""
-        o = self.sys.orbit(z)
-        if o is None:
+    def __init__(self, system: FamilySystem, cs: ContinuationSettings,
+                 z0: np.ndarray) -> None:
+        self.sys, self.cs = system, cs
+        self.lo, self.hi = cs.bounds
+        self.tr_start = z0.copy()
+        self.keys = TESTS[system.family] + ("admissibility-loss", "bound")
+
+    def orbit(self, z):
+        return self.sys.orbit(z)
+
+    def tests(self, o, z, t) -> dict:
+        out = test_values(self.sys.family, o, z, t)
+        out["admissibility-loss"] = o.admissible
+        out["bound"] = float(z[-1])
+        return out
+
+    def changed(self, key, prev, cur) -> bool:
+        fa, fb = prev[key], cur[key]
+        if key == "bound":
+            return self._bound(fb) is not None
+        if key == "admissibility-loss":
+            return fa != fb
+        return bool(np.isfinite(fa) and np.isfinite(fb)) and (fa > 0.0) != (fb > 0.0)
+
+    def _bound(self, p_end):
+        return self.hi if p_end > self.hi else self.lo if p_end < self.lo else None
+
+    def locate(self, fw, key, st, prev, cur):
+        if key == "bound":
+            return self._cross(fw, st)
+        if key == "admissibility-loss":
+            (tau, z, t), near = self._admissibility(fw, st, prev[key])
+            return Found(tau, key, z, t, near=near)
+        fa, fb = prev[key], cur[key]
+
+        def test(z, t):
+            return self._test(z, t, key)
+
+        loc = fw.tr.locate(st, test, fa, fb)
+        if key == "symmetry-breaking" and self.sys.family == "asymmetric":
+            loc = self._on_symmetric(st if loc is None else loc)
+            return None if loc is None else Found(loc[0], key, loc[1], loc[2])
+        # a sign change through a pole (the maps' Jacobians blow up where an impact
+        # velocity vanishes) is no event
+        if loc is not None and abs(test(loc[1], loc[2])) <= 1e-3 * min(abs(fa), abs(fb)):
+            return Found(loc[0], key, loc[1], loc[2])
+        return None
+
+    def _cross(self, fw, st) -> Found | None:
+        """Where the step crosses the end of [lo, hi] it passes (the parameter set to it)."""
+        bound = self._bound(st.z1[-1])
+        loc = fw.tr.locate(st, lambda z, t: z[-1] - bound, st.z0[-1] - bound,
+                           st.z1[-1] - bound)
+        if loc is None:
             return None
-        self.pts.append((float(z[-1]), o))
-        self.arc.append(s)
-        return o, test_values(self.sys.family, o, z, t)
+        loc[1][-1] = bound
+        return Found(loc[0], "bound", loc[1], loc[2])
 
-    def run(self, max_points: int, max_inadmissible: int) -> None:
-        """Follow the branch until a termination (module docstring); sets ``stopped``."""
-        z0, t0 = self.tr.z, self.tr.t
-        got = self.add(z0, t0, 0.0)
-        if got is None:
-            self.stopped = "the start point is no orbit"
-            return
-        o_prev, tv_prev = got
-        s = 0.0
-        n_bad = 0 if o_prev.admissible else 1
-        while True:
-            if len(self.pts) >= max_points:
-                self.stopped = f"max_points = {max_points} reached"
-                return
-            st = self.tr.step()
-            if st is None:
-                self.stopped = "step below min_step (singular point or end of the branch)"
-                return
-            o = self.sys.orbit(st.z1)
-            if o is None:
-                self.stopped = "the maps have no root (end of the branch)"
-                self._leave(st, s)
-                return
-            tv = test_values(self.sys.family, o, st.z1, st.t1)
-            end = self._events(st, s, o_prev, tv_prev, o, tv)
-            s += st.h
-            if end:
-                return
-            self.pts.append((float(st.z1[-1]), o))
-            self.arc.append(s)
-            progress.advance()
-            n_bad = 0 if o.admissible else n_bad + 1
-            if n_bad >= max_inadmissible:
-                self.stopped = f"admissibility lost for good ({max_inadmissible} points)"
-                return
-            if self._closed(st.z1):
-                self.stopped = "the branch closed on itself"
-                return
-            o_prev, tv_prev = o, tv
+    def order(self, found):
+        return sorted(found, key=lambda f: f.tau)
 
-    def _leave(self, st: Step, s):
-        """A step the maps fail at the end of that crossed an end of the parameter interval
-        (e.g. into eta < 0): the crossing point ends the branch."""
-        p_end = st.z1[-1]
-        bound = self.hi if p_end > self.hi else self.lo if p_end < self.lo else None
-        if bound is None:
-            return
-        loc = self.tr.locate(st, lambda z, t: z[-1] - bound, st.z0[-1] - bound, p_end - bound)
-        if loc is not None:
-            loc[1][-1] = bound
-            if self.add(loc[1], loc[2], s + loc[0]) is not None:
-                self.stopped = "left the parameter interval"
+    def place(self, fw, f, s):
+        o = fw.add(f.z, f.t, s + f.tau)
+        if o is None and f.type == "admissibility-loss":
+            # a grazing arrival: the maps have a pole at the event itself; the branch
+            # point is the bisected one next to it (the event keeps the solved values)
+            o = fw.add(f.near[1], f.near[2], s + f.near[0])
+        return o
 
-    def _closed(self, z) -> bool:
-        if len(self.pts) < 5:
+    def event(self, fw, f, o):
+        typ, z = f.type, f.z
+        if typ == "bound" or typ == "neimark-sacker" and not is_ns(self.sys.family, o):
+            return None
+        p = o.params
+        if typ == "admissibility-loss":
+            p = self.sys.params(z)          # the solved grazing, also next to a pole
+        ev = {"type": typ, "at": float(z[-1]), "eta": p.eta, "omega": p.omega, "F": p.F,
+              "index": len(fw.points) - 1, "z": z, "t": f.t}
+        if typ == "symmetry-breaking":
+            ev["connects"] = "asymmetric" if self.sys.family == "symmetric" else "symmetric"
+        return ev
+
+    def ends(self, f, ev):
+        if f.type == "bound":
+            return "left the parameter interval"
+        if ev is not None and f.type == "symmetry-breaking" and self.sys.family == "asymmetric":
+            return "reached the symmetric branch (symmetry-breaking)"
+        return None
+
+    def no_orbit(self, fw, st, s) -> str:
+        """The maps fail at the step's end; where that step crossed an end of the
+        parameter interval (e.g. into eta < 0) the crossing point ends the branch."""
+        if self._bound(st.z1[-1]) is not None:
+            f = self._cross(fw, st)
+            if f is not None and fw.add(f.z, f.t, s + f.tau) is not None:
+                return "left the parameter interval"
+        return "the maps have no root (end of the branch)"
+
+    def after_point(self, fw, st):
+        return "the branch closed on itself" if self._closed(fw, st.z1) else None
+
+    def _closed(self, fw, z) -> bool:
+        if len(fw.points) < 5:
             return False
-        z0 = self.tr_start
-        d = z - z0
+        d = z - self.tr_start
         T = sh.period(self.sys.params(z).omega)
         d[3] = (d[3] + 0.5 * T) % T - 0.5 * T
-        return float(np.sqrt(self.tr.dot(d, d))) < 0.5 * self.tr.h
+        return float(np.sqrt(fw.tr.dot(d, d))) < 0.5 * fw.tr.h
 
-    def _events(self, st: Step, s, oa, tva, ob, tvb) -> bool:
-        """Locate the events of one step, insert their points; True when the branch ends."""
-        found = []
-        fam = self.sys.family
-        for typ in TESTS[fam]:
-            fa, fb = tva[typ], tvb[typ]
-            if not (np.isfinite(fa) and np.isfinite(fb)) or (fa > 0.0) == (fb > 0.0):
-                continue
-            def test(z, t, typ=typ):
-                return self._test(z, t, typ)
-
-            loc = self.tr.locate(st, test, fa, fb)
-            if typ == "symmetry-breaking" and fam == "asymmetric":
-                loc = self._on_symmetric(st if loc is None else loc)
-                if loc is not None:
-                    found.append((loc[0], typ, loc[1], loc[2]))
-            # a sign change through a pole (the maps' Jacobians blow up where an impact
-            # velocity vanishes) is no event
-            elif loc is not None and abs(test(loc[1], loc[2])) <= 1e-3 * min(abs(fa), abs(fb)):
-                found.append((loc[0], typ, loc[1], loc[2]))
-        if oa.admissible != ob.admissible:
-            (tau, z, t), near = self._admissibility(st, oa.admissible)
-            found.append((tau, "admissibility-loss", z, t))
-        p_end = st.z1[-1]
-        bound = self.hi if p_end > self.hi else self.lo if p_end < self.lo else None
-        if bound is not None:
-            loc = self.tr.locate(st, lambda z, t: z[-1] - bound, st.z0[-1] - bound,
-                                 p_end - bound)
-            if loc is not None:
-                found.append((loc[0], "bound", loc[1], loc[2]))
-        found.sort(key=lambda f: f[0])
-        for tau, typ, z, t in found:
-            if typ == "bound":
-                z[-1] = bound
-                self.add(z, t, s + tau)
-                self.stopped = "left the parameter interval"
-                return True
-            got = self.add(z, t, s + tau)
-            if got is None and typ == "admissibility-loss":
-                # a grazing arrival: the maps have a pole at the event itself; the branch
-                # point is the bisected one next to it (the event keeps the solved values)
-                got = self.add(near[1], near[2], s + near[0])
-            if got is None:
-                continue
-            o = got[0]
-            if typ == "neimark-sacker" and not is_ns(fam, o):
-                continue
-            p = o.params
-            if typ == "admissibility-loss":
-                p = self.sys.params(z)          # the solved grazing, also next to a pole
-            ev = {"type": typ, "at": float(z[-1]), "eta": p.eta, "omega": p.omega, "F": p.F,
-                  "index": len(self.pts) - 1, "z": z, "t": t}
-            if typ == "symmetry-breaking":
-                ev["connects"] = "asymmetric" if fam == "symmetric" else "symmetric"
-            self.events.append(ev)
-            if typ == "symmetry-breaking" and fam == "asymmetric":
-                self.stopped = "reached the symmetric branch (symmetry-breaking)"
-                return True
-        return False
-
-    def _admissibility(self, st: Step, flag0: bool):
+    def _admissibility(self, fw, st: Step, flag0: bool):
         """(tau, z, t) of the admissibility change along a step: the flag is bisected to a
         seed, then the grazing that ends admissibility is solved with the continued
         parameter free (``augmented.grazing_point``); the bisected point when no grazing
@@ -273,14 +255,14 @@ class Follower:
         def flag(z, t):
             return bool(getattr(self.sys.orbit(z), "admissible", False))
 
-        after, before = self.tr.bisect(st, flag, flag0)
+        after, before = fw.tr.bisect(st, flag, flag0)
         # at a grazing arrival (impact velocity 0) the maps have a pole: the point just
         # on the other side seeds the solve when the maps fail at the first
         seed = after if self.sys.orbit(after[1]) is not None else before
-        got = self._grazing(st, seed[1])
+        got = self._grazing(fw.tr, st, seed[1])
         return (seed if got is None else got), seed
 
-    def _grazing(self, st: Step, z):
+    def _grazing(self, tr: Tracer, st: Step, z):
         """The solved grazing near the branch point z, as (tau, z, t) on the step, or None
         (no grazing there, or the solution lies off the step)."""
         p = self.sys.par(z)
@@ -288,12 +270,12 @@ class Follower:
         if got is None:
             return None
         zg = np.append(got[1], got[2])
-        tau = self.tr.dot(st.t0, zg - st.z0)
+        tau = tr.dot(st.t0, zg - st.z0)
         slack = 1e-6 * st.h
         if not -slack <= tau <= st.h + slack:
             return None
         _, Rz = self.sys(zg)
-        return min(max(tau, 0.0), st.h), zg, self.tr.tangent(Rz, st.t0)
+        return min(max(tau, 0.0), st.h), zg, tr.tangent(Rz, st.t0)
 
     def _on_symmetric(self, loc):
         """The symmetry-breaking point on the symmetric branch near the located point of
@@ -318,6 +300,62 @@ class Follower:
         if o is None:
             return math.nan
         return test_values(self.sys.family, o, z, t)[typ]
+
+    def switch(self, ev):
+        """The asymmetric branch born at a symmetry-breaking point (``switch_at``)."""
+        if ev["type"] != "symmetry-breaking":
+            return None
+        sub = switch_at(self.sys.m, self.cs, ev["z"])
+        if sub is not None:
+            sub.born_at = ev
+        return sub
+
+
+def follow(model: sh.Model, family: str, cs: ContinuationSettings, z0: np.ndarray,
+           direction: np.ndarray | float, switch: bool = False) -> Branch:
+    """Continue the branch of ``family`` through z0 = (shooting unknowns, parameter) by
+    pseudo-arclength (``loop.Follower`` on ``OneToOneProblem``); returns a ``Branch``,
+    with ``switch`` and the asymmetric branches born at its symmetry-breaking points.
+
+    direction: the initial tangent's orientation (a vector of len(z0)), or the sign of the
+    parameter's initial change (a number).
+    """
+    system = FamilySystem(model, family, cs.param, cs.fixed)
+    z0 = np.asarray(z0, dtype=float)
+    if np.isscalar(direction):
+        d = np.zeros(len(z0))
+        d[-1] = float(direction)
+        direction = d
+    tracer = cs.tracer(system, z0, direction)
+    f = Follower(OneToOneProblem(system, cs, tracer.z), tracer, cs.max_points,
+                 cs.max_inadmissible)
+    with progress.task(None, f"{family} branch in {cs.param}", "points"):
+        f.run()
+    for e in f.events:
+        e.pop("t", None)
+    br = make_branch(cs.param, list(zip(f.values, f.points, strict=True)), f.events, f.stopped,
+                     family=family, arclength=f.arc)
+    if switch:
+        br.switched.extend(f.switched())
+    return br
+
+
+def switch_at(model: sh.Model, cs: ContinuationSettings, z_sym: np.ndarray) -> Branch | None:
+    """The asymmetric branch born at the symmetry-breaking point z_sym of the symmetric
+    branch (a ``Branch`` starting one step away from the branch point), or None."""
+    z, v = switch_direction(model, cs.param, cs.fixed, z_sym)
+    system = FamilySystem(model, "asymmetric", cs.param, cs.fixed)
+    tracer = cs.tracer(system, z, v)
+    h = cs.step_size
+    while h >= cs.min_step:
+        got = tracer.correct(z + h * v, v, z, h)
+        if got is not None and abs(got[0][4] - z[4]) > 0.1 * h * abs(v[4]):
+            break
+        h *= 0.5
+    else:
+        return None
+    z1 = got[0]
+    return follow(model, "asymmetric", cs, z1, z1 - z)
 
 
 def start_unknowns(o: PeriodicOrbit, family: str) -> np.ndarray:

@@ -47,7 +47,7 @@ from ..family.periodic import PeriodicOrbit, orbits_1to1, solve_orbit
 from ..jets import shooting as sh
 from ..maps.impact import map_jacobian
 from .branch import EVENT_TYPES, Branch, make_branch
-from .follower import FamilySystem, Follower, start_unknowns, switch_direction
+from .follower import follow, start_unknowns
 from .settings import ContinuationSettings
 
 __all__ = ["continue_branch", "continue_orbit", "ContinuationSettings", "Branch", "EVENT_TYPES"]
@@ -193,55 +193,8 @@ def _arclength(cs: ContinuationSettings, p0: ModelParams, orbit: PeriodicOrbit) 
     """Pseudo-arclength continuation from orbit (and the switched branches)."""
     model = sh.Model(p0.r, p0.d, p0.phi)
     kind = "symmetric" if orbit.symmetric else "asymmetric"
-    br = follow(model, kind, cs, np.append(start_unknowns(orbit, kind), cs.start), cs.sign)
-    if cs.switch and kind == "symmetric":
-        for ev in br.events:
-            if ev["type"] == "symmetry-breaking":
-                sub = switch_at(model, cs, ev["z"])
-                if sub is not None:
-                    sub.born_at = ev
-                    br.switched.append(sub)
-    return br
-
-
-def follow(model: sh.Model, family: str, cs: ContinuationSettings, z0: np.ndarray,
-           direction: np.ndarray | float) -> Branch:
-    """Continue the branch of ``family`` through z0 = (shooting unknowns, parameter) by
-    pseudo-arclength (``branches.Follower``); returns a ``Branch``.
-
-    direction: the initial tangent's orientation (a vector of len(z0)), or the sign of the
-    parameter's initial change (a number).
-    """
-    system = FamilySystem(model, family, cs.param, cs.fixed)
-    z0 = np.asarray(z0, dtype=float)
-    if np.isscalar(direction):
-        d = np.zeros(len(z0))
-        d[-1] = float(direction)
-        direction = d
-    f = Follower(system, cs.tracer(system, z0, direction), cs.bounds)
-    with progress.task(None, f"{family} branch in {cs.param}", "points"):
-        f.run(cs.max_points, cs.max_inadmissible)
-    for e in f.events:
-        e.pop("t", None)
-    return make_branch(cs.param, f.pts, f.events, f.stopped, family=family, arclength=f.arc)
-
-
-def switch_at(model: sh.Model, cs: ContinuationSettings, z_sym: np.ndarray) -> Branch | None:
-    """The asymmetric branch born at the symmetry-breaking point z_sym of the symmetric
-    branch (a ``Branch`` starting one step away from the branch point), or None."""
-    z, v = switch_direction(model, cs.param, cs.fixed, z_sym)
-    system = FamilySystem(model, "asymmetric", cs.param, cs.fixed)
-    tracer = cs.tracer(system, z, v)
-    h = cs.step_size
-    while h >= cs.min_step:
-        got = tracer.correct(z + h * v, v, z, h)
-        if got is not None and abs(got[0][4] - z[4]) > 0.1 * h * abs(v[4]):
-            break
-        h *= 0.5
-    else:
-        return None
-    z1 = got[0]
-    return follow(model, "asymmetric", cs, z1, z1 - z)
+    return follow(model, kind, cs, np.append(start_unknowns(orbit, kind), cs.start), cs.sign,
+                  switch=cs.switch and kind == "symmetric")
 
 
 def _natural(cont: _Continuer, cs: ContinuationSettings, orbit: PeriodicOrbit) -> Branch:

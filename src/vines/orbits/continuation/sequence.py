@@ -57,6 +57,7 @@ from ..family.systems import solve
 from ..maps.newton import monodromy
 from .arclength import Tracer
 from .branch import SequenceBranch
+from .loop import Follower, Found, Problem
 from .settings import ContinuationSettings
 
 FLIP_NEAR = 1e-3        # a located flip needs an eigenvalue this close to -1 (not a pole)
@@ -149,6 +150,91 @@ def _tests(o: SequenceOrbit, t) -> dict:
             "adm": bool(o.admissible)}
 
 
+class SequenceProblem(Problem):
+    """A wall sequence's part of the one loop (``loop.Follower``; module docstring): the
+    events of one step in a fixed order (fold, flip, branch point, neimark-sacker,
+    admissibility), each with the orbit solved at its located point; no point is inserted
+    (an event's ``index`` is the step's point); the branch ends after the point that left
+    [lo, hi]. Switching: the period-doubled branch at each flip, the asymmetric one at each
+    symmetry-breaking point (``_switch``)."""
+
+    stops = {"start": "the orbit does not converge", "max_points": "max_points",
+             "min_step": "step too small (no correction)",
+             "inadmissible": "admissibility lost for good"}
+    keys = ("fold", "flip", "branch", "ns", "adm")
+    count_start = False
+
+    def __init__(self, system: _System, run: _Run) -> None:
+        self.sys, self.run = system, run
+
+    def orbit(self, z):
+        return self.sys.orbit(z)
+
+    def tests(self, o, z, t) -> dict:
+        return _tests(o, t)
+
+    def changed(self, key, prev, cur) -> bool:
+        if key in ("ns", "adm"):
+            return prev[key] != cur[key]
+        if key == "branch" and self.changed("fold", prev, cur):
+            return False
+        return (prev[key] > 0) != (cur[key] > 0)
+
+    def _at(self, z):
+        return self.sys.orbit(z) if z is not None else None
+
+    def locate(self, fw, key, st, prev, cur):
+        tr, sys_ = fw.tr, self.sys
+        if key in ("ns", "adm"):
+            after, _ = tr.bisect(st, lambda z, t: self._flag(z, t, key), prev[key])
+            typ = "neimark-sacker" if key == "ns" else "admissibility-loss"
+            return Found(after[0], typ, after[1], after[2], orbit=self._at(after[1]))
+        if key == "fold":
+            got = tr.locate(st, lambda z, t: float(t[4]), prev[key], cur[key])
+            return Found(math.nan, key, None, None, orbit=self._at(got[1] if got else None))
+        o = _symmetry_breaking(sys_, st) if key == "branch" else None
+        if o is None:
+            got = tr.locate(st, lambda z, t: _tests(sys_.orbit(z), t)[key]
+                            if sys_.orbit(z) is not None else math.nan, prev[key], cur[key])
+            o = self._at(got[1] if got else None)
+        typ = "flip" if key == "flip" else "branch-point"
+        if o is not None and o.symmetric and key == "branch":
+            typ = "symmetry-breaking"
+        return Found(math.nan, typ, None, None, orbit=o)
+
+    def _flag(self, z, t, key):
+        o = self.sys.orbit(z)
+        return None if o is None else _tests(o, t)[key]
+
+    def place(self, fw, f, s):
+        return f.orbit
+
+    def event(self, fw, f, o):
+        if f.type in ("flip", "branch-point", "symmetry-breaking"):
+            # kept where an eigenvalue lies next to -1 (flip) or +1: no pole
+            target = -1.0 if f.type == "flip" else 1.0
+            if np.min(np.abs(o.eigenvalues - target)) > FLIP_NEAR:
+                return None
+        p = o.params
+        return {"type": f.type, "at": float(getattr(p, self.run.param)), "eta": p.eta,
+                "omega": p.omega, "F": p.F, "index": len(fw.points), "_orbit": o}
+
+    def after_events(self, st):
+        self.sys.orbit(st.z1)           # flight guesses back at the accepted point
+
+    def no_orbit(self, fw, st, s) -> str:
+        return "the maps failed at a corrected point"
+
+    def after_point(self, fw, st):
+        run = self.run
+        if not run.lo - 1e-12 <= st.z1[4] <= run.hi + 1e-12:
+            return "left the interval"
+        return None
+
+    def switch(self, ev):
+        return _switch(self.run, ev)
+
+
 def continue_sequence(params: ModelParams, walls: str, periods: int, param: str, stop, *,
                       orbit: SequenceOrbit | None = None,
                       settings: ContinuationSettings | None = None) -> SequenceBranch:
@@ -204,85 +290,18 @@ def _trace(run: _Run, orbit: SequenceOrbit) -> SequenceBranch:
     z0 = np.concatenate([orbit.states[0], [run.start]])
     step = run.step
     tr = Tracer(sys_, z0, np.array([0, 0, 0, 0, sign]), step, step * 1e-6, step, np.ones(5))
-    o = sys_.orbit(z0)
-    if o is None:
+    fw = Follower(SequenceProblem(sys_, run), tr, run.settings.max_points,
+                  run.settings.max_inadmissible)
+    fw.run()
+    if not fw.points:
         return SequenceBranch(walls=run.walls, periods=run.periods, param=run.param,
-                              points=[], stopped="the orbit does not converge")
-    points, events = [o], []
-    stopped = _follow(run, (tr, sys_), points, events)
-    for ev in events:
-        ev["at"] = float(getattr(ev["_orbit"].params, run.param))
-    br = SequenceBranch(walls=run.walls, periods=run.periods, param=run.param, points=points,
-                        events=events, stopped=stopped, born_at=run.born_at)
+                              points=[], stopped=fw.stopped)
+    br = SequenceBranch(walls=run.walls, periods=run.periods, param=run.param,
+                        points=fw.points, events=fw.events, stopped=fw.stopped,
+                        born_at=run.born_at)
     if run.settings.switch:
-        for ev in events:
-            sub = _switch(run, ev)
-            if sub is not None:
-                br.switched.append(sub)
+        br.switched.extend(fw.switched())
     return br
-
-
-def _follow(run: _Run, tracing, points: list, events: list) -> str:
-    """Step along the branch from points[0], appending points and events; why it
-    stopped."""
-    tr, sys_ = tracing
-    prev = _tests(points[0], tr.t)
-    n_bad = 0
-    while len(points) < run.settings.max_points:
-        st = tr.step()
-        if st is None:
-            return "step too small (no correction)"
-        o = sys_.orbit(st.z1)
-        if o is None:
-            return "the maps failed at a corrected point"
-        cur = _tests(o, st.t1)
-        _events(tr, st, sys_, (prev, cur), events, len(points))
-        points.append(o)
-        progress.advance()
-        prev = cur
-        n_bad = 0 if o.admissible else n_bad + 1
-        if n_bad >= run.settings.max_inadmissible:
-            return "admissibility lost for good"
-        if not run.lo - 1e-12 <= st.z1[4] <= run.hi + 1e-12:
-            return "left the interval"
-    return "max_points"
-
-
-def _event(typ, o: SequenceOrbit, index: int) -> dict:
-    p = o.params
-    return {"type": typ, "at": None, "eta": p.eta, "omega": p.omega, "F": p.F,
-            "index": index, "_orbit": o}
-
-
-def _events(tr, st, sys_, tests, events, index):
-    prev, cur = tests
-
-    def orbit_at(z):
-        return sys_.orbit(z) if z is not None else None
-
-    fold = (prev["fold"] > 0) != (cur["fold"] > 0)
-    if fold:
-        got = tr.locate(st, lambda z, t: float(t[4]), prev["fold"], cur["fold"])
-        _add(events, "fold", orbit_at(got[1] if got else None), index, st)
-    for key, typ in (("flip", "flip"), ("branch", "branch-point")):     # EVENT_TYPES
-        if key == "branch" and fold:
-            continue
-        if (prev[key] > 0) != (cur[key] > 0):
-            o = _symmetry_breaking(sys_, st) if key == "branch" else None
-            if o is None:
-                got = tr.locate(st, lambda z, t, k=key: _tests(sys_.orbit(z), t)[k]
-                                if sys_.orbit(z) is not None else math.nan, prev[key],
-                                cur[key])
-                o = orbit_at(got[1] if got else None)
-            target = -1.0 if key == "flip" else 1.0
-            if o is not None and np.min(np.abs(o.eigenvalues - target)) <= FLIP_NEAR:
-                _add(events, "symmetry-breaking" if o.symmetric and key == "branch" else typ,
-                     o, index, st)
-    for key, typ in (("ns", "neimark-sacker"), ("adm", "admissibility-loss")):
-        if prev[key] != cur[key]:
-            after, _ = tr.bisect(st, lambda z, t, k=key: _flag(sys_, z, t, k), prev[key])
-            _add(events, typ, orbit_at(after[1]), index, st)
-    sys_.orbit(st.z1)                   # flight guesses back at the accepted point
 
 
 def _symmetry_breaking(sys_, st) -> SequenceOrbit | None:
@@ -299,17 +318,6 @@ def _symmetry_breaking(sys_, st) -> SequenceOrbit | None:
         return None
     return solve_sequence(sys_.params(z[4]), sys_.walls, sys_.periods, z[:4],
                           system.flights(z))
-
-
-def _flag(sys_, z, t, key):
-    o = sys_.orbit(z)
-    return None if o is None else _tests(o, t)[key]
-
-
-def _add(events, typ, o, index, st):
-    if o is None:
-        return
-    events.append(_event(typ, o, index))
 
 
 def _switch(run: _Run, ev: dict) -> SequenceBranch | None:
