@@ -8,8 +8,9 @@
   the value LR/1 of it; its ``engine``), its orbits (``orbit``: what every orbit holds;
   ``periodic`` for 1:1, ``sequence`` for any wall sequence) and its augmented systems
   (``augmented`` on jets, ``map_systems`` on the maps);
-* ``continuation``: the arclength tracer, one settings object (``settings``), branches and
-  their events (``one_to_one``, ``follower``, ``sequence``; results in ``branch``);
+* ``continuation``: the arclength tracer, one settings object (``settings``), one loop of
+  branches and their events for every family (``loop``) on each family's problem
+  (``follower`` for 1:1, entry ``one_to_one``; ``sequence``); results in ``branch``;
 * ``curves``: codimension-one curves in (eta, omega) on one tracer (``tracer``), seeded per
   family (``one_to_one``, ``sequence``), entry point ``boundaries``;
 * ``atlas``: which families exist at a point (``atlas``), stability maps (``stability_map``).

@@ -1,5 +1,7 @@
-"""Pseudo-arclength branches of 1:1 orbits (symmetric or asymmetric) and their events: the
-family's system, the test functions and the ``Follower`` that ``continuation.follow`` runs.
+"""The 1:1 family's part of the one continuation loop (``loop.Follower``): its shooting
+system ``FamilySystem``, its orbits and test functions, ``OneToOneProblem`` (how its events
+are located, placed, kept and end a branch; switching), and ``follow`` / ``switch_at``,
+which run the loop (``one_to_one.continue_branch``, method arclength).
 
 The unknowns are those of the family's shooting system (``shooting``) plus the continued
 parameter; ``arclength.Tracer`` follows the curve, through folds. Every accepted point is
@@ -16,8 +18,10 @@ symmetric orbit, B = J_P2 J_P1):
                          on the unit circle (not a real reciprocal pair)
     admissibility-loss   the admissibility flag (either direction)
 
-A sign change between two points is located along the arclength (``Tracer.locate``) and
-the located point is inserted into the branch. A change of the admissibility flag is
+A sign change between two points (of finite values) is located along the arclength
+(``Tracer.locate``) and kept where the test function is small there (a sign change
+through a pole, where an impact velocity vanishes, is none); the events of a step are
+inserted into the branch in arclength order. A change of the admissibility flag is
 bisected (``Tracer.bisect``) only to seed the grazing that causes it, which is then solved
 with the continued parameter free (``augmented.grazing_point``): at a grazing arrival the
 maps have a pole, and the bisection alone stops where the corrector fails near it. There
@@ -26,12 +30,12 @@ at the event); the event's parameters are the solved ones.
 
 Termination: the parameter leaves [min(start, stop), max(start, stop)] (the crossing is
 located and kept), the branch closes on itself, ``max_inadmissible`` consecutive points are
-non-admissible, ``max_points`` points, the asymmetric branch reaches the symmetric one, or
-the step falls below ``min_step``.
+non-admissible (a non-admissible start point counts), ``max_points`` points, the
+asymmetric branch reaches the symmetric one, or the step falls below ``min_step``.
 
 ``switch_direction`` gives the start of the asymmetric branch born at a symmetry-breaking
-point of the symmetric branch (``continuation.switch_at``): the null vector of the
-asymmetric system's Jacobian there that is not the symmetric branch's tangent.
+point of the symmetric branch (``switch_at``, ``OneToOneProblem.switch``): the null vector
+of the asymmetric system's Jacobian there that is not the symmetric branch's tangent.
 """
 from __future__ import annotations
 

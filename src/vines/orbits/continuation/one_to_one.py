@@ -5,9 +5,11 @@ step below receives, with the model's fixed constants as a ``ModelParams``.
 Two methods:
 
 * ``arclength`` (default): pseudo-arclength continuation of the family's shooting system
-  through folds, events located along the arclength (``branches``); symmetric or
-  asymmetric orbits (``branch``), and with ``switch`` the asymmetric branches born at the
-  symmetric branch's symmetry-breaking points (``follow``, ``switch_at``).
+  through folds, events located along the arclength: the one loop of every family
+  (``loop.Follower``) on the 1:1 family's problem (``follower.OneToOneProblem``, run by
+  ``follower.follow``); symmetric or asymmetric orbits (``branch``), and with ``switch``
+  the asymmetric branches born at the symmetric branch's symmetry-breaking points
+  (``follower.switch_at``).
 * ``natural``: natural-parameter continuation. Predictor: secant through the last two
   points (the orbit's x_L with unwrapped impact time and the flight times, extrapolated
   linearly in the parameter); corrector: the Newton iteration of ``vines.periodic`` on
@@ -25,6 +27,13 @@ the parameter:
   half-map multiplier mu of M J_P1 is -1 is a symmetry-breaking (pitchfork), mu = +1 a fold;
 * the admissibility flag changes: admissibility-loss (either direction: a grazing contact);
 * the symmetric flag changes: symmetry-breaking.
+
+The natural mode stays 1:1-only and outside the loop: it has no tracer (a fixed parameter
+step, the Newton of ``periodic.solve_orbit`` at that parameter, secant predictor on
+(x_L, s1, s2)) and no test functions (events bisected in the parameter on eigenvalue
+counts and flags), it ends at the first fold by construction, and it is kept as the
+published cross-check of the arclength branches (``tests/test_arclength.py``); a wall
+sequence is continued by arclength only.
 """
 from __future__ import annotations
 

@@ -1,6 +1,7 @@
 """Continuation of an orbit of any wall sequence in eta, omega or F: ``continue_sequence``.
 
-Pseudo-arclength (``arclength.Tracer``) on R(x_0, p) = P_{n-1}∘...∘P_0(x_0) - x_0 -
+Pseudo-arclength (``arclength.Tracer``), run by the one loop of every family
+(``loop.Follower``) on ``SequenceProblem``, on R(x_0, p) = P_{n-1}∘...∘P_0(x_0) - x_0 -
 (0, 0, 0, N T) (4 equations, unknowns x_0 and the parameter p): the state columns of R's
 Jacobian are the exact product of the map Jacobians minus I; the parameter column is a
 central difference (it steers the predictor and the corrector's convergence only: every
@@ -8,14 +9,16 @@ point is a root of R to the corrector's tolerance, whatever that column's error)
 accepted point is classified on the maps (``sequence``: admissibility, eigenvalues).
 
 Events between consecutive points (located along the arclength by ``Tracer.locate`` on the
-test function, or ``Tracer.bisect`` on a flag):
+test function, or ``Tracer.bisect`` on a flag), in this order, each with its orbit solved
+at the located point; no point is inserted into the branch (an event's ``index`` is the
+point of the step it lies on):
 
 | event | test |
 |---|---|
 | fold | the tangent's parameter component |
 | flip | det(B + I), B = J_{n-1} ... J_0 (kept where an eigenvalue lies within 1e-3 of -1) |
-| symmetry-breaking | det(B - I) without a fold, on a symmetric orbit |
-| branch-point | det(B - I) without a fold, on an asymmetric orbit |
+| symmetry-breaking | det(B - I) without a fold, on a symmetric orbit (solved as ``MapSystem``'s symmetry-breaking point where it converges within the step; kept like branch-point) |
+| branch-point | det(B - I) without a fold, on an asymmetric orbit (kept where an eigenvalue lies within 1e-3 of +1) |
 | neimark-sacker | the number of complex eigenvalues outside the unit circle (flag) |
 | admissibility-loss | the admissibility flag |
 
@@ -24,8 +27,11 @@ sequence twice over, twice the periods) is solved just past the flip from
 ``sequence.flip_seeds`` and continued; at every symmetry-breaking point the asymmetric
 orbit born there (one of the mirror pair; the other is its mirror image) is solved just
 past the point, on the side where it exists, from ``sequence.pitchfork_seeds`` and
-continued, with switching at its own flips (``SequenceBranch.switched``). The 1:1
-continuation of ``continuation``/``branches`` is unchanged; this module does not touch it.
+continued, with switching at its own flips (``SequenceBranch.switched``).
+
+Termination: after the point that left [min(start, stop), max(start, stop)] (kept),
+``max_points`` points, ``max_inadmissible`` consecutive non-admissible points (the start
+point not counted), or a step that cannot be corrected (smallest step: step * 1e-6).
 """
 from __future__ import annotations
 
