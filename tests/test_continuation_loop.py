@@ -44,8 +44,8 @@ class Circle(Problem):
     def tests(self, o, z, t):
         return {"fold": t[-1], **{k: z[-1] - a for k, a in self.levels.items()}}
 
-    def changed(self, key, prev, cur):
-        return (prev[key] > 0) != (cur[key] > 0)
+    def changes(self, prev, cur):
+        return [k for k in self.keys if (prev[k] > 0) != (cur[k] > 0)]
 
     def locate(self, fw, key, st, prev, cur):
         def test(z, t):

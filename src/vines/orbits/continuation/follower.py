@@ -146,10 +146,8 @@ class OneToOneProblem(Problem):
         self.sys, self.cs = system, cs
         self.lo, self.hi = cs.bounds
         self.tr_start = z0.copy()
-        self.keys = TESTS[system.family] + ("admissibility-loss", "bound")
-
-    def orbit(self, z):
-        return self.sys.orbit(z)
+        self.signs = TESTS[system.family]       # located by their sign changes
+        self.orbit = system.orbit
 
     def tests(self, o, z, t) -> dict:
         out = test_values(self.sys.family, o, z, t)
@@ -157,13 +155,17 @@ class OneToOneProblem(Problem):
         out["bound"] = float(z[-1])
         return out
 
-    def changed(self, key, prev, cur) -> bool:
-        fa, fb = prev[key], cur[key]
-        if key == "bound":
-            return self._bound(fb) is not None
-        if key == "admissibility-loss":
-            return fa != fb
-        return bool(np.isfinite(fa) and np.isfinite(fb)) and (fa > 0.0) != (fb > 0.0)
+    def changes(self, prev, cur) -> list:
+        out = []
+        for key in self.signs:
+            fa, fb = prev[key], cur[key]
+            if np.isfinite(fa) and np.isfinite(fb) and (fa > 0.0) != (fb > 0.0):
+                out.append(key)
+        if prev["admissibility-loss"] != cur["admissibility-loss"]:
+            out.append("admissibility-loss")
+        if cur["bound"] > self.hi or cur["bound"] < self.lo:
+            out.append("bound")
+        return out
 
     def _bound(self, p_end):
         return self.hi if p_end > self.hi else self.lo if p_end < self.lo else None
@@ -240,15 +242,15 @@ class OneToOneProblem(Problem):
         return "the maps have no root (end of the branch)"
 
     def after_point(self, fw, st):
-        return "the branch closed on itself" if self._closed(fw, st.z1) else None
-
-    def _closed(self, fw, z) -> bool:
+        """The branch closed on itself: back within half a step of its start."""
         if len(fw.points) < 5:
-            return False
-        d = z - self.tr_start
-        T = sh.period(self.sys.params(z).omega)
+            return None
+        d = st.z1 - self.tr_start
+        T = sh.period(self.sys.params(st.z1).omega)
         d[3] = (d[3] + 0.5 * T) % T - 0.5 * T
-        return float(np.sqrt(fw.tr.dot(d, d))) < 0.5 * fw.tr.h
+        if float(np.sqrt(fw.tr.dot(d, d))) < 0.5 * fw.tr.h:
+            return "the branch closed on itself"
+        return None
 
     def _admissibility(self, fw, st: Step, flag0: bool):
         """(tau, z, t) of the admissibility change along a step: the flag is bisected to a

@@ -13,11 +13,11 @@ One step of ``Follower.run``:
 
 1. ``Tracer.step``; no step: the branch ends (``stops["min_step"]``);
 2. the orbit at the new point (``Problem.orbit``); none: ``Problem.no_orbit`` ends it;
-3. its test values (``Problem.tests``); for each of ``Problem.keys`` that ``changed``
-   between the two points, the event ``located`` on the step (a ``Found`` or None); in the
-   problem's ``order``, each is ``placed`` (its branch point, inserted or not), recorded
-   (``Problem.event``: the event dict, or None when not kept) and may end the branch
-   (``Problem.ends``);
+3. its test values (``Problem.tests``); for each key of the test values whose event lies
+   between the two points (``Problem.changes``), the event ``located`` on the step (a
+   ``Found`` or None); in the problem's ``order``, each is ``placed`` (its branch point,
+   inserted or not), recorded (``Problem.event``: the event dict, or None when not kept)
+   and may end the branch (``Problem.ends``);
 4. the point is appended; the branch ends after ``max_points`` points, after
    ``max_inadmissible`` consecutive non-admissible points or where ``Problem.after_point``
    says so (the 1:1 branch closed; a wall sequence left its interval).
@@ -51,13 +51,11 @@ class Problem:
 
     stops             the stop messages: "start", "max_points", "min_step",
                       "inadmissible" (``str.format`` with max_points, max_inadmissible)
-    keys              the test values compared between points, in the order looked at
     count_start       whether a non-admissible start point counts towards
                       ``max_inadmissible``
     """
 
     stops: dict
-    keys: tuple
     count_start: bool = True
 
     def orbit(self, z: np.ndarray):
@@ -68,8 +66,9 @@ class Problem:
         """The test values at the point z (tangent t) with orbit o."""
         raise NotImplementedError
 
-    def changed(self, key: str, prev: dict, cur: dict) -> bool:
-        """Whether the event of ``key`` lies between two points."""
+    def changes(self, prev: dict, cur: dict) -> list:
+        """The keys of the test values whose events lie between two points, in the order
+        they are located."""
         raise NotImplementedError
 
     def locate(self, fw: Follower, key: str, st: Step, prev: dict, cur: dict) -> Found | None:
@@ -177,9 +176,12 @@ class Follower:
     def _events(self, st: Step, s: float, prev: dict, cur: dict) -> bool:
         """Locate, place and record the events of one step; True when the branch ends."""
         P = self.problem
-        found = [P.locate(self, key, st, prev, cur) for key in P.keys
-                 if P.changed(key, prev, cur)]
-        for f in P.order([f for f in found if f is not None]):
+        found = []
+        for key in P.changes(prev, cur):
+            f = P.locate(self, key, st, prev, cur)
+            if f is not None:
+                found.append(f)
+        for f in P.order(found) if found else ():
             o = P.place(self, f, s)
             ev = None if o is None else P.event(self, f, o)
             if ev is not None:

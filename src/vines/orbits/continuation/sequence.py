@@ -167,24 +167,22 @@ class SequenceProblem(Problem):
     stops = {"start": "the orbit does not converge", "max_points": "max_points",
              "min_step": "step too small (no correction)",
              "inadmissible": "admissibility lost for good"}
-    keys = ("fold", "flip", "branch", "ns", "adm")
     count_start = False
 
     def __init__(self, system: _System, run: _Run) -> None:
         self.sys, self.run = system, run
-
-    def orbit(self, z):
-        return self.sys.orbit(z)
+        self.orbit = system.orbit
 
     def tests(self, o, z, t) -> dict:
         return _tests(o, t)
 
-    def changed(self, key, prev, cur) -> bool:
-        if key in ("ns", "adm"):
-            return prev[key] != cur[key]
-        if key == "branch" and self.changed("fold", prev, cur):
-            return False
-        return (prev[key] > 0) != (cur[key] > 0)
+    def changes(self, prev, cur) -> list:
+        fold = (prev["fold"] > 0) != (cur["fold"] > 0)
+        out = ["fold"] if fold else []
+        for key in ("flip", "branch"):
+            if (key != "branch" or not fold) and (prev[key] > 0) != (cur[key] > 0):
+                out.append(key)
+        return out + [key for key in ("ns", "adm") if prev[key] != cur[key]]
 
     def _at(self, z):
         return self.sys.orbit(z) if z is not None else None
