@@ -160,23 +160,25 @@ def _lr_asym():
                            branch="asymmetric")
 
 
+def _switching(p, walls, stop, pick):
+    """The branch in omega from the first orbit of ``walls``/1 at p that ``pick`` takes,
+    with switching."""
+    orbit = next(o for o in find_sequence(p, walls, 1, simulation=False) if pick(o))
+    return continue_sequence(p, walls, 1, "omega", stop, orbit=orbit,
+                             settings=ContinueSettings(step=0.002, switch=True))
+
+
 def _llrr_sym():
     """LLRR/1-sym on the maps: symmetry-breaking near omega 0.8146, switched onto the
     asymmetric LLRR/1 (which flips, switched onto LLRRLLRR/2)."""
-    p = ModelParams(eta=0.2, omega=0.81, F=0.4)
-    sym = next(o for o in find_sequence(p, "LLRR", 1, simulation=False) if o.symmetric)
-    return continue_sequence(p, "LLRR", 1, "omega", 0.83, orbit=sym,
-                             settings=ContinueSettings(step=0.002, switch=True))
+    return _switching(ModelParams(eta=0.2, omega=0.81, F=0.4), "LLRR", 0.83,
+                      lambda o: o.symmetric)
 
 
 def _lrlr():
     """LRLR/2 on the maps: born at the flip of LR/1-asym, flips itself near omega 0.771."""
-    p = ModelParams(eta=0.142, omega=0.74, F=0.2)
-    one = next(o for o in find_sequence(p, "LR", 1, simulation=False)
-               if o.admissible and not o.symmetric)
-    br = continue_sequence(p, "LR", 1, "omega", 0.78, orbit=one,
-                           settings=ContinueSettings(step=0.002, switch=True))
-    (sub,) = br.switched
+    (sub,) = _switching(ModelParams(eta=0.142, omega=0.74, F=0.2), "LR", 0.78,
+                        lambda o: o.admissible and not o.symmetric).switched
     return sub
 
 
