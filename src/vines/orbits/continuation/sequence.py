@@ -45,7 +45,13 @@ from ...core.params import (
     check_params_arg,
 )
 from ..family.family import Family, check_periods, check_walls
-from ..family.map_systems import MapSystem, orbit_residual, with_values
+from ..family.map_systems import (
+    MapSystem,
+    exact_derivatives,
+    orbit_residual,
+    param_columns,
+    with_values,
+)
 from ..family.sequence import (
     SequenceOrbit,
     find_sequence,
@@ -115,8 +121,15 @@ class _System:
             return None, None
         return got[0], got[1]
 
+    #: the derivative method of the parameter column (``map_systems.DERIVATIVES``)
+    derivatives = "jets"
+
     def __call__(self, z):
         nan = (np.full(4, np.nan), np.full((4, 5), np.nan))
+        if self.derivatives == "jets":
+            got = self._exact(z)
+            if got is not None:
+                return got if got[0] is not None else nan
         try:
             R, P = self.residual(z[:4], z[4])
             h = 1e-7 * (1.0 + abs(z[4]))
@@ -129,6 +142,26 @@ class _System:
         Rz = np.empty((4, 5))
         Rz[:, :4] = P - np.eye(4)
         Rz[:, 4] = (Rp - Rm) / (2.0 * h)
+        return R, Rz
+
+    def _exact(self, z):
+        """(R, R_z) with the exact parameter column (``map_systems.exact_derivatives``);
+        (None, None) where R fails, None where the jets do not apply."""
+        try:
+            p = self.params(z[4])
+        except ParameterError:          # the parameter left its allowed range
+            return None, None
+        x0 = np.asarray(z[:4], float)
+        got = orbit_residual(p, self.fam, x0, self.s)
+        if got is None:
+            return None, None
+        R, P, fl = got
+        exact = exact_derivatives(p, self.fam, x0, fl)
+        if exact is None:
+            return None
+        Rz = np.empty((4, 5))
+        Rz[:, :4] = P - np.eye(4)
+        Rz[:, 4] = exact[0][:, param_columns((self.param,))[0]]
         return R, Rz
 
     def orbit(self, z) -> SequenceOrbit | None:

@@ -116,6 +116,63 @@ def chain_jacobian(tp, walls, symmetric, x0, fl, par, span, cond):
     return R, dR, g, dg
 
 
+@njit(**KW)
+def shooting_jacobian(tp, walls, symmetric, x0, fl, sg, par, span, graze):
+    """(E, dE/d(x_0, fl (m), s_g, eta, omega, F)) of the shooting form of the grazing
+    system (``map_systems.GrazingSystem``: flight k from walls[k] to walls[k + 1] (cyclic,
+    the last to walls[m] given) lasts the unknown fl[k]); graze = (k, wall): flight k (from
+    0) grazes at its arrival (wall 0: w' = 0) or at wall code ``wall`` at s_g (w = wall,
+    w' = 0). Order-1 jets."""
+    m = fl.size
+    ip = 5 + m                              # column of eta
+    inner = np.zeros((NL, ip + 3))
+    for k in range(4):
+        inner[k, k] = 1.0
+    for k in range(3):
+        inner[5 + k, ip + k] = 1.0
+    ne = m + 4 + (1 if graze[1] == 0 else 2)
+    E, dE = np.empty(ne), np.zeros((ne, ip + 3))
+    r, x = 0, x0.copy()
+    for k in range(m):
+        inner[4] = 0.0
+        inner[4, 4 + k] = 1.0
+        y, gy = global_jets(flight_local(tp, x, fl[k], par, walls[k], N1), inner)
+        E[r], dE[r] = y[4] - walls[k] - walls[k + 1], gy[4]
+        r += 1
+        if k == graze[0]:
+            r = _graze(tp, (x, inner, walls[k]), (sg, ip - 1), par, graze[1], (y, gy),
+                       (E, dE, r))
+        x = y[:4].copy()
+        inner[:4] = gy[:4]
+    sign = np.array([-1.0, -1.0, -1.0, 1.0]) if symmetric else np.ones(4)
+    for i in range(3):
+        E[r + i], dE[r + i] = sign[i] * x[i] - x0[i], sign[i] * inner[i]
+        dE[r + i, i] -= 1.0
+    E[r + 3] = fl.sum() - span
+    dE[r + 3, 4:4 + m] = 1.0
+    dE[r + 3, ip + 1] = span / par[1]
+    return E, dE
+
+
+@njit(**INLINE)
+def _graze(tp, start, at, par, wall, arrival, rows):
+    """Rows r.. of the grazing conditions of a flight from x (start = (x, inner, its
+    wall)), at its arrival (wall 0: w' there, arrival = the flight's (y, gy)) or at
+    at = (s_g, its column) (w - wall, w'); returns the next row."""
+    E, dE, r = rows
+    if wall == 0:
+        E[r], dE[r] = arrival[0][5], arrival[1][5]
+        return r + 1
+    x, inner, w0 = start
+    ig = inner.copy()
+    ig[4] = 0.0
+    ig[4, at[1]] = 1.0
+    y, gy = global_jets(flight_local(tp, x, at[0], par, w0, N1), ig)
+    E[r], dE[r] = y[4] - w0 - wall, gy[4]
+    E[r + 1], dE[r + 1] = y[5], gy[5]
+    return r + 2
+
+
 @lru_cache(maxsize=32)
 def _model(r: float, d: float, phi: float) -> Model:
     return Model(r, d, phi)
@@ -137,3 +194,15 @@ def residual_derivatives(model: Model, walls, symmetric: bool, span: float, par,
     return chain_jacobian(model.tape, np.asarray(walls, dtype=np.int64), bool(symmetric),
                           np.asarray(x0, float), np.asarray(fl, float),
                           tuple(float(q) for q in par), float(span), cond)
+
+
+def grazing_derivatives(model: Model, walls, symmetric: bool, span: float, par, u,
+                        graze: tuple) -> tuple:
+    """``shooting_jacobian`` at u = (x_0, flights (m), s_g); walls: the m + 1 wall codes
+    of the impacts the flights join; graze = (flight k from 0, wall code or 0: arrival)."""
+    u = np.asarray(u, float)
+    m = len(walls) - 1
+    return shooting_jacobian(model.tape, np.asarray(walls, dtype=np.int64), bool(symmetric),
+                             u[:4], u[4:4 + m], float(u[4 + m]),
+                             tuple(float(q) for q in par), float(span),
+                             (int(graze[0]), int(graze[1])))
