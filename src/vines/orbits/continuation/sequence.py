@@ -2,9 +2,11 @@
 
 Pseudo-arclength (``arclength.Tracer``) on R(x_0, p) = P_{n-1}∘...∘P_0(x_0) - x_0 -
 (0, 0, 0, N T) (4 equations, unknowns x_0 and the parameter p): the state columns of R's
-Jacobian are the exact product of the map Jacobians minus I; the parameter column is a
-central difference (it steers the predictor and the corrector's convergence only: every
-point is a root of R to the corrector's tolerance, whatever that column's error). Each
+Jacobian are the exact product of the map Jacobians minus I; the parameter column is
+exact as well (``map_systems.exact_derivatives``, Taylor jets of the composed flights), or
+a central difference with ``_System.derivatives = "differences"`` and where the jets do
+not apply (it steers the predictor and the corrector's convergence only: every point is a
+root of R to the corrector's tolerance, whatever that column's error). Each
 accepted point is classified on the maps (``sequence``: admissibility, eigenvalues).
 
 Events between consecutive points (located along the arclength by ``Tracer.locate`` on the

@@ -18,9 +18,12 @@ monodromy matrix is A^2: an eigenvalue +1 of A is a fold, -1 a symmetry-breaking
     symmetry-breaking    det(A + I) = 0          (symmetric: half-map mu = -1)
     neimark-sacker       det(A^[2] - I) = 0      (A^[2] the second compound matrix)
 
-The derivatives of R in x_0 are exact; those of R in the parameters and of the condition
-(which needs the maps' second derivatives) are central differences: they steer Newton
-only, every point is a root of the system to the corrector's tolerance.
+The derivatives of R in x_0 are exact (the maps' Jacobians); those of R in the parameters
+and of the condition (which needs the maps' second derivatives) are exact too with
+``derivatives="jets"`` (the default: ``jets.chain``, Taylor jets of the composed flights),
+central differences with ``"differences"`` and wherever the jets do not apply (d outside
+(0, 2)). They steer Newton only: every point is a root of the system to the corrector's
+tolerance.
 
 Grazing (admissibility lost) cannot use the maps: at an arrival with zero relative velocity
 the map's flight time has a square-root branch. Its system keeps the flight times s_k as
@@ -29,8 +32,9 @@ target wall (each flight, closed-form flow), the closure of (z_m', z_b', z_b) (m
 symmetric families) and sum s_k = N T (or N T / 2), plus the grazing of flight k at wall
 "L" or "R" (w_k(s_g) = wall, w_k'(s_g) = 0, 0 < s_g < s_k) or at its "arrival"
 (w_k'(s_k) = 0); flights are numbered from 1 (flight k from impact k to impact k + 1, so
-that for "LR" flight 1 is L->R and 2 is R->L, as for the 1:1 curves). All its derivatives
-are central differences.
+that for "LR" flight 1 is L->R and 2 is R->L, as for the 1:1 curves). Its derivatives come
+from the jets of the same flights (``jets.chain.shooting_jacobian``), or central
+differences as for the maps.
 """
 from __future__ import annotations
 
