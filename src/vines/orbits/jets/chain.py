@@ -33,6 +33,7 @@ from .kernels import (
     flight_local,
     global_jets,
     map_jacobian,
+    product_gradient,
 )
 from .shooting import Model
 
@@ -51,18 +52,6 @@ def _eliminate_time(Y, inner):
         if j != 4:
             row += gap[1 + j] * inner[j]
     inner[4] = -row / gap[1 + 4]
-
-
-@njit(**INLINE)
-def _times(J, dJ, A, dA):
-    """(J A, its gradient) from J, A and their gradients (4, 4, NG)."""
-    P = J @ A
-    dP = np.zeros(dA.shape)
-    for i in range(4):
-        for j in range(4):
-            for k in range(4):
-                dP[i, j] += dJ[i, k] * A[k, j] + J[i, k] * dA[k, j]
-    return P, dP
 
 
 @njit(**INLINE)
@@ -97,7 +86,7 @@ def chain_jacobian(tp, walls, symmetric, x0, fl, par, span, cond):
         y, gy = global_jets(Y, inner)
         if cond >= 0:
             J, dJ = map_jacobian(Y, inner)
-            A, dA = (J, dJ) if k == 0 else _times(J, dJ, A, dA)
+            A, dA = (J, dJ) if k == 0 else product_gradient(J, dJ, A, dA)
         x = y[:4].copy()
         inner[:4] = gy[:4]
     sign = np.array([-1.0, -1.0, -1.0, 1.0]) if symmetric else np.ones(4)

@@ -242,13 +242,19 @@ def _monodromy(fam, Y1, inner1, Y2, inner2):
             dJ1[i] = -dJ1[i]
         return J1, dJ1
     J2, dJ2 = map_jacobian(Y2, inner2)
-    A = J2 @ J1
-    dA = np.zeros(dJ1.shape)
+    return product_gradient(J2, dJ2, J1, dJ1)
+
+
+@njit(**INLINE)
+def product_gradient(J, dJ, A, dA):
+    """(J A, its gradient) from 4x4 J, A and their gradients (4, 4, N)."""
+    P = J @ A
+    dP = np.zeros(dA.shape)
     for i in range(4):
         for j in range(4):
             for k in range(4):
-                dA[i, j] += dJ2[i, k] * J1[k, j] + J2[i, k] * dJ1[k, j]
-    return A, dA
+                dP[i, j] += dJ[i, k] * A[k, j] + J[i, k] * dA[k, j]
+    return P, dP
 
 
 @njit(**INLINE)
