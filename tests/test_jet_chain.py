@@ -181,9 +181,9 @@ def test_systems_jets_equal_differences(orbits, name, kind, graze):
 
 def test_continuation_system_parameter_column(orbits):
     o = orbits["LRLR/2"]
-    sys_ = _System(o.params, "eta", o.walls, o.periods)
+    sys_ = _System(o.params, "omega", o.walls, o.periods)
     sys_.s = o.flight_times.copy()
-    z = np.append(o.states[0], o.params.eta)
+    z = np.append(o.states[0], o.params.omega)
     R, Rz = sys_(z)
     sys_.derivatives = "differences"
     R0, Rz0 = sys_(z)
