@@ -8,7 +8,9 @@ order-1 jet is the first 1 + NL entries. A flight's outputs (y = (z_m', z_b', z_
 s, gap, w') are then re-expressed over the global unknowns (u, eta, omega, F, s_g) by the
 chain rule, with inner[k] = the global gradient of local variable k (as in
 ``shooting.map_jacobian_jets``). ``jets`` and ``shooting`` hold the reference (pure
-Python) implementation that the tests compare these kernels against.
+Python) implementation that the tests compare these kernels against. The flight and matrix
+helpers (``flight_local``, ``global_jets``, ``map_jacobian``, ``product_gradient``,
+``compound2_gradient``, ``det_gradient``) also serve ``chain`` (any wall sequence).
 
 Codes: family 0 symmetric, 1 asymmetric; condition 0 fold det(A - I), 1 det(A + I)
 (symmetry-breaking / flip), 2 neimark-sacker det(A (x) A - I), 3 grazing; grazing wall 0
