@@ -3,9 +3,11 @@
 Pseudo-arclength (``arclength.Tracer``), run by the one loop of every family
 (``loop.Follower``) on ``SequenceProblem``, on R(x_0, p) = P_{n-1}∘...∘P_0(x_0) - x_0 -
 (0, 0, 0, N T) (4 equations, unknowns x_0 and the parameter p): the state columns of R's
-Jacobian are the exact product of the map Jacobians minus I; the parameter column is a
-central difference (it steers the predictor and the corrector's convergence only: every
-point is a root of R to the corrector's tolerance, whatever that column's error). Each
+Jacobian are the exact product of the map Jacobians minus I; the parameter column is
+exact as well (``map_systems.exact_derivatives``, Taylor jets of the composed flights), or
+a central difference with ``_System.derivatives = "differences"`` and where the jets do
+not apply (it steers the predictor and the corrector's convergence only: every point is a
+root of R to the corrector's tolerance, whatever that column's error). Each
 accepted point is classified on the maps (``sequence``: admissibility, eigenvalues).
 
 Events between consecutive points (located along the arclength by ``Tracer.locate`` on the
@@ -51,7 +53,13 @@ from ...core.params import (
     check_params_arg,
 )
 from ..family.family import Family, check_periods, check_walls
-from ..family.map_systems import MapSystem, orbit_residual, with_values
+from ..family.map_systems import (
+    MapSystem,
+    exact_derivatives,
+    orbit_residual,
+    param_columns,
+    with_values,
+)
 from ..family.sequence import (
     SequenceOrbit,
     find_sequence,
@@ -122,8 +130,15 @@ class _System:
             return None, None
         return got[0], got[1]
 
+    #: the derivative method of the parameter column (``map_systems.DERIVATIVES``)
+    derivatives = "jets"
+
     def __call__(self, z):
         nan = (np.full(4, np.nan), np.full((4, 5), np.nan))
+        if self.derivatives == "jets":
+            got = self._exact(z)
+            if got is not None:
+                return got if got[0] is not None else nan
         try:
             R, P = self.residual(z[:4], z[4])
             h = 1e-7 * (1.0 + abs(z[4]))
@@ -136,6 +151,26 @@ class _System:
         Rz = np.empty((4, 5))
         Rz[:, :4] = P - np.eye(4)
         Rz[:, 4] = (Rp - Rm) / (2.0 * h)
+        return R, Rz
+
+    def _exact(self, z):
+        """(R, R_z) with the exact parameter column (``map_systems.exact_derivatives``);
+        (None, None) where R fails, None where the jets do not apply."""
+        try:
+            p = self.params(z[4])
+        except ParameterError:          # the parameter left its allowed range
+            return None, None
+        x0 = np.asarray(z[:4], float)
+        got = orbit_residual(p, self.fam, x0, self.s)
+        if got is None:
+            return None, None
+        R, P, fl = got
+        exact = exact_derivatives(p, self.fam, x0, fl)
+        if exact is None:
+            return None
+        Rz = np.empty((4, 5))
+        Rz[:, :4] = P - np.eye(4)
+        Rz[:, 4] = exact[0][:, param_columns((self.param,))[0]]
         return R, Rz
 
     def orbit(self, z) -> SequenceOrbit | None:

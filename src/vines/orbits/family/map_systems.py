@@ -18,9 +18,12 @@ monodromy matrix is A^2: an eigenvalue +1 of A is a fold, -1 a symmetry-breaking
     symmetry-breaking    det(A + I) = 0          (symmetric: half-map mu = -1)
     neimark-sacker       det(A^[2] - I) = 0      (A^[2] the second compound matrix)
 
-The derivatives of R in x_0 are exact; those of R in the parameters and of the condition
-(which needs the maps' second derivatives) are central differences: they steer Newton
-only, every point is a root of the system to the corrector's tolerance.
+The derivatives of R in x_0 are exact (the maps' Jacobians); those of R in the parameters
+and of the condition (which needs the maps' second derivatives) are exact too with
+``derivatives="jets"`` (the default: ``jets.chain``, Taylor jets of the composed flights),
+central differences with ``"differences"`` and wherever the jets do not apply (d outside
+(0, 2)). They steer Newton only: every point is a root of the system to the corrector's
+tolerance.
 
 Grazing (admissibility lost) cannot use the maps: at an arrival with zero relative velocity
 the map's flight time has a square-root branch. Its system keeps the flight times s_k as
@@ -29,8 +32,9 @@ target wall (each flight, closed-form flow), the closure of (z_m', z_b', z_b) (m
 symmetric families) and sum s_k = N T (or N T / 2), plus the grazing of flight k at wall
 "L" or "R" (w_k(s_g) = wall, w_k'(s_g) = 0, 0 < s_g < s_k) or at its "arrival"
 (w_k'(s_k) = 0); flights are numbered from 1 (flight k from impact k to impact k + 1, so
-that for "LR" flight 1 is L->R and 2 is R->L, as for the 1:1 curves). All its derivatives
-are central differences.
+that for "LR" flight 1 is L->R and 2 is R->L, as for the 1:1 curves). Its derivatives come
+from the jets of the same flights (``jets.chain.shooting_jacobian``), or central
+differences as for the maps.
 """
 from __future__ import annotations
 
@@ -41,8 +45,9 @@ import numpy as np
 
 from ...core.exact import oscillators
 from ...core.flow import flow
-from ...core.params import ModelParams, ParameterError
+from ...core.params import PARAM_NAMES, ModelParams, ParameterError, check_choice
 from ...core.walls import impact_velocities
+from ..jets import chain as jet_chain
 from ..maps.impact import impact_map, model_array
 from ..maps.newton import monodromy
 from .family import MIRROR_SIGNS, WALL_CODES, Family
@@ -51,6 +56,9 @@ from .systems import KINDS, compound2
 
 FD_PARAM = 1e-7         # relative central-difference step of a parameter column
 FD_STATE = 1e-6         # relative central-difference step of the condition's gradient
+#: the derivative methods of the systems: exact Taylor jets (``jets.chain``), central
+#: differences (the fallback where the jets do not apply)
+DERIVATIVES = ("jets", "differences")
 
 
 def family_of(orbit: SequenceOrbit) -> Family:
@@ -98,6 +106,26 @@ def orbit_residual(p: ModelParams, fam: Family, x0, s_guess):
     return R, A, fl
 
 
+def exact_derivatives(p: ModelParams, fam: Family, x0, fl, kind: str | None = None):
+    """(dR (4, 7), dg (7)): R's Jacobian and the gradient of ``kind``'s condition (zeros
+    for None) over (x_0, eta, omega, F), exact (``jets.chain``) at the maps' flight times
+    fl; None where the jets do not apply (d outside (0, 2)) or give no finite number."""
+    model = jet_chain.model_of(p.r, p.d, p.phi)
+    if model is None:
+        return None
+    _, dR, _, dg = jet_chain.residual_derivatives(
+        model, fam.codes()[:fam.flights], fam.symmetric, fam.span(p), (p.eta, p.omega, p.F),
+        x0, fl, kind)
+    if not (np.isfinite(dR).all() and np.isfinite(dg).all()):
+        return None
+    return dR, dg
+
+
+def param_columns(free: tuple) -> list[int]:
+    """The columns of the parameters ``free`` in ``exact_derivatives``."""
+    return [4 + PARAM_NAMES.index(q) for q in free]
+
+
 def condition(kind: str, A) -> float:
     """The determinant of the module docstring for ``kind``."""
     if kind == "neimark-sacker":
@@ -131,12 +159,15 @@ class _Layout:
 
 class MapSystem:
     """G(z) = (R, condition) of a fold, flip, symmetry-breaking or Neimark-Sacker point:
-    z = (x_0, free parameters); G, G_z = self(z) (module docstring)."""
+    z = (x_0, free parameters); G, G_z = self(z) (module docstring); ``derivatives``: one
+    of ``DERIVATIVES``."""
 
-    def __init__(self, base: ModelParams, fam: Family, kind: str, free: tuple):
+    def __init__(self, base: ModelParams, fam: Family, kind: str, free: tuple,
+                 derivatives: str = "jets"):
         if kind not in KINDS[fam.symmetric] or kind == "grazing":
             raise ValueError(f"{kind!r} is not a map condition of {fam.name} orbits")
         self.fam, self.kind, self.graze = fam, kind, None
+        self.derivatives = check_choice("derivatives", derivatives, DERIVATIVES)
         self.family = fam.name
         self.lay = _Layout(base, free, 4)
         self.s = np.full(fam.flights, -1.0)
@@ -155,15 +186,33 @@ class MapSystem:
 
     def __call__(self, z):
         z = np.asarray(z, float)
-        nz = z.size
-        bad = (np.full(5, np.nan), np.full((5, nz), np.nan))
         got = self._value(z, update=True)
         if got is None:
-            return bad
+            return np.full(5, np.nan), np.full((5, z.size), np.nan)
         R, A, g = got
-        Gz = np.empty((5, nz))
+        Gz = np.empty((5, z.size))
         Gz[:4, :4] = A - np.eye(4)
-        for i in range(nz):
+        if self.derivatives == "jets" and self._exact(z, Gz):
+            return np.append(R, g), Gz
+        return self._differences(z, (R, g), Gz)
+
+    def _exact(self, z, Gz) -> bool:
+        """Fill Gz's parameter columns and condition row from the jets; False where they
+        do not apply."""
+        got = exact_derivatives(self.lay.params(z), self.fam, z[:4], self.s, self.kind)
+        if got is None:
+            return False
+        dR, dg = got
+        cols = param_columns(self.lay.free)
+        Gz[:4, 4:] = dR[:, cols]
+        Gz[4] = dg[[0, 1, 2, 3, *cols]]
+        return True
+
+    def _differences(self, z, G, Gz):
+        """(G, Gz) with Gz's parameter columns and condition row central differences."""
+        R, g = G
+        bad = (np.full(5, np.nan), np.full(Gz.shape, np.nan))
+        for i in range(z.size):
             zp, zm, h = self.lay.pair(z, i)
             vp, vm = self._value(zp), self._value(zm)
             if vp is None or vm is None:
@@ -195,8 +244,10 @@ class GrazingSystem:
 
     kind = "grazing"
 
-    def __init__(self, base: ModelParams, fam: Family, graze: tuple, free: tuple):
+    def __init__(self, base: ModelParams, fam: Family, graze: tuple, free: tuple,
+                 derivatives: str = "jets"):
         self.fam, self.graze = fam, (int(graze[0]), str(graze[1]))
+        self.derivatives = check_choice("derivatives", derivatives, DERIVATIVES)
         self.family = fam.name
         self.m = fam.flights
         self.has_sg = self.graze[1] != "arrival"
@@ -235,6 +286,10 @@ class GrazingSystem:
         ne = self.m + 4 + (2 if self.has_sg else 1)
         if G is None:
             return np.full(ne, np.nan), np.full((ne, z.size), np.nan)
+        if self.derivatives == "jets":
+            Gz = self._exact(z)
+            if Gz is not None:
+                return G, Gz
         Gz = np.empty((ne, z.size))
         for i in range(z.size):
             zp, zm, h = self.lay.pair(z, i)
@@ -243,6 +298,25 @@ class GrazingSystem:
                 return np.full(ne, np.nan), np.full((ne, z.size), np.nan)
             Gz[:, i] = (Gp - Gm) / (2.0 * h)
         return G, Gz
+
+    def _exact(self, z):
+        """G_z from the jets (``jets.chain.shooting_jacobian``), or None where they do not
+        apply."""
+        p = self.lay.params(z)
+        model = jet_chain.model_of(p.r, p.d, p.phi)
+        if model is None:
+            return None
+        codes, m = self.fam.codes(), self.m
+        walls = [codes[k % codes.size] for k in range(m + 1)]
+        wall = 0 if not self.has_sg else WALL_CODES[self.graze[1]]
+        u = np.append(z[:4 + m + int(self.has_sg)], 0.0)
+        _, dE = jet_chain.grazing_derivatives(model, walls, self.fam.symmetric,
+                                              self.fam.span(p), (p.eta, p.omega, p.F), u,
+                                              (self.graze[0] - 1, wall))
+        cols = [*range(4 + m + int(self.has_sg)), *(1 + m + c for c in
+                                                     param_columns(self.lay.free))]
+        Gz = dE[:, cols]
+        return Gz if np.isfinite(Gz).all() else None
 
     def flights(self, z) -> np.ndarray:
         return self.fam.full_flights(np.asarray(z[4:4 + self.m], float))
@@ -271,10 +345,11 @@ def grazing_guess(orbit: SequenceOrbit, fam: Family, n_sample=400):
     return best
 
 
-def make_system(base: ModelParams, fam: Family, kind: str, graze, free: tuple):
+def make_system(base: ModelParams, fam: Family, kind: str, graze, free: tuple,
+                derivatives: str = "jets"):
     if kind == "grazing":
-        return GrazingSystem(base, fam, graze, free)
-    return MapSystem(base, fam, kind, free)
+        return GrazingSystem(base, fam, graze, free, derivatives)
+    return MapSystem(base, fam, kind, free, derivatives)
 
 
 def unknowns(orbit: SequenceOrbit, fam: Family, graze=None, s_g=None) -> list:

@@ -8,7 +8,9 @@ order-1 jet is the first 1 + NL entries. A flight's outputs (y = (z_m', z_b', z_
 s, gap, w') are then re-expressed over the global unknowns (u, eta, omega, F, s_g) by the
 chain rule, with inner[k] = the global gradient of local variable k (as in
 ``shooting.map_jacobian_jets``). ``jets`` and ``shooting`` hold the reference (pure
-Python) implementation that the tests compare these kernels against.
+Python) implementation that the tests compare these kernels against. The flight and matrix
+helpers (``flight_local``, ``global_jets``, ``map_jacobian``, ``product_gradient``,
+``compound2_gradient``, ``det_gradient``) also serve ``chain`` (any wall sequence).
 
 Codes: family 0 symmetric, 1 asymmetric; condition 0 fold det(A - I), 1 det(A + I)
 (symmetry-breaking / flip), 2 neimark-sacker det(A (x) A - I), 3 grazing; grazing wall 0
@@ -130,13 +132,13 @@ def flight_local(tp, x, s, par, from_wall, size):
 
 
 @njit(**INLINE)
-def _global(Y, inner):
+def global_jets(Y, inner):
     """(values, gradients over the global variables) of local jets Y."""
     return Y[:, 0].copy(), np.ascontiguousarray(Y[:, 1:N1]) @ inner
 
 
 @njit(**INLINE)
-def _map_jac(Y, inner):
+def map_jacobian(Y, inner):
     """Jacobian (4x4) of the map whose flight is Y (order 2, the impact time solved from
     gap = 0 as in ``maps.impact_map``) and its gradients (4, 4, N) over the globals."""
     gap = Y[4]
@@ -191,7 +193,7 @@ def _flights(tp, fam, u, par, size):
     Y1 = flight_local(tp, u, s1, par, WALL_L, size)
     if fam == 0:
         return Y1, inner1, Y1, inner1, n_glob
-    y1, gy1 = _global(Y1, inner1)
+    y1, gy1 = global_jets(Y1, inner1)
     cols2 = np.array([-1, -1, -1, -1, -1, ie, io, iF])
     grads2 = np.zeros((NL, n_glob))
     grads2[:4] = gy1[:4]
@@ -209,15 +211,15 @@ def _residual(fam, u, Y1, inner1, Y2, inner2, n_glob):
     E = np.empty(nu)
     dE = np.zeros((nu, n_glob))
     if fam == 0:
-        y, gy = _global(Y1, inner1)
+        y, gy = global_jets(Y1, inner1)
         E[0], dE[0] = y[4], gy[4]
         for k in range(3):
             E[1 + k] = y[k] + u[k]
             dE[1 + k] = gy[k]
             dE[1 + k, k] += 1.0
         return E, dE
-    y1, gy1 = _global(Y1, inner1)
-    y2, gy2 = _global(Y2, inner2)
+    y1, gy1 = global_jets(Y1, inner1)
+    y2, gy2 = global_jets(Y2, inner2)
     E[0], dE[0] = y1[4], gy1[4]
     E[1], dE[1] = y2[4], gy2[4]
     for k in range(3):
@@ -235,24 +237,30 @@ def residual_jacobian(tp, fam, u, eta, omega, F):
 @njit(**INLINE)
 def _monodromy(fam, Y1, inner1, Y2, inner2):
     """A = Mirror J_P1 (symmetric) or J_P2 J_P1 (asymmetric) and dA (4, 4, N)."""
-    J1, dJ1 = _map_jac(Y1, inner1)
+    J1, dJ1 = map_jacobian(Y1, inner1)
     if fam == 0:
         for i in range(3):
             J1[i] = -J1[i]
             dJ1[i] = -dJ1[i]
         return J1, dJ1
-    J2, dJ2 = _map_jac(Y2, inner2)
-    A = J2 @ J1
-    dA = np.zeros(dJ1.shape)
-    for i in range(4):
-        for j in range(4):
-            for k in range(4):
-                dA[i, j] += dJ2[i, k] * J1[k, j] + J2[i, k] * dJ1[k, j]
-    return A, dA
+    J2, dJ2 = map_jacobian(Y2, inner2)
+    return product_gradient(J2, dJ2, J1, dJ1)
 
 
 @njit(**INLINE)
-def _compound2(A, dA):
+def product_gradient(J, dJ, A, dA):
+    """(J A, its gradient) from 4x4 J, A and their gradients (4, 4, N)."""
+    P = J @ A
+    dP = np.zeros(dA.shape)
+    for i in range(4):
+        for j in range(4):
+            for k in range(4):
+                dP[i, j] += dJ[i, k] * A[k, j] + J[i, k] * dA[k, j]
+    return P, dP
+
+
+@njit(**INLINE)
+def compound2_gradient(A, dA):
     """Second compound matrix (``family.systems.compound2``) and its gradients."""
     pairs = [(p, q) for p in range(4) for q in range(p + 1, 4)]
     C = np.empty((6, 6))
@@ -303,7 +311,7 @@ def _test_function(fam, cond, Y1, inner1, Y2, inner2):
     """The determinant of a fold / det(A + I) / neimark-sacker condition and its gradient."""
     A, dA = _monodromy(fam, Y1, inner1, Y2, inner2)
     if cond == 2:
-        A, dA = _compound2(A, dA)
+        A, dA = compound2_gradient(A, dA)
     shift = -1.0 if cond == 0 or cond == 2 else 1.0
     for i in range(A.shape[0]):
         A[i, i] += shift
@@ -318,19 +326,19 @@ def _grazing(tp, k, wall, u, par, sg, flight1, flight2):
     Yk, innerk = flight1 if k == 1 else flight2
     w0 = float(WALL_L if k == 1 else WALL_R)
     if wall == 2:
-        y, gy = _global(Yk, innerk)
+        y, gy = global_jets(Yk, innerk)
         return y[5:6], gy[5:6]
     n_glob = inner1.shape[1]
     if k == 1:
         x, gx = u[:4].copy(), inner1[:4]
     else:
-        y1, gy1 = _global(Y1, inner1)
+        y1, gy1 = global_jets(Y1, inner1)
         x, gx = y1[:4], gy1[:4]
     grads = np.zeros((NL, n_glob))
     grads[:4] = gx
     cols = np.array([-1, -1, -1, -1, n_glob - 1, n_glob - 4, n_glob - 3, n_glob - 2])
     inner = _inner(n_glob, cols, grads)
-    y, gy = _global(flight_local(tp, x, sg, par, w0, N1), inner)
+    y, gy = global_jets(flight_local(tp, x, sg, par, w0, N1), inner)
     if wall == 0:
         y[4] -= 2.0 * w0
     return y[4:6].copy(), gy[4:6].copy()
