@@ -7,7 +7,7 @@ The workflow's ``onstart`` hook (workflow/rules/warmup.smk) runs ``python -m
 vines.pipeline.warmup`` once before the first job: it calls every stage's numerics on one
 tiny case (``TASKS``: core kernel and shortcut, 1:1 seeds, the shooting systems' jets,
 branches, stability map columns and boundaries, attractor census, Lyapunov tangents,
-period-n atlas), spread over the run's cores (a task that reuses another's kernels starts
+period-n atlas, the jet chain of the other families' curves), spread over the run's cores (a task that reuses another's kernels starts
 once those are cached), with the run's model and simulation settings (the same argument
 types as the jobs), and writes a stamp.
 The stamp holds the hash of the compiled subpackages' sources (``vines._numba_cache``) and
@@ -152,11 +152,26 @@ def _atlas(model: dict, simulation: dict) -> None:
                        model=model, **_LABEL)
 
 
+def _chain(model: dict, simulation: dict) -> None:
+    """The jet chain of every other family's curves (``jets.chain``: the exact derivatives
+    of ``boundaries`` with walls), on its own; the values are those of no orbit."""
+    from ..core.walls import WALL_L, WALL_R
+    from ..orbits.jets import chain
+    jets = chain.model_of(model["r"], model["d"], 0.0)
+    if jets is None:                    # d outside (0, 2): the curves use differences
+        return
+    par, x0, fl = (POINT["eta"], POINT["omega"], POINT["F"]), [0.5, 0.1, 0.0, 0.0], [3.0, 3.0]
+    chain.residual_derivatives(jets, [WALL_L, WALL_R], False, 6.0, par, x0, fl, "fold")
+    chain.grazing_derivatives(jets, [WALL_L, WALL_R, WALL_L], False, 6.0, par,
+                              [*x0, *fl, 1.0], (0, 0))
+
+
 #: warm-up tasks: name -> (function, tasks whose compiled kernels it reuses: it starts once
 #: they are in the cache); ready tasks start in this order. Compile CPU measured cold, one
 #: process, in this order: seeds ~13-16 s (1:1 maps, seeds, orbit solver), shooting ~13-18 s,
 #: core ~17 s more (event kernel; the periodic shortcut reuses the orbit solver), stability
-#: map ~7 s more (its column kernel), lyapunov ~4 s; the rest reuse these. On 2 workers:
+#: map ~7 s more (its column kernel), lyapunov ~4 s, chain ~13 s (its own jets); the rest
+#: reuse these. On 2 workers:
 #: seeds then core on one, shooting then the stability map on the other (~33 s).
 TASKS = {
     "seeds": (_seeds, ()),
@@ -168,6 +183,7 @@ TASKS = {
     "robust": (_robust, ("core",)),
     "boundaries": (_boundaries, ("branches", "stability_map")),
     "atlas": (_atlas, ("branches",)),
+    "chain": (_chain, ()),
 }
 
 
