@@ -5,11 +5,14 @@
 * ``jets``: the flight as closed-form shooting conditions with exact derivatives by Taylor
   jets (``taylor``, recorded as a ``tape``, run compiled by ``kernels``; ``shooting``);
 * ``family``: the family object (``family``: walls, periods, symmetric; the 1:1 orbit is
-  the value LR/1 of it; its ``engine``), its orbits (``orbit``: what every orbit holds;
-  ``periodic`` for 1:1, ``sequence`` for any wall sequence) and its augmented systems
+  the value LR/1 of it; its names in ``names``), its engine (``engine``: a registry behind
+  one contract; ``Family.engine``, the one place that tells 1:1 apart, picks one), the one
+  orbit type of every family (``orbit.PeriodicOrbit``), found by ``periodic`` for 1:1 and
+  ``sequence`` for any wall sequence from the engines' ``seeds``, and its augmented systems
   (``augmented`` on jets, ``map_systems`` on the maps);
 * ``continuation``: the arclength tracer, one settings object (``settings``), branches and
-  their events (``one_to_one``, ``follower``, ``sequence``; results in ``branch``);
+  their events (``one_to_one``, ``follower``, ``sequence``; the one result type ``Branch``
+  in ``branch``);
 * ``curves``: codimension-one curves in (eta, omega) on one tracer (``tracer``), seeded per
   family (``one_to_one``, ``sequence``), entry point ``boundaries``;
 * ``atlas``: which families exist at a point (``atlas``), stability maps (``stability_map``).
@@ -22,9 +25,9 @@ from .._lazy import lazy_attributes
 _LAZY = {
     "Family": ".family.family",
     "find_1to1": ".family.periodic",
-    "PeriodicOrbit": ".family.periodic",
+    "PeriodicOrbit": ".family.orbit",
     "find_sequence": ".family.sequence",
-    "SequenceOrbit": ".family.sequence",
+    "SequenceOrbit": ".family.orbit",
     "continue_branch": ".continuation.one_to_one",
     "ContinuationSettings": ".continuation.settings",
     "Branch": ".continuation.branch",
