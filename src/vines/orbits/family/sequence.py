@@ -181,7 +181,7 @@ def find_sequence(params: ModelParams, walls: str, periods: int = 1, *,
     """Every distinct orbit of the sequence found (admissible or not), stable admissible
     ones first (the order of ``find_1to1``).
 
-    ``seeds``: extra starting points, each a ``SequenceOrbit`` of the same sequence (or of
+    ``seeds``: extra starting points, each a ``PeriodicOrbit`` of the same sequence (or of
     its mirror image, mirrored) or a pair (x_0, flight times). ``simulation``: also seed from
     short simulations from ``sim_states`` (for "LR", 1: from rest only, as ``find_1to1``).
     Raises ParameterError on a bad ``walls`` or ``periods``.
@@ -212,7 +212,7 @@ def _check_list(name, values) -> list:
 
 
 def check_sequence_seeds(seeds: object, walls: str) -> list:
-    """The seeds of ``find_sequence``: SequenceOrbits or pairs (x_0, flight times) with x_0
+    """The seeds of ``find_sequence``: PeriodicOrbits or pairs (x_0, flight times) with x_0
     4 finite numbers and one flight time per wall of ``walls``; ParameterError otherwise."""
     allowed = ("must be None or a list of seeds, each a PeriodicOrbit or a pair (x_0, flight "
                f"times): x_0 4 finite numbers, {len(walls)} finite flight times")
