@@ -50,7 +50,11 @@ from .family import (
     mirror_walls,
 )
 from .names import wall_codes
-from .orbit import FAMILY_KEYS, PeriodicOrbit, SequenceOrbit  # noqa: F401 (SequenceOrbit: re-export)
+from .orbit import (  # noqa: F401 (SequenceOrbit: re-export, the former name)
+    FAMILY_KEYS,
+    PeriodicOrbit,
+    SequenceOrbit,
+)
 from .periodic import DEDUP_TOL, SYM_TOL
 from .seeds import (  # noqa: F401 (re-exports: the seeds' names as before)
     SIM_STATES,
@@ -63,7 +67,8 @@ from .seeds import (  # noqa: F401 (re-exports: the seeds' names as before)
 # --------------------------------------------------------------------------- orbits
 
 def is_symmetric(walls: str, periods: int, flight_times: ArrayLike) -> bool:
-    """The orbit with these flight times has the half-period symmetry (class docstring)."""
+    """The orbit with these flight times has the half-period symmetry
+    (``orbit.PeriodicOrbit.symmetric``)."""
     n = len(walls)
     if periods % 2 == 0 or not has_half_symmetry(walls):
         return False
