@@ -47,7 +47,7 @@ class PeriodicOrbit:
     walls: str
     periods: int
     states: np.ndarray
-    flight_times: list | np.ndarray
+    flight_times: np.ndarray
     dw: np.ndarray
     phases: np.ndarray
     symmetric: bool
