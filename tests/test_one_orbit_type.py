@@ -58,7 +58,7 @@ def test_one_type_same_fields_for_every_family(family_orbits):
     for o in orbits:
         assert type(o) is PeriodicOrbit and SequenceOrbit is PeriodicOrbit
         assert (o.walls, o.periods) == (walls, periods) and o.family == name.split("-")[0]
-        for k in ("states", "flight_times", "dw", "phases", "jacobians", "eigenvalues"):
+        for k in ("states", "dw", "phases", "jacobians", "eigenvalues"):
             assert isinstance(getattr(o, k), np.ndarray), k
         assert o.states.shape == (n, 4) and len(o.flight_times) == len(o.dw) == n
         assert np.shape(o.jacobians) == (n, 4, 4) and len(o.phases) == n

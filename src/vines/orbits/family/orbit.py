@@ -29,7 +29,8 @@ class PeriodicOrbit:
     walls         the wall sequence ("LLRR"), impact k at wall walls[k]
     periods       forcing periods of the orbit (its period is periods * T)
     states        (n, 4) pre-impact states x_k = (z_m', z_b', z_b, t), t_0 in [0, T)
-    flight_times  n flight times, flight k from impact k to impact k+1 (cyclically)
+    flight_times  n flight times, flight k from impact k to impact k+1 (cyclically; a list
+                  of floats from the 1:1 solver, as it always was)
     dw            relative velocity w' = z_m' - z_b' just before each impact
     phases        impact phases mod(omega t + phi, 2 pi)
     symmetric     invariant under the mirror z -> -z with t -> t + periods T / 2 (flight k
@@ -47,7 +48,7 @@ class PeriodicOrbit:
     walls: str
     periods: int
     states: np.ndarray
-    flight_times: np.ndarray
+    flight_times: list | np.ndarray
     dw: np.ndarray
     phases: np.ndarray
     symmetric: bool

@@ -117,7 +117,7 @@ def classify_orbit(p: ModelParams, mdl: np.ndarray, x: np.ndarray, xR: np.ndarra
     phase_R = float(np.mod(p.omega * xR[3] + p.phi, two_pi))
     return PeriodicOrbit(
         walls="LR", periods=1, states=np.array([x, xR]),
-        flight_times=np.array([fl[0], fl[1]]), dw=np.array([dw_L, dw_R]),
+        flight_times=[float(fl[0]), float(fl[1])], dw=np.array([dw_L, dw_R]),
         phases=np.array([phase_L, phase_R]), symmetric=bool(abs(fl[0] - fl[1]) <= SYM_TOL),
         admissible=adm, eigenvalues=ev, lambda_max=lam, stable=bool(adm and lam < 1.0),
         residual=float(res), jacobians=np.array([J1, J2]), params=p, keys=KEYS_1TO1)
