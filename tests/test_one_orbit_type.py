@@ -213,18 +213,18 @@ def _engine_comparisons(text: str) -> list:
     and reads of an attribute ``one_to_one``, in Python source."""
     hits = []
     for node in ast.walk(ast.parse(text)):
-        if isinstance(node, ast.Compare):
-            for op in [node.left, *node.comparators]:
-                if (isinstance(op, ast.Attribute) and op.attr == "engine") or (
-                        isinstance(op, ast.Name) and op.id in ("JETS", "MAPS")):
-                    hits.append(ast.unparse(node))
+        if isinstance(node, ast.Compare) and any(
+                (isinstance(op, ast.Attribute) and op.attr == "engine")
+                or (isinstance(op, ast.Name) and op.id in ("JETS", "MAPS"))
+                for op in [node.left, *node.comparators]):
+            hits.append(ast.unparse(node))
         if isinstance(node, ast.Attribute) and node.attr == "one_to_one":
             hits.append(ast.unparse(node))
     return hits
 
 
 def test_the_checker_sees_a_comparison():
-    assert _engine_comparisons("if fam.engine == JETS: pass")
+    assert _engine_comparisons("if fam.engine == JETS: pass") == ["fam.engine == JETS"]
     assert _engine_comparisons("x = 1 if f.one_to_one else 2")
     assert not _engine_comparisons("if fam.engine.class_map_seeds: pass")
 
