@@ -5,7 +5,7 @@ import pytest
 from vines import ParameterError
 from vines.core.params import MAX_POINTS_DEFAULT, ModelParams
 from vines.orbits.continuation import sequence as seq
-from vines.orbits.continuation.branch import BranchBase
+from vines.orbits.continuation.branch import Branch
 from vines.orbits.continuation.one_to_one import continue_branch
 from vines.orbits.continuation.settings import ContinuationSettings
 
@@ -65,8 +65,7 @@ def test_sequence_refuses_bound_settings():
 @FAMILIES
 def test_max_points_caps_an_arclength_branch_of_either_family(run):
     """The default step (|stop - start|/100) is not refused; the branch stops at 3 points,
-    and both results are branches (``BranchBase``)."""
+    and both results are the one branch type (``Branch``)."""
     br = run(max_points=3)
-    assert isinstance(br, BranchBase) and br.param == "F" and br.born_at is None
-    n = len(br.points) if isinstance(br, seq.SequenceBranch) else len(br)
-    assert n == 3 and "max_points" in br.stopped
+    assert type(br) is Branch and br.param == "F" and br.born_at is None
+    assert len(br) == len(br.points) == 3 and "max_points" in br.stopped

@@ -1,6 +1,6 @@
 """The layout of ``vines.orbits`` (issue: one family, one engine): no import circle (imports
 inside functions included), no private name imported from another module, and one place
-that tells the 1:1 family apart (``Family.one_to_one``). Read from the sources (ast), no
+that tells the 1:1 family apart (``Family.engine``). Read from the sources (ast), no
 numba."""
 import ast
 import re
@@ -32,8 +32,8 @@ def test_one_place_tells_the_one_to_one_family_apart():
 
 
 def test_only_the_family_asks_one_to_one():
-    """Callers dispatch on ``Family.engine``; ``Family.one_to_one`` is read in family.py
-    alone (attribute reads in the sources; the .smk files by their text)."""
+    """Callers ask ``Family.engine``; no module outside family.py reads an attribute
+    ``one_to_one`` (attribute reads in the sources; the .smk files by their text)."""
     own = ORBITS / "family" / "family.py"
     hits = [str(f) for f in SRC.rglob("*.py") if f != own
             for node in ast.walk(ast.parse(f.read_text()))

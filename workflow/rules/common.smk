@@ -43,7 +43,6 @@ from vines.pipeline.config import (
 )
 from vines.pipeline.parts import CHUNKED_STAGES, chunk_plan
 from vines.pipeline.config_checks import atlas_grid, boundary_family
-from vines.orbits.family.family import JETS
 
 try:
     # Snakemake's YAML reading keeps the last of a key given twice: refuse that first

@@ -63,7 +63,7 @@ def _family_boundaries():
     return [
         dataset("boundaries", n)
         for n, b in sorted(BOUNDARIES.items())
-        if boundary_family(b).engine != JETS
+        if boundary_family(b).engine.on_atlas
     ]
 
 

@@ -64,8 +64,8 @@ def with_aliases(d: dict, kind: str, walls: str) -> dict:
 
 def periodic_json(solutions: list[dict], walls: str, periods: int, params: dict) -> dict:
     """The object of ``vines periodic``: the family, its ``solutions`` (orbit dicts of
-    either solver: ``SequenceOrbit.to_dict`` or the 1:1 ``PeriodicOrbit.to_dict``) and the
-    model ``params``."""
+    either solver: ``PeriodicOrbit.to_dict`` in the keys of any family or in the 1:1
+    solver's) and the model ``params``."""
     fam = family_keys(walls, periods)
     base = dict(fam, paper_label=paper_label(walls, periods))
     sols = [with_aliases(_pick({**base, **_impacts(s)}, SOLUTION_KEYS), "solution", walls)
@@ -88,8 +88,9 @@ def _pick(d: dict, keys: tuple) -> dict:
 # ---------------------------------------------------------------------------- continue
 
 def branch_json(br, walls: str = ONE_TO_ONE[0], periods: int = ONE_TO_ONE[1]) -> dict:
-    """The object of ``vines continue`` for a continued branch: a 1:1 ``Branch`` or a
-    ``SequenceBranch`` (or its ``to_dict()``), and recursively the branches switched to."""
+    """The object of ``vines continue`` for a continued branch: a ``Branch`` of the 1:1
+    continuation or of a wall sequence's (or its ``to_dict()``), and recursively the
+    branches switched to."""
     if isinstance(br, dict):
         d, subs, orbits = br, br["switched"], []
     else:

@@ -3,14 +3,18 @@
 * ``maps``: one flight and impact with its Jacobian (``impact``), the one Newton on composed
   maps (``newton``), the affine-form seeds (``affine``), the compiled eigenvalues (``lapack``);
 * ``jets``: the flight as closed-form shooting conditions with exact derivatives by Taylor
-  jets (``taylor``, recorded as a ``tape``, run compiled by ``kernels``; ``shooting``);
+  jets (``taylor``, recorded as a ``tape``, run compiled by ``kernels``; ``shooting`` for
+  1:1, ``chain`` composing the flights of any wall sequence);
 * ``family``: the family object (``family``: walls, periods, symmetric; the 1:1 orbit is
-  the value LR/1 of it; its ``engine``), its orbits (``orbit``: what every orbit holds;
-  ``periodic`` for 1:1, ``sequence`` for any wall sequence) and its augmented systems
+  the value LR/1 of it; its names in ``names``), its engine (``engine``: a registry behind
+  one contract; ``Family.engine``, the one place that tells 1:1 apart, picks one), the one
+  orbit type of every family (``orbit.PeriodicOrbit``), found by ``periodic`` for 1:1 and
+  ``sequence`` for any wall sequence from the engines' ``seeds``, and its augmented systems
   (``augmented`` on jets, ``map_systems`` on the maps);
 * ``continuation``: the arclength tracer, one settings object (``settings``), one loop of
   branches and their events for every family (``loop``) on each family's problem
-  (``follower`` for 1:1, entry ``one_to_one``; ``sequence``); results in ``branch``;
+  (``follower`` for 1:1, entry ``one_to_one``; ``sequence``); the one result type
+  ``Branch`` in ``branch``;
 * ``curves``: codimension-one curves in (eta, omega) on one tracer (``tracer``), seeded per
   family (``one_to_one``, ``sequence``), entry point ``boundaries``;
 * ``atlas``: which families exist at a point (``atlas``), stability maps (``stability_map``).
@@ -23,9 +27,9 @@ from .._lazy import lazy_attributes
 _LAZY = {
     "Family": ".family.family",
     "find_1to1": ".family.periodic",
-    "PeriodicOrbit": ".family.periodic",
+    "PeriodicOrbit": ".family.orbit",
     "find_sequence": ".family.sequence",
-    "SequenceOrbit": ".family.sequence",
+    "SequenceOrbit": ".family.orbit",
     "continue_branch": ".continuation.one_to_one",
     "ContinuationSettings": ".continuation.settings",
     "Branch": ".continuation.branch",

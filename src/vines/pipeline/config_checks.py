@@ -21,7 +21,7 @@ from ..core.params import (
     SolverSettings,
     check_int,
 )
-from ..orbits.family.family import JETS, Family
+from ..orbits.family.family import Family
 from .axes import ConfigError, axis_values
 
 
@@ -251,7 +251,7 @@ def check_boundaries(config: dict, model: dict, limits: dict) -> None:
         _check_param(f"{key}.F", "F", bd["F"], model)
         name_map = bd.get("stability_map")
         family = boundary_family(bd)
-        if name_map is not None and family.engine != JETS:
+        if name_map is not None and not family.engine.class_map_seeds:
             raise ConfigError(f"{key}.stability_map", f"{name_map!r} seeds 1:1 curves only, "
                               f"not those of walls {family.walls}, periods {family.periods} (drop "
                               "the key)")

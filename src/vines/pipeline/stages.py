@@ -301,17 +301,12 @@ def boundaries(spec: dict, *, model: dict, code: str, title: str, stability_path
     attrs = provenance_attrs(title=title, config_subset={"spec": spec, "model": model},
                              settings=model, code_version=code)
     attrs.update(eta_range=list(res.eta_range), omega_range=list(res.omega_range))
-    from ..orbits.family.family import JETS, Family
-    if Family(res.walls, res.periods).engine == JETS:   # 1:1 datasets as they always were
-        return builders.boundaries_dataset(res.curves, res.F, attrs)
-    attrs.update(walls=res.walls, periods=res.periods)
+    from ..orbits.family.family import Family
+    family = Family(res.walls, res.periods)
+    attrs.update(family.engine.output_keys(family))     # 1:1: the dataset it always was
     ds = builders.boundaries_dataset(res.curves, res.F, attrs)
-    ds["family"].attrs["long_name"] = "orbit family of the curve (WALLS/N[-sym|-asym])"
-    ds["flight"].attrs["long_name"] = ("grazing flight k (from impact k to impact k + 1 of "
-                                       "the sequence; 0: not a grazing curve)")
-    ds["wall"].attrs["long_name"] = ("grazing wall (L or R: touched inside the flight; "
-                                     "arrival: zero relative velocity at the impact; empty: "
-                                     "not a grazing curve)")
+    for name, long_name in family.engine.curve_long_names.items():
+        ds[name].attrs["long_name"] = long_name
     return ds
 
 

@@ -1,9 +1,10 @@
 """Curves of codimension-one points of a family's orbits in the (eta, omega) plane at fixed
 F: ``boundaries(F, eta_range, omega_range, walls=..., periods=...)``, the entry point.
 
-The 1:1 orbits are traced by ``curves.one_to_one`` (shooting systems with exact jets, seeds
-from scan lines and the class changes of a stability map), every other wall sequence by
-``curves.sequence`` (systems on the composed maps, seeds from continuations through the
+Each engine of the family (``Family.engine``) has its curve seeding here, ``TRACERS``: the
+1:1 orbits (``JETS``) by ``curves.one_to_one`` (shooting systems with exact jets, seeds from
+scan lines and the class changes of a stability map), every other wall sequence (``MAPS``)
+by ``curves.sequence`` (systems on the composed maps, seeds from continuations through the
 crossings of the scan lines); both on the one tracer of ``curves.tracer``. These curves are
 the edges of the classes of ``stability_map`` (Fig 16).
 """
@@ -25,7 +26,8 @@ from ...core.params import (
     check_real,
     check_reals,
 )
-from ..family.family import JETS, Family
+from ..family.engine import JETS, MAPS
+from ..family.family import Family
 from .one_to_one import one_to_one_curves
 from .sequence import sequence_boundaries
 from .tracer import CurveSettings
@@ -46,8 +48,8 @@ class Boundaries:
         out = {"F": self.F, "eta_range": list(self.eta_range),
                "omega_range": list(self.omega_range),
                "curves": [c.to_dict() for c in self.curves]}
-        if Family(self.walls, self.periods).engine != JETS:     # 1:1 as it always was
-            out.update(walls=self.walls, periods=self.periods)
+        family = Family(self.walls, self.periods)
+        out.update(family.engine.output_keys(family))
         return out
 
 
@@ -75,14 +77,26 @@ def boundaries(F: float, eta_range: Sequence[float], omega_range: Sequence[float
     class_map = check_class_map(class_map)
     family = Family.checked(walls, periods)
     p = ModelParams(eta=1.0, omega=1.0, F=F, r=r, d=d)     # validates r and d
-    if family.engine == JETS:
-        curves = one_to_one_curves(p, box, settings, (n_scan, n_map, class_map))
-    elif class_map is not None:
+    if class_map is not None and not family.engine.class_map_seeds:
         raise ParameterError("class_map", "(eta, omega, cls)", "must be None for a "
                              "family other than 1:1 (walls LR, periods 1)")
-    else:
-        curves = sequence_boundaries(p, family.key, box, (n_scan, settings))
+    curves = TRACERS[family.engine.name](p, family, box, (n_scan, n_map, class_map, settings))
     return Boundaries(F, box[0], box[1], curves, *family.key)
+
+
+def _jets_curves(p: ModelParams, family: Family, box: tuple, seeding: tuple) -> list:
+    n_scan, n_map, class_map, settings = seeding
+    return one_to_one_curves(p, box, settings, (n_scan, n_map, class_map))
+
+
+def _maps_curves(p: ModelParams, family: Family, box: tuple, seeding: tuple) -> list:
+    n_scan, _, _, settings = seeding
+    return sequence_boundaries(p, family.key, box, (n_scan, settings))
+
+
+#: the curve seeding of each engine (``family.engine``): (model, family, box, (n_scan, n_map,
+#: class_map, curve settings)) -> curves
+TRACERS = {JETS: _jets_curves, MAPS: _maps_curves}
 
 
 def check_class_map(class_map):

@@ -22,14 +22,14 @@ Seeds (every seed is polished by that Newton iteration on the true maps, then de
 One solver serves both interfaces: ``orbit_solve``/``orbit_classify``/``seed_kernel`` (end
 of the module) work nogil on float rows, for threaded per-point drivers
 (``stability_map``); ``solve_orbit``/``seed_orbits`` wrap the same compiled Newton and seeds
-into ``PeriodicOrbit`` objects (eigenvalues by numpy; the compiled ones by scipy's dgeev,
-``lapack``: the same bits where numpy and scipy share a LAPACK build).
+into ``PeriodicOrbit`` objects (``orbit``, the one orbit type of every family; eigenvalues
+by numpy; the compiled ones by scipy's dgeev, ``lapack``: the same bits where numpy and
+scipy share a LAPACK build).
 """
 from __future__ import annotations
 
 import math
 from collections.abc import Iterable
-from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -51,7 +51,7 @@ from ..maps.affine import scan as affine_scan
 from ..maps.impact import M_PHI, admissible_kernel, model_array
 from ..maps.lapack import lambda_max_4
 from ..maps.newton import monodromy, newton_sequence
-from .orbit import OrbitBase
+from .orbit import KEYS_1TO1, PeriodicOrbit
 
 SYM_TOL = 1e-6          # flight times equal to this: symmetric
 DEDUP_TOL = 1e-8
@@ -79,64 +79,6 @@ def asymmetric_seeds(mdl: np.ndarray) -> np.ndarray:
 
 # --------------------------------------------------------------------------- orbits
 
-@dataclass(kw_only=True)
-class PeriodicOrbit(OrbitBase):
-    """One 1:1 orbit (fixed point of P2∘P1) and its stability (``OrbitBase``).
-
-    x_L, x_R        pre-impact states (z_m', z_b', z_b, t) at L and at R (t_L in [0, T))
-    flight_times    [L->R, R->L]
-    eigenvalues     of J_P2(x_R) J_P1(x_L); lambda_max = max |eigenvalue|
-    stable          all |lambda| < 1 and admissible
-    dw_L, dw_R      relative velocity w' = z_m' - z_b' just before the L and R impacts
-    phase_L/_R      impact phases mod(omega t + phi, 2 pi)
-    """
-
-    x_L: np.ndarray
-    x_R: np.ndarray
-    dw_L: float
-    dw_R: float
-    phase_L: float
-    phase_R: float
-
-    # the fields of ``sequence.SequenceOrbit`` (any wall sequence), so that code written
-    # for any family reads a 1:1 orbit as the orbit of the family LR/1
-    walls = "LR"
-    periods = 1
-
-    @property
-    def family(self) -> str:
-        return "LR/1"
-
-    @property
-    def states(self) -> np.ndarray:
-        """Pre-impact states at L and R, as ``SequenceOrbit.states``."""
-        return np.array([self.x_L, self.x_R])
-
-    @property
-    def dw(self) -> np.ndarray:
-        return np.array([self.dw_L, self.dw_R])
-
-    @property
-    def phases(self) -> np.ndarray:
-        return np.array([self.phase_L, self.phase_R])
-
-    def to_dict(self) -> dict:
-        return {
-            "symmetric": bool(self.symmetric),
-            "admissible": bool(self.admissible),
-            "stable": bool(self.stable),
-            "lambda_max": float(self.lambda_max),
-            "eigenvalues": [[float(z.real), float(z.imag)] for z in self.eigenvalues],
-            "dw_L": float(self.dw_L),
-            "dw_R": float(self.dw_R),
-            "phase_L": float(self.phase_L),
-            "phase_R": float(self.phase_R),
-            "flight_times": [float(s) for s in self.flight_times],
-            "x_L": [float(v) for v in self.x_L],
-            "x_R": [float(v) for v in self.x_R],
-        }
-
-
 def solve_orbit(p: ModelParams, x0: ArrayLike, s1: float = -1.0, s2: float = -1.0,
                 osc: np.ndarray | None = None) -> PeriodicOrbit | None:
     """Newton from x0 (flight-time guesses s1, s2, <= 0: first contact); the orbit, or None
@@ -160,8 +102,9 @@ def monodromy_eigenvalues(J1: np.ndarray, J2: np.ndarray) -> np.ndarray:
 
 def classify_orbit(p: ModelParams, mdl: np.ndarray, x: np.ndarray, xR: np.ndarray, jacobians: tuple,
            fl: np.ndarray, res: float) -> PeriodicOrbit:
-    """The PeriodicOrbit with pre-impact states x (at L), xR (at R), map Jacobians
-    (J_P1(x), J_P2(xR)), flight times fl and Newton residual res."""
+    """The 1:1 PeriodicOrbit (walls LR, one period; ``to_dict`` in the 1:1 solver's keys)
+    with pre-impact states x (at L), xR (at R), map Jacobians (J_P1(x), J_P2(xR)), flight
+    times fl and Newton residual res."""
     J1, J2 = jacobians
     adm = bool(admissible_kernel(mdl, x, (WALL_L, WALL_R), fl[0])
                and admissible_kernel(mdl, xR, (WALL_R, WALL_L), fl[1]))
@@ -169,12 +112,15 @@ def classify_orbit(p: ModelParams, mdl: np.ndarray, x: np.ndarray, xR: np.ndarra
     ev = ev[np.argsort(-np.abs(ev))]
     lam = float(np.hypot(ev.real, ev.imag).max())      # as ``lapack.lambda_max_4``
     two_pi = 2.0 * math.pi
+    dw_L, dw_R = float(x[0] - x[1]), float(xR[0] - xR[1])
+    phase_L = float(np.mod(p.omega * x[3] + p.phi, two_pi))
+    phase_R = float(np.mod(p.omega * xR[3] + p.phi, two_pi))
     return PeriodicOrbit(
-        x_L=x.copy(), x_R=xR.copy(), flight_times=[float(fl[0]), float(fl[1])],
-        symmetric=bool(abs(fl[0] - fl[1]) <= SYM_TOL), admissible=adm, eigenvalues=ev,
-        lambda_max=lam, stable=bool(adm and lam < 1.0), dw_L=float(x[0] - x[1]),
-        dw_R=float(xR[0] - xR[1]), phase_L=float(np.mod(p.omega * x[3] + p.phi, two_pi)),
-        phase_R=float(np.mod(p.omega * xR[3] + p.phi, two_pi)), residual=float(res), params=p)
+        walls="LR", periods=1, states=np.array([x, xR]),
+        flight_times=[float(fl[0]), float(fl[1])], dw=np.array([dw_L, dw_R]),
+        phases=np.array([phase_L, phase_R]), symmetric=bool(abs(fl[0] - fl[1]) <= SYM_TOL),
+        admissible=adm, eigenvalues=ev, lambda_max=lam, stable=bool(adm and lam < 1.0),
+        residual=float(res), jacobians=np.array([J1, J2]), params=p, keys=KEYS_1TO1)
 
 
 def _dedup(orbits: list, T: float) -> list:
@@ -245,7 +191,7 @@ def find_1to1(eta: float, omega: float, F: float, r: float = R_DEFAULT, d: float
                        simulation=check_bool("simulation", simulation))
 
 
-SEEDS_ALLOWED = ("must be None or a list of seeds, each a PeriodicOrbit, an x_L = "
+SEEDS_ALLOWED = ("must be None or a list of seeds, each a PeriodicOrbit of walls LR, an x_L = "
                  "(z_m', z_b', z_b, t_L) of 4 finite numbers or a pair (x_L, (s1, s2))")
 
 
@@ -259,6 +205,8 @@ def check_seeds(seeds: Iterable | None) -> list:
     out = []
     for sd in seeds:
         if isinstance(sd, PeriodicOrbit):
+            if sd.walls != "LR":        # an orbit of another sequence seeds no 1:1 orbit
+                raise ParameterError("seeds", seeds, SEEDS_ALLOWED)
             out.append(sd)
             continue
         try:

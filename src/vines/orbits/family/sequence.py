@@ -9,20 +9,10 @@ exact Jacobian J_{n-1} ... J_0 - I (``newton.newton_sequence``, the iteration of
 ``periodic`` as well). Admissibility flight by flight (``maps.admissible_kernel``), stability
 from the eigenvalues of J_{n-1} ... J_0.
 
-Seeds (each polished by that Newton iteration, then deduplicated):
-
-* "LR", 1: the seeds of ``periodic`` (symmetric closed form, asymmetric flight-time scan),
-  so that the 1:1 orbits are those of ``find_1to1``;
-* half-period symmetry (n even, walls[k + n/2] = opposite of walls[k]): with the flight
-  times fixed, the conditions for x_{n/2} = mirror(x_0) + (0, 0, 0, periods T / 2) are affine
-  in (z_m', z_b', z_b, sin theta_0, cos theta_0) (``affine``, as in ``periodic``): closed form for
-  n = 2 (the symmetric "LR" orbits of any period), a scan of the first flight time for n = 4
-  ("LLRR");
-* short simulations (exact kernel) from a few initial states: the last occurrence of the
-  sequence in the impact record and in its mirror image (z -> -z, t -> t + T/2, a
-  trajectory as well);
-* caller-supplied seeds (``SequenceOrbit`` objects of the same sequence, e.g. from a
-  neighbouring parameter point, or (x_0, flight times) pairs).
+Seeds (each polished by that Newton iteration, then deduplicated): those of the family's
+engine (``Family.engine``, ``family.seeds``): the affine forms and short simulations; and
+caller-supplied seeds (orbits of the same sequence, e.g. from a neighbouring parameter
+point, or (x_0, flight times) pairs).
 
 A root whose orbit repeats a shorter sequence (e.g. "LRLR", 2 on a 1:1 orbit) is not an
 orbit of this family and is dropped.
@@ -30,8 +20,7 @@ orbit of this family and is dropped.
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable, Mapping, Sequence
-from dataclasses import dataclass, field
+from collections.abc import Iterable, Sequence
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -49,99 +38,37 @@ from ...core.params import (
     check_reals,
 )
 from ...core.walls import impact_velocities
-from ..maps.affine import closed_form_seeds, scan, scan_seeds  # noqa: F401 (scan_seeds: re-export)
+from ..maps.affine import scan_seeds  # noqa: F401 (re-export)
 from ..maps.impact import admissible_kernel, model_array
 from ..maps.newton import monodromy, newton_sequence
 from .family import (
-    JETS,
     WALL_CODES,
-    WALL_NAMES,
     Family,
     check_periods,
     check_walls,
-    family_name,
     has_half_symmetry,
     mirror_walls,
-    paper_label,
 )
-from .orbit import OrbitBase
-from .periodic import (
-    DEDUP_TOL,
-    SYM_TOL,
-    asymmetric_seeds,
-    simulation_seed,
-    symmetric_seeds,
-    theta_to_t,
+from .names import wall_codes
+from .orbit import (  # noqa: F401 (SequenceOrbit: re-export, the former name)
+    FAMILY_KEYS,
+    PeriodicOrbit,
+    SequenceOrbit,
 )
-
-SIM_T_END = 600.0               # length of a seeding simulation
-#: initial states (z_m, z_m', z_b, z_b') of the seeding simulations (rest first)
-SIM_STATES = ((0.0, 0.0, 0.0, 0.0), (0.0, 0.0, 0.9, 0.0), (0.0, 0.5, 0.0, -0.5),
-              (0.5, 0.0, -0.4, 0.0))
-
-
-def _codes(walls: str) -> np.ndarray:
-    """Wall codes of ``walls``, read-only (the kernels' one specialization, as ``periodic.LR``)."""
-    codes = np.array([WALL_CODES[c] for c in walls], dtype=np.int64)
-    codes.setflags(write=False)
-    return codes
-
+from .periodic import DEDUP_TOL, SYM_TOL
+from .seeds import (  # noqa: F401 (re-exports: the seeds' names as before)
+    SIM_STATES,
+    SIM_T_END,
+    mirror_record,
+    record_seed,
+    simulation_seeds,
+)
 
 # --------------------------------------------------------------------------- orbits
 
-@dataclass(kw_only=True)
-class SequenceOrbit(OrbitBase):
-    """One periodic orbit of a wall sequence and its stability (``OrbitBase``).
-
-    walls         the wall sequence ("LLRR"), impact k at wall walls[k]
-    periods       forcing periods of the orbit (its period is periods * T)
-    states        (n, 4) pre-impact states x_k = (z_m', z_b', z_b, t), t_0 in [0, T)
-    flight_times  n flight times, flight k from impact k to impact k+1 (cyclically)
-    symmetric     invariant under the mirror z -> -z with t -> t + periods T / 2 (flight k
-                  as long as flight k + n/2, walls opposite; only for odd periods)
-    eigenvalues   of J_{n-1} ... J_0 (the Jacobians of the maps along the orbit);
-                  lambda_max = max |eigenvalue|
-    admissible    every flight is a genuine impact-to-impact flight (``maps``)
-    stable        admissible and lambda_max < 1
-    dw            relative velocity w' = z_m' - z_b' just before each impact
-    phases        impact phases mod(omega t + phi, 2 pi)
-    """
-
-    walls: str
-    periods: int
-    states: np.ndarray
-    dw: np.ndarray
-    phases: np.ndarray
-    jacobians: np.ndarray = field(default=None, repr=False)
-
-    @property
-    def family(self) -> str:
-        return family_name(self.walls, self.periods)
-
-    @property
-    def paper_label(self) -> str:
-        return paper_label(self.walls, self.periods)
-
-    def to_dict(self) -> dict:
-        return {
-            "walls": self.walls,
-            "periods": int(self.periods),
-            "family": self.family,
-            "paper_label": self.paper_label,
-            "symmetric": bool(self.symmetric),
-            "admissible": bool(self.admissible),
-            "stable": bool(self.stable),
-            "lambda_max": float(self.lambda_max),
-            "eigenvalues": [[float(z.real), float(z.imag)] for z in self.eigenvalues],
-            "dw": [float(v) for v in self.dw],
-            "phases": [float(v) for v in self.phases],
-            "flight_times": [float(v) for v in self.flight_times],
-            "states": [[float(v) for v in x] for x in self.states],
-        }
-
-
 def is_symmetric(walls: str, periods: int, flight_times: ArrayLike) -> bool:
-    """The orbit with these flight times has the half-period symmetry (class docstring)."""
+    """The orbit with these flight times has the half-period symmetry
+    (``orbit.PeriodicOrbit.symmetric``)."""
     n = len(walls)
     if periods % 2 == 0 or not has_half_symmetry(walls):
         return False
@@ -150,26 +77,26 @@ def is_symmetric(walls: str, periods: int, flight_times: ArrayLike) -> bool:
 
 
 def _orbit(p: ModelParams, mdl: np.ndarray, walls: str, periods: int, xs: np.ndarray,
-           Js: np.ndarray, fl: np.ndarray, res: float) -> SequenceOrbit:
+           Js: np.ndarray, fl: np.ndarray, res: float) -> PeriodicOrbit:
     n = len(walls)
-    codes = _codes(walls)
+    codes = wall_codes(walls)
     adm = all(admissible_kernel(mdl, xs[k], (codes[k], codes[(k + 1) % n]), fl[k])
               for k in range(n))
     ev = np.linalg.eigvals(monodromy(list(Js)))
     ev = ev[np.argsort(-np.abs(ev))]
     lam = float(np.hypot(ev.real, ev.imag).max())
     states = xs[:n].copy()
-    return SequenceOrbit(
+    return PeriodicOrbit(
         walls=walls, periods=periods, states=states, flight_times=fl.copy(),
         symmetric=is_symmetric(walls, periods, fl), admissible=bool(adm), eigenvalues=ev,
         lambda_max=lam, stable=bool(adm and lam < 1.0), dw=states[:, 0] - states[:, 1],
         phases=np.mod(p.omega * states[:, 3] + p.phi, 2.0 * math.pi), residual=float(res),
-        jacobians=Js.copy(), params=p)
+        jacobians=Js.copy(), params=p, keys=FAMILY_KEYS)
 
 
 def solve_sequence(p: ModelParams, walls: str, periods: int, x0: ArrayLike,
                    flight_times: ArrayLike | None = None,
-                   osc: np.ndarray | None = None) -> SequenceOrbit | None:
+                   osc: np.ndarray | None = None) -> PeriodicOrbit | None:
     """Newton from x0 (pre-impact state at walls[0]) with optional flight-time guesses.
 
     The orbit found (any admissibility), or None when Newton fails, a flight time is not
@@ -178,7 +105,7 @@ def solve_sequence(p: ModelParams, walls: str, periods: int, x0: ArrayLike,
     """
     mdl = model_array(p, osc)
     n = len(walls)
-    codes = _codes(walls)
+    codes = wall_codes(walls)
     T = p.period
     NT = periods * T
     s = np.full(n, -1.0) if flight_times is None else np.array(flight_times, dtype=float)
@@ -213,7 +140,7 @@ def _primitive(walls, periods, xs, fl, T) -> bool:
     return True
 
 
-def same_orbit(a: SequenceOrbit, b: SequenceOrbit, T: float) -> bool:
+def same_orbit(a: PeriodicOrbit, b: PeriodicOrbit, T: float) -> bool:
     """a and b are the same orbit (b possibly started at another impact of the same
     wall pattern), to DEDUP_TOL."""
     if a.walls != b.walls or a.periods != b.periods:
@@ -231,7 +158,7 @@ def same_orbit(a: SequenceOrbit, b: SequenceOrbit, T: float) -> bool:
     return False
 
 
-def dedup(orbits: Iterable[SequenceOrbit | None], T: float) -> list[SequenceOrbit]:
+def dedup(orbits: Iterable[PeriodicOrbit | None], T: float) -> list[PeriodicOrbit]:
     """The orbits without None and repeats (``same_orbit``), first occurrences kept."""
     out = []
     for o in orbits:
@@ -242,97 +169,24 @@ def dedup(orbits: Iterable[SequenceOrbit | None], T: float) -> list[SequenceOrbi
 
 # --------------------------------------------------------------------------- seeds
 
-def _seeds_1to1(p: ModelParams, mdl: np.ndarray) -> list:
-    """The built-in seeds of ``periodic.seed_orbits`` (same order), as (x_0, flights)."""
-    T = p.period
-    out = [([vm, vb, zb, theta_to_t(th, p)], [0.5 * T, 0.5 * T])
-           for vm, vb, zb, th in symmetric_seeds(mdl)]
-    out += [([vm, vb, zb, theta_to_t(th, p)], [s1, T - s1])
-            for vm, vb, zb, th, s1 in asymmetric_seeds(mdl)]
-    return out
-
-
 def affine_seeds(p: ModelParams, osc: np.ndarray | None, walls: str, periods: int) -> list:
-    """Seeds (x_0, flight times) from the affine forms (module docstring): the symmetric
-    ansatz when the sequence has the half symmetry and periods is odd (closed form for two
-    impacts, a scan for four), the full two-flight scan for two impacts."""
+    """Seeds (x_0, flight times) from the affine forms of the family's engine
+    (``family.seeds``)."""
     mdl = model_array(p, osc)
-    if Family(walls, periods).engine == JETS:
-        return _seeds_1to1(p, mdl)
-    n = len(walls)
-    NT = periods * p.period
-    codes = _codes(walls)
-    out = []
-    if has_half_symmetry(walls) and periods % 2 == 1:
-        h = n // 2
-        S = 0.5 * NT
-        if h == 1:
-            for vm, vb, zb, th in closed_form_seeds(mdl, codes, S, -1):
-                out.append(([vm, vb, zb, theta_to_t(th, p)], [S, S]))
-        elif h == 2:
-            out += _scan(p, mdl, (codes, S, -1), lambda s0: [s0, S - s0, s0, S - s0])
-    if n == 2:
-        out += _scan(p, mdl, (codes, NT, 1), lambda s0: [s0, NT - s0])
-    elif n == 1:
-        for vm, vb, zb, th in closed_form_seeds(mdl, codes, NT, 1):
-            out.append(([vm, vb, zb, theta_to_t(th, p)], [NT]))
-    return out
+    return Family(walls, periods).engine.affine_seeds(p, mdl, walls, periods)
 
 
-def _scan(p: ModelParams, mdl: np.ndarray, chain: tuple, flights) -> list:
-    """Seeds (x_0, flights(s0)) of ``affine.scan`` of chain = (walls codes, S, sign)."""
-    return [([vm, vb, zb, theta_to_t(th, p)], flights(s0))
-            for vm, vb, zb, th, s0 in scan(mdl, *chain)]
-
-
-def mirror_record(imp, T) -> dict:
-    return {"wall": -imp["wall"], "v_m": -imp["v_m"], "v_b": -imp["v_b"],
-            "z_b": -imp["z_b"], "t": imp["t"] + 0.5 * T}
-
-
-def record_seed(imp: Mapping[str, np.ndarray], walls: str) -> tuple[list, list] | None:
-    """(x_0, flight times) at the last occurrence of the sequence (and its first wall
-    again) in an impact record (fields wall, v_m, v_b, z_b, t), or None."""
-    n = len(walls)
-    text = "".join(WALL_NAMES.get(int(w), "?") for w in imp["wall"])
-    k = text.rfind(walls + walls[0])
-    if k < 0:
-        return None
-    t = imp["t"]
-    x0 = [imp["v_m"][k], imp["v_b"][k], imp["z_b"][k], t[k]]
-    return x0, list(np.diff(t[k:k + n + 1]))
-
-
-def simulation_seeds(p: ModelParams, walls: str, states: Sequence = SIM_STATES,
-                     t_end: float = SIM_T_END) -> list:
-    """Seeds from short exact simulations from ``states`` (and their mirror images)."""
-    from ...core.simulation import simulate_exact
-    out = []
-    for state0 in states:
-        try:
-            st = SolverSettings(t_end=t_end, t_transient=0.5 * t_end, max_impacts=200_000,
-                                state0=state0)
-            res = simulate_exact(p, st)
-        except (ParameterError, RuntimeError):     # pragma: no cover - a seed is optional
-            continue
-        for rec in (res.impacts, mirror_record(res.impacts, p.period)):
-            sd = record_seed(rec, walls)
-            if sd is not None:
-                out.append(sd)
-    return out
-
-
-def _sort_key(o: SequenceOrbit):
+def _sort_key(o: PeriodicOrbit):
     return (not o.admissible, not o.stable, not o.symmetric, o.lambda_max)
 
 
 def find_sequence(params: ModelParams, walls: str, periods: int = 1, *,
                   seeds: list | None = None, simulation: bool = True,
-                  sim_states: Sequence = SIM_STATES) -> list[SequenceOrbit]:
+                  sim_states: Sequence = SIM_STATES) -> list[PeriodicOrbit]:
     """Every distinct orbit of the sequence found (admissible or not), stable admissible
     ones first (the order of ``find_1to1``).
 
-    ``seeds``: extra starting points, each a ``SequenceOrbit`` of the same sequence (or of
+    ``seeds``: extra starting points, each a ``PeriodicOrbit`` of the same sequence (or of
     its mirror image, mirrored) or a pair (x_0, flight times). ``simulation``: also seed from
     short simulations from ``sim_states`` (for "LR", 1: from rest only, as ``find_1to1``).
     Raises ParameterError on a bad ``walls`` or ``periods``.
@@ -346,13 +200,10 @@ def find_sequence(params: ModelParams, walls: str, periods: int = 1, *,
     mdl = model_array(p)
     if p.F == 0.0:
         return []
-    starts = affine_seeds(p, mdl, walls, periods)
+    engine = Family(walls, periods).engine
+    starts = engine.affine_seeds(p, mdl, walls, periods)
     if simulation:
-        if Family(walls, periods).engine == JETS:
-            found_sim = simulation_seed(p, mdl)
-            starts += [(o.x_L, o.flight_times) for o in found_sim if o is not None]
-        else:
-            starts += simulation_seeds(p, walls, sim_states)
+        starts += engine.simulation_seeds(p, mdl, walls, sim_states)
     return solve_seeds(p, mdl, walls, periods, starts, seeds)
 
 
@@ -366,13 +217,13 @@ def _check_list(name, values) -> list:
 
 
 def check_sequence_seeds(seeds: object, walls: str) -> list:
-    """The seeds of ``find_sequence``: SequenceOrbits or pairs (x_0, flight times) with x_0
+    """The seeds of ``find_sequence``: PeriodicOrbits or pairs (x_0, flight times) with x_0
     4 finite numbers and one flight time per wall of ``walls``; ParameterError otherwise."""
-    allowed = ("must be None or a list of seeds, each a SequenceOrbit or a pair (x_0, flight "
+    allowed = ("must be None or a list of seeds, each a PeriodicOrbit or a pair (x_0, flight "
                f"times): x_0 4 finite numbers, {len(walls)} finite flight times")
     out = []
     for sd in _check_list("seeds", seeds):
-        if isinstance(sd, SequenceOrbit):
+        if isinstance(sd, PeriodicOrbit):
             out.append(sd)
             continue
         if not isinstance(sd, (list, tuple)) or len(sd) != 2:
@@ -402,7 +253,7 @@ def check_sim_t_end(value: object) -> float:
 
 
 def solve_seeds(p: ModelParams, osc: np.ndarray | None, walls: str, periods: int,
-                starts: Iterable, seeds: Iterable = ()) -> list[SequenceOrbit]:
+                starts: Iterable, seeds: Iterable = ()) -> list[PeriodicOrbit]:
     """Newton from every (x_0, flights) in ``starts`` and every seed of ``seeds`` (see
     ``find_sequence``); distinct orbits, stable admissible ones first."""
     starts = list(starts)
@@ -417,7 +268,7 @@ def solve_seeds(p: ModelParams, osc: np.ndarray | None, walls: str, periods: int
 def _user_seed(sd, walls: str, T: float) -> list:
     """(x_0, flights) from a seed: a pair, or an orbit of the same sequence or of its mirror
     image, started at any impact whose rotation of the sequence is ``walls``."""
-    if not isinstance(sd, SequenceOrbit):
+    if not isinstance(sd, PeriodicOrbit):
         x0, fl = sd
         return [(x0, fl)]
     out = []
@@ -435,7 +286,7 @@ def _user_seed(sd, walls: str, T: float) -> list:
 
 # --------------------------------------------------------------------------- flips, states
 
-def _real_eigenvector(orbit: SequenceOrbit, negative: bool):
+def _real_eigenvector(orbit: PeriodicOrbit, negative: bool):
     """Unit eigenvector of the most negative (negative) or largest positive real eigenvalue
     of the orbit's monodromy matrix, or None."""
     ev, V = np.linalg.eig(monodromy(list(orbit.jacobians)))
@@ -447,7 +298,7 @@ def _real_eigenvector(orbit: SequenceOrbit, negative: bool):
     return V[:, k].real / np.linalg.norm(V[:, k].real)
 
 
-def flip_seeds(orbit: SequenceOrbit, eps: Sequence[float] = (1e-3, 1e-2, 3e-2)) -> list:
+def flip_seeds(orbit: PeriodicOrbit, eps: Sequence[float] = (1e-3, 1e-2, 3e-2)) -> list:
     """Seeds of the period-doubled sequence (walls twice, 2 periods) near ``orbit``: its
     start displaced by +- eps along the eigenvector of its most negative real eigenvalue
     (a flip point of the family gives birth to that branch). Empty without such an
@@ -459,7 +310,7 @@ def flip_seeds(orbit: SequenceOrbit, eps: Sequence[float] = (1e-3, 1e-2, 3e-2)) 
     return [(orbit.states[0] + sg * e * v, fl) for e in eps for sg in (1.0, -1.0)]
 
 
-def pitchfork_seeds(orbit: SequenceOrbit, eps: Sequence[float] = (1e-2, 5e-2)) -> list:
+def pitchfork_seeds(orbit: PeriodicOrbit, eps: Sequence[float] = (1e-2, 5e-2)) -> list:
     """Seeds of asymmetric orbits of the same sequence near a symmetric ``orbit``: its start
     displaced by +- eps along the eigenvector of its largest positive real eigenvalue (a
     symmetry-breaking point gives birth to the asymmetric pair there)."""
@@ -469,7 +320,7 @@ def pitchfork_seeds(orbit: SequenceOrbit, eps: Sequence[float] = (1e-2, 5e-2)) -
     return [(orbit.states[0] + sg * e * v, orbit.flight_times) for e in eps for sg in (1.0, -1.0)]
 
 
-def state_at(orbit: SequenceOrbit, t: float) -> np.ndarray:
+def state_at(orbit: PeriodicOrbit, t: float) -> np.ndarray:
     """State (z_m, z_m', z_b, z_b') of the orbit at absolute time t (any t: the orbit is
     periodic with period periods T), by the closed-form flight from the impact before t."""
     p = orbit.params
