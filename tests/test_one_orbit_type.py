@@ -243,3 +243,14 @@ def test_only_the_registry_decides_by_the_family():
         if name not in TABLES and re.search(r"import[^\n]*\b(JETS|MAPS)\b", text):
             hits.append(f"{name}: imports JETS/MAPS")
     assert not hits, hits
+
+
+def test_continue_branch_takes_the_orbits_of_its_family_only():
+    """One orbit type for every family: the 1:1 continuation refuses an LLRR orbit with
+    the one-line error naming ``orbit`` (not an AttributeError on x_L)."""
+    from vines.core.params import ParameterError
+    from vines.orbits.continuation.one_to_one import continue_branch
+    llrr = next(o for o in find_sequence(FOUR, "LLRR", 1, simulation=False) if o.symmetric)
+    with pytest.raises(ParameterError, match="orbit.*1:1 PeriodicOrbit"):
+        continue_branch("omega", FOUR.omega, FOUR.omega + 0.01,
+                        fixed={"eta": FOUR.eta, "F": FOUR.F}, orbit=llrr)

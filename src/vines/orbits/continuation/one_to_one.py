@@ -51,7 +51,7 @@ from ...core.params import (
     ParameterError,
 )
 from ...core.walls import WALL_L, WALL_R
-from ..family.family import MIRROR_MATRIX
+from ..family.family import MIRROR_MATRIX, ONE_TO_ONE
 from ..family.periodic import PeriodicOrbit, orbits_1to1, solve_orbit
 from ..jets import shooting as sh
 from ..maps.impact import map_jacobian
@@ -157,8 +157,9 @@ def continue_branch(param: str, start: float, stop: float, step: float | None = 
                               fixed=_check_fixed(fixed), min_step=min_step, event_tol=event_tol,
                               max_points=max_points, method=method, branch=branch,
                               switch=switch, max_inadmissible=max_inadmissible)
-    if orbit is not None and not isinstance(orbit, PeriodicOrbit):
-        raise ParameterError("orbit", orbit, "must be None or a PeriodicOrbit (find_1to1)")
+    if orbit is not None and not (isinstance(orbit, PeriodicOrbit)
+                                  and (orbit.walls, orbit.periods) == ONE_TO_ONE.key):
+        raise ParameterError("orbit", orbit, "must be None or a 1:1 PeriodicOrbit (find_1to1)")
     kw = dict(cs.fixed)
     kw[cs.param] = cs.start
     p0 = ModelParams(eta=kw["eta"], omega=kw["omega"], F=kw["F"], r=r, d=d, phi=phi)
