@@ -51,16 +51,26 @@ BRANCHES = {
     "LRLR/2": ("omega", 0.78, 0.005, "flip"),
 }
 TARGET = {"fold": 1.0, "symmetry-breaking": 1.0, "flip": -1.0}
+#: points where every orbit found (both kinds, admissible or not) is checked: the
+#: families' points, and for 1:1 omega < 1, = 1 (Fig 6: eta 0.05 symmetric, 0.035 an
+#: asymmetric pair) and > 1
+POINTS = [((0.55, 1.0, 0.4), "LR", 1), ((0.142, 0.755, 0.2), "LR", 1),
+          ((0.05, 1.0, 0.05), "LR", 1), ((0.035, 1.0, 0.05), "LR", 1),
+          ((0.6, 0.9, 0.3077), "LR", 1), ((0.3, 1.1, 0.3077), "LR", 1),
+          ((0.2, 0.8, 0.4), "LLRR", 1), ((0.142, 0.765, 0.2), "LRLR", 2)]
+
+
+def _found(point, walls, periods):
+    """Every orbit of walls/periods found at ``point`` (1:1: ``find_1to1``)."""
+    if (walls, periods) == ("LR", 1):
+        return find_1to1(*point, simulation=False)
+    return find_sequence(ModelParams(*point), walls, periods)
 
 
 def _orbits(name, point):
-    """Every orbit of the family at ``point`` (the 1:1 ones from ``find_1to1``)."""
+    """Every orbit of the family at ``point``."""
     _, walls, periods, sym = FAMILIES[name]
-    if (walls, periods) == ("LR", 1):
-        found = find_1to1(*point, simulation=False)
-    else:
-        found = find_sequence(ModelParams(*point), walls, periods)
-    return [o for o in found if o.symmetric == sym]
+    return [o for o in _found(point, walls, periods) if o.symmetric == sym]
 
 
 @pytest.fixture(scope="module", params=list(FAMILIES))
@@ -71,6 +81,14 @@ def family(request):
     stable = [o for o in found if o.stable]
     assert stable, f"no stable {name} orbit"
     return name, stable[0], found
+
+
+@pytest.fixture(scope="module", params=POINTS, ids=lambda c: f"{c[1]}/{c[2]}-{c[0]}")
+def every_orbit(request):
+    """Every orbit found at one of ``POINTS``."""
+    found = _found(*request.param)
+    assert found
+    return found
 
 
 def _span(o) -> float:
@@ -92,34 +110,37 @@ def _closure(o):
     return "".join(reached), float(np.abs(np.array(states) - expect).max()), tol
 
 
-def test_orbit_is_a_fixed_point_of_independent_flights(family):
-    """Impact law and free flight by scipy from x_0: every flight ends first on the next
-    wall of the sequence (an admissible orbit: no earlier contact) at the orbit's next
-    pre-impact state, and after the whole sequence at x_0 one orbit period later."""
-    _, o, _ = family
-    assert o.admissible
-    reached, err, tol = _closure(o)
-    assert reached == o.walls[1:] + o.walls[0]
-    assert err <= tol, (err, tol)
+def test_orbit_is_a_fixed_point_of_independent_flights_iff_admissible(every_orbit):
+    """Impact law and free flight by scipy from x_0: for an admissible orbit every
+    flight ends first on the next wall of the sequence at the orbit's next pre-impact
+    state, and the last at x_0 one orbit period later; a non-admissible one is not so
+    reproduced (an earlier wall contact, or an "impact" moving away from its wall)."""
+    for o in every_orbit:
+        reached, err, tol = _closure(o)
+        closes = reached == o.walls[1:] + o.walls[0] and err <= tol
+        assert closes == o.admissible, (o.walls, o.admissible, reached, err, tol)
 
 
-def test_flights_cover_the_period_and_the_flags_agree(family):
-    """Every orbit of the family (admissible or not) reads the same: one flight time,
-    dw and phase per impact, flights adding up to periods T, lambda_max the largest
-    |eigenvalue|, stable iff admissible with lambda_max < 1, the dw and phases those of
-    its states (SPEC.md: w' = z_m' - z_b', phase = mod(omega t + phi, 2 pi)). The flights
-    add up to the period to Newton's accuracy in the impact times (1e-9 relative: the
-    unstable LLRR orbit, lambda_max ~ 8e3, is the least accurate, ~2e-12)."""
-    _, _, found = family
-    for o in found:
+def test_flights_cover_the_period_and_the_flags_agree(every_orbit):
+    """Every orbit reads the same, whatever its family: one flight time, dw and phase
+    per impact, t_0 in [0, T), flights adding up to periods T, eigenvalues by decreasing
+    modulus, lambda_max the largest, stable iff admissible with lambda_max < 1, the dw
+    and phases those of its states (SPEC.md: w' = z_m' - z_b', phase = mod(omega t +
+    phi, 2 pi)). The flights add up to the period to Newton's accuracy in the impact
+    times (1e-9 relative: the unstable LLRR orbit, lambda_max ~ 8e3, is the least
+    accurate, ~2e-12)."""
+    for o in every_orbit:
         n = len(o.walls)
+        p = o.params
         assert len(o.flight_times) == n == len(o.dw) == len(o.phases) == len(o.states)
+        assert 0.0 <= o.states[0, 3] < p.period
         assert sum(o.flight_times) == pytest.approx(_span(o), rel=1e-9)
         assert np.all(np.asarray(o.flight_times) > 0.0)
-        assert o.lambda_max == pytest.approx(np.abs(o.eigenvalues).max(), rel=1e-12)
+        mods = np.abs(o.eigenvalues)
+        assert np.all(np.diff(mods) <= 1e-12 * mods.max())
+        assert o.lambda_max == pytest.approx(mods.max(), rel=1e-12)
         assert o.stable == (o.admissible and o.lambda_max < 1.0)
         np.testing.assert_allclose(o.dw, o.states[:, 0] - o.states[:, 1], rtol=0, atol=1e-15)
-        p = o.params
         ph = np.mod(p.omega * o.states[:, 3] + p.phi, 2 * math.pi)
         d = np.abs(ph - o.phases)
         assert np.all(np.minimum(d, 2 * math.pi - d) <= 1e-12)
@@ -149,26 +170,27 @@ def _mirrored(o, t, shift):
     return -state_at(o, t + shift)
 
 
-def test_mirror_image(family):
-    """A symmetric orbit is its own mirror image (z -> -z) half its period later; an
-    asymmetric one is not (whatever the shift T/2 + k T), and its mirror image is the
-    other orbit of its pair, found at the same point, with the same eigenvalues (the
-    mirror conjugates the monodromy)."""
-    name, o, found = family
-    T = o.params.period
-    ts = o.states[0, 3] + _span(o) * (np.arange(23) + 0.37) / 23   # no impact instant
+def test_mirror_image(every_orbit):
+    """The mirror image (z -> -z, T/2 later) of every orbit is an orbit found at the same
+    point: itself half its period later where it is symmetric (and only there, whatever
+    the shift T/2 + k T), else the other orbit of its pair, with the same eigenvalues
+    (the mirror conjugates the monodromy)."""
+    for o in every_orbit:
+        T = o.params.period
+        ts = o.states[0, 3] + _span(o) * (np.arange(23) + 0.37) / 23   # no impact instant
 
-    def distance(q, shift):
-        return max(float(np.abs(_mirrored(o, t, shift) - state_at(q, t)).max()) for t in ts)
+        def distance(q, shift, o=o, ts=ts):
+            return max(float(np.abs(_mirrored(o, t, shift) - state_at(q, t)).max())
+                       for t in ts)
 
-    if FAMILIES[name][3]:
-        assert o.symmetric and distance(o, 0.5 * _span(o)) <= 1e-10
-        return
-    shifts = [(k + 0.5) * T for k in range(o.periods)]
-    assert not o.symmetric and min(distance(o, sh) for sh in shifts) > 1e-3
-    twin = min(found, key=lambda q: min(distance(q, sh) for sh in shifts))
-    assert twin is not o and min(distance(twin, sh) for sh in shifts) <= 1e-9
-    _assert_same_spectrum(twin.eigenvalues, o.eigenvalues, 1e-9 * max(1.0, o.lambda_max))
+        if o.symmetric:
+            assert distance(o, 0.5 * _span(o)) <= 1e-10
+            continue
+        shifts = [(k + 0.5) * T for k in range(o.periods)]
+        assert min(distance(o, sh) for sh in shifts) > 1e-3
+        twin = min(every_orbit, key=lambda q: min(distance(q, sh) for sh in shifts))
+        assert twin is not o and min(distance(twin, sh) for sh in shifts) <= 1e-9
+        _assert_same_spectrum(twin.eigenvalues, o.eigenvalues, 1e-9 * max(1.0, o.lambda_max))
 
 
 def _return_map(o, x):
