@@ -311,11 +311,28 @@ def test_every_branch_point_is_a_fixed_point_of_independent_flights(family, bran
             assert reached == o.walls[1:] + o.walls[0] and err <= tol, (err, tol)
 
 
+#: how close in its parameter an event is located, at most (``ContinuationSettings``'s
+#: default event_tol: the 1:1 natural mode's bisection; the arclength modes locate to 1e-10)
+EVENT_TOL = 1e-6
+
+
+def _gap(o, target):
+    """(the real eigenvalue of the integrated return map nearest target, less target;
+    that eigenvalue's tolerance)."""
+    mu, tol = fd_monodromy(o)
+    real = mu[np.abs(mu.imag) <= tol].real
+    return real[np.argmin(np.abs(real - target))] - target, tol
+
+
 def test_branch_events_satisfy_their_defining_condition(family, branch):
-    """The expected event is found, once; an eigenvalue of the integrated return map
-    (``fd_monodromy``) crosses its value (+1 or -1) between the branch points on either
-    side of it, and the event lies between them in the parameter (a fold: the branch
-    turns there, both on one side)."""
+    """The expected event is found, once, and
+    * an eigenvalue of the integrated return map (``fd_monodromy``) crosses its value
+      (+1 or -1) between the branch points on either side of it, and the event lies
+      between them in the parameter (a fold: the branch turns there, both on one side);
+    * the orbit solved afresh at the event's parameter has that eigenvalue, to the
+      return map's tolerance plus how far it moves over ``EVENT_TOL``: linearly with the
+      slope between the neighbours (flip, symmetry-breaking), like the square root of
+      the distance to a fold (the neighbour before it gives the factor)."""
     name = family[0]
     points, events, param = branch
     typ = BRANCHES[name][3]
@@ -325,14 +342,20 @@ def test_branch_events_satisfy_their_defining_condition(family, branch):
     i = ev["index"]
     a, b = points[i - 1], points[i + 1]          # the event lies between them
     target = TARGET[typ]
-    gaps = []
-    for q in (a, b):
-        mu, tol = fd_monodromy(q)
-        real = mu[np.abs(mu.imag) <= tol].real
-        gaps.append(real[np.argmin(np.abs(real - target))] - target)
-    assert gaps[0] * gaps[1] < 0.0, gaps
+    (ga, _), (gb, _) = _gap(a, target), _gap(b, target)
+    assert ga * gb < 0.0, (ga, gb)
+    at = ev["at"]
     va, vb = getattr(a.params, param), getattr(b.params, param)
     if typ == "fold":
-        assert (va - ev["at"]) * (vb - ev["at"]) >= 0.0, (va, ev["at"], vb)
+        assert (va - at) * (vb - at) >= 0.0, (va, at, vb)
+        moves = abs(ga) * math.sqrt(EVENT_TOL / abs(va - at))
     else:
-        assert min(va, vb) <= ev["at"] <= max(va, vb), (va, ev["at"], vb)
+        assert min(va, vb) <= at <= max(va, vb), (va, at, vb)
+        moves = abs(gb - ga) / abs(vb - va) * EVENT_TOL
+    p = a.params
+    here = ModelParams(**{q: (at if q == param else getattr(p, q)) for q in ("eta", "omega", "F")})
+    again = find_sequence(here, a.walls, a.periods, simulation=False,
+                          seeds=[(a.states[0], a.flight_times)])
+    o = min(again, key=lambda q: np.abs(q.states[0] - a.states[0]).max())
+    g, tol = _gap(o, target)
+    assert abs(g) <= tol + moves, (g, tol, moves)
