@@ -21,6 +21,7 @@ import vines
 from vines.core.params import ModelParams
 from vines.orbits import (
     ContinuationSettings,
+    boundaries,
     continue_branch,
     continue_sequence,
     find_1to1,
@@ -359,3 +360,65 @@ def test_branch_events_satisfy_their_defining_condition(family, branch):
     o = min(again, key=lambda q: np.abs(q.states[0] - a.states[0]).max())
     g, tol = _gap(o, target)
     assert abs(g) <= tol + moves, (g, tol, moves)
+
+
+# --------------------------------------------------------------------------- curves
+
+#: family -> F, (eta, omega) box and scan lines of a ``boundaries`` run whose box holds a
+#: curve of the family's codimension-one point
+CURVES = {
+    "LR/1-sym": (0.4, ((0.45, 0.52), (0.97, 1.03)), 1, "symmetry-breaking"),
+    "LR/1-asym": (0.2, ((0.12, 0.16), (0.74, 0.78)), 1, "flip"),
+    "LLRR/1-sym": (0.4, ((0.2, 0.26), (0.77, 0.83)), 2, "symmetry-breaking"),
+    "LRLR/2": (0.2, ((0.12, 0.16), (0.76, 0.78)), 2, "flip"),
+}
+#: an eigenvalue crosses its value within this distance of a curve point (in eta or omega)
+CURVE_DELTA = 1e-6
+
+
+def _real_gap(o, target):
+    """The real eigenvalue of the orbit nearest target, less target (inf: none)."""
+    ev = o.eigenvalues
+    real = ev[np.abs(ev.imag) <= 1e-9 * max(1.0, np.abs(ev).max())].real
+    return float(real[np.argmin(np.abs(real - target))] - target) if real.size else math.inf
+
+
+def _crossing_near(walls, periods, point, F, target):
+    """True when an orbit at (eta, omega) = ``point`` has a real eigenvalue through
+    ``target`` within ``CURVE_DELTA`` of it along eta or omega: orbits solved afresh
+    (``find_sequence``), the one with the eigenvalue nearest target, then continued to
+    point +- CURVE_DELTA along each axis."""
+    found = find_sequence(ModelParams(*point, F), walls, periods)
+    o = min(found, key=lambda q: abs(_real_gap(q, target)))
+    for axis in (0, 1):
+        gaps = []
+        for sign in (-1.0, 1.0):
+            x = np.array(point, float)
+            x[axis] += sign * CURVE_DELTA
+            near = find_sequence(ModelParams(*x, F), walls, periods, simulation=False,
+                                 seeds=[(o.states[0], o.flight_times)])
+            q = min(near, key=lambda r: np.abs(r.states[0] - o.states[0]).max())
+            gaps.append(_real_gap(q, target))
+        if gaps[0] * gaps[1] < 0.0:
+            return True
+    return False
+
+
+@pytest.mark.parametrize("name", list(CURVES))
+def test_curve_points_are_where_an_eigenvalue_crosses(name):
+    """``boundaries`` in a box around the family's point finds its curve; at every point
+    of every flip (-1) and symmetry-breaking (+1: the monodromy is the half map squared)
+    curve there, an eigenvalue of the orbit solved afresh crosses its value within
+    ``CURVE_DELTA`` (the tracer solves augmented systems, not these eigenvalues)."""
+    _, walls, periods, _ = FAMILIES[name]
+    F, box, n_scan, kind = CURVES[name]
+    curves = boundaries(F, *box, walls=walls, periods=periods, n_scan=n_scan).curves
+    assert any(c.type == kind for c in curves), [c.type for c in curves]
+    checked = 0
+    for c in curves:
+        if c.type not in TARGET or c.type == "fold":
+            continue
+        for pt in c.points:
+            assert _crossing_near(walls, periods, tuple(pt), F, TARGET[c.type]), (c.type, pt)
+            checked += 1
+    assert checked >= 5
