@@ -373,7 +373,7 @@ CURVES = {
     "LRLR/2": (0.2, ((0.12, 0.16), (0.76, 0.78)), 2, "flip"),
 }
 #: an eigenvalue crosses its value within this distance of a curve point (in eta or omega)
-CURVE_DELTA = 1e-6
+CURVE_DELTA = 1e-8
 
 
 def _real_gap(o, target):
