@@ -53,12 +53,14 @@ BRANCHES = {
 }
 TARGET = {"fold": 1.0, "symmetry-breaking": 1.0, "flip": -1.0}
 #: points where every orbit found (both kinds, admissible or not) is checked: the
-#: families' points, and for 1:1 omega < 1, = 1 (Fig 6: eta 0.05 symmetric, 0.035 an
-#: asymmetric pair) and > 1
+#: families' points, for 1:1 omega < 1, = 1 (Fig 6: eta 0.05 symmetric, 0.035 an
+#: asymmetric pair) and > 1, and a non-admissible LLRR orbit with lambda_max 0.8 (not
+#: stable: stability needs admissibility)
 POINTS = [((0.55, 1.0, 0.4), "LR", 1), ((0.142, 0.755, 0.2), "LR", 1),
           ((0.05, 1.0, 0.05), "LR", 1), ((0.035, 1.0, 0.05), "LR", 1),
           ((0.6, 0.9, 0.3077), "LR", 1), ((0.3, 1.1, 0.3077), "LR", 1),
-          ((0.2, 0.8, 0.4), "LLRR", 1), ((0.142, 0.765, 0.2), "LRLR", 2)]
+          ((0.2, 0.8, 0.4), "LLRR", 1), ((0.15, 0.95, 0.4), "LLRR", 1),
+          ((0.142, 0.765, 0.2), "LRLR", 2)]
 
 
 def _found(point, walls, periods):
