@@ -285,11 +285,10 @@ def branch(family):
         fixed = {q: getattr(p, q) for q in ("eta", "omega", "F") if q != param}
         br = continue_branch(param, getattr(p, param), stop, step, fixed, orbit=o,
                              branch="symmetric" if o.symmetric else "asymmetric")
-        points = br.orbits
     else:
         br = continue_sequence(p, o.walls, o.periods, param, stop, orbit=o,
                                settings=ContinuationSettings(step=step))
-        points = br.points
+    points = br.points if hasattr(br, "points") else br.orbits     # any branch type
     return points, br.events, param
 
 
