@@ -1,49 +1,14 @@
-"""1:1 orbits from the maps: fixed-point property, agreement with long simulations and the
-paper's qualitative statements (Sec. 3, Figs. 6, 15)."""
+"""1:1 orbits from the maps: agreement with long simulations and the paper's qualitative
+statements (Sec. 3, Figs. 6, 15). What every family's orbits satisfy (fixed point of the
+integrated flights, flags, mirror pairs, eigenvalues) is in ``test_orbit_families``."""
 import math
 
 import numpy as np
 import pytest
 
 import vines
-from vines.core.params import ModelParams
 from vines.core.walls import WALL_L, WALL_R
 from vines.orbits.family.periodic import PeriodicOrbit, find_1to1
-from vines.orbits.maps.impact import apply_map, mirror
-
-
-@pytest.mark.parametrize("eta, W, F", [(0.05, 1.0, 0.05), (0.035, 1.0, 0.05),
-                                       (0.6, 0.9, 0.3077), (0.3, 1.1, 0.3077)])
-def test_orbit_is_fixed_point_of_P2_P1(eta, W, F):
-    p = ModelParams(eta, W, F)
-    orbits = find_1to1(eta, W, F, simulation=False)
-    assert orbits
-    for o in orbits:
-        y1, s1 = apply_map(p, o.x_L, WALL_L, WALL_R, t_guess=o.x_L[3] + o.flight_times[0])
-        y2, s2 = apply_map(p, y1, WALL_R, WALL_L, t_guess=y1[3] + o.flight_times[1])
-        target = o.x_L + np.array([0.0, 0.0, 0.0, p.period])
-        assert np.abs(y2 - target).max() <= 1e-10
-        assert s1 + s2 == pytest.approx(p.period, rel=1e-12)
-        assert o.symmetric == (abs(s1 - s2) <= 1e-6)
-        assert 0.0 <= o.x_L[3] < p.period
-        assert o.stable == (o.admissible and o.lambda_max < 1.0)
-        assert o.lambda_max == pytest.approx(np.abs(o.eigenvalues).max())
-        if o.symmetric:   # x_R is the mirror image of x_L half a period later
-            np.testing.assert_allclose(o.x_R, mirror(o.x_L, p.period), atol=1e-9)
-        d = o.to_dict()
-        assert {"symmetric", "admissible", "stable", "lambda_max", "eigenvalues", "dw_L",
-                "dw_R", "phase_L", "phase_R", "flight_times"} <= set(d)
-        assert len(d["eigenvalues"]) == 4 and all(len(e) == 2 for e in d["eigenvalues"])
-
-
-def test_asymmetric_orbits_come_in_mirror_pairs():
-    p = ModelParams(0.035, 1.0, 0.05)
-    asym = [o for o in find_1to1(0.035, 1.0, 0.05, simulation=False) if not o.symmetric]
-    assert len(asym) == 2
-    a, b = asym
-    assert a.flight_times[0] == pytest.approx(b.flight_times[1], rel=1e-9)
-    assert a.lambda_max == pytest.approx(b.lambda_max, rel=1e-8)
-    np.testing.assert_allclose(mirror(a.x_L, p.period)[:3], b.x_R[:3], atol=1e-9)
 
 
 @pytest.mark.parametrize("eta, W, F", [(0.05, 1.0, 0.05), (0.55, 1.0, 0.4), (0.45, 1.1, 0.4)])

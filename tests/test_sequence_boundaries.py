@@ -2,7 +2,9 @@
 
 Every check is against quantities the curve tracer does not use: the eigenvalues of the
 orbit solved afresh by ``solve_sequence`` at the curve's points, and brute-force scans of
-those eigenvalues along a line across the curve.
+those eigenvalues along a line across the curve. That every flip and symmetry-breaking
+curve point of LR/1, LLRR/1 and LRLR/2 lies where an eigenvalue crosses -1 or +1 is checked
+in ``test_orbit_families``.
 """
 import numpy as np
 import pytest
@@ -108,18 +110,6 @@ def test_fold_is_where_two_orbits_meet(llrr):
     # |lambda - 1| ~ c sqrt(delta): four times the distance, twice the gap (to 15 %)
     near, far = (np.mean(x) for x in sides[exist[0]])
     assert 1.7 < far / near < 2.3
-
-
-def test_flip_curve_points_have_eigenvalue_minus_one(lrlr2):
-    flips = [c for c in lrlr2 if c.type == "flip"]
-    assert flips
-    for c in flips:
-        system = _system(c, LRLR2)
-        for z in c.z:
-            o = orbit_of(system, z)
-            assert o is not None and o.admissible
-            err, tol = _eigen_tolerance(system, z, _half_map(o, False), -1.0)
-            assert err <= tol, (z[-2:], err, tol)
 
 
 def test_flip_curve_agrees_with_a_brute_force_eigenvalue_scan(lrlr2):
