@@ -159,7 +159,8 @@ def continue_branch(param: str, start: float, stop: float, step: float | None = 
                               switch=switch, max_inadmissible=max_inadmissible)
     if orbit is not None and not (isinstance(orbit, PeriodicOrbit)
                                   and (orbit.walls, orbit.periods) == ONE_TO_ONE.key):
-        raise ParameterError("orbit", orbit, "must be None or a 1:1 PeriodicOrbit (find_1to1)")
+        raise ParameterError("orbit", getattr(orbit, "family", type(orbit).__name__),
+                             "must be None or a 1:1 PeriodicOrbit (find_1to1)")
     kw = dict(cs.fixed)
     kw[cs.param] = cs.start
     p0 = ModelParams(eta=kw["eta"], omega=kw["omega"], F=kw["F"], r=r, d=d, phi=phi)
