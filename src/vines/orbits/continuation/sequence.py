@@ -32,6 +32,10 @@ continued, with switching at its own flips (``SequenceBranch.switched``).
 Termination: after the point that left [min(start, stop), max(start, stop)] (kept),
 ``max_points`` points, ``max_inadmissible`` consecutive non-admissible points (the start
 point not counted), or a step that cannot be corrected (smallest step: step * 1e-6).
+
+``method="natural"`` (``ContinuationSettings``): the one natural mode of every family
+(``natural.follow_natural``) on ``_NaturalSequence`` instead: parameter steps from start to
+stop with ``solve_sequence`` as the corrector, ending at a fold; no switching.
 """
 from __future__ import annotations
 
