@@ -119,3 +119,20 @@ def test_cli_walls_natural_prints_the_arclength_keys():
     assert json_paths(out["natural"]) == json_paths(out["arclength"])
     ev = out["natural"]["events"]
     assert [e["type"] for e in ev] == ["symmetry-breaking"] and ev[0]["meets"] is None
+
+
+def test_the_lr_family_on_both_engines_gives_one_natural_branch():
+    """LR/1-asym by the 1:1 solver (``continue_branch``) and as the wall sequence LR (the
+    maps' Newton of ``solve_sequence``): the same points and the same flip (to event_tol)."""
+    from vines.orbits.continuation.one_to_one import continue_branch
+    p = ModelParams(eta=0.142, omega=0.74, F=0.2)
+    one = continue_branch("omega", 0.74, 0.78, 0.002, {"eta": 0.142, "F": 0.2},
+                          method="natural", branch="asymmetric")
+    orbit = next(o for o in find_sequence(p, "LR", 1, simulation=False)
+                 if o.admissible and not o.symmetric)
+    seq = continue_sequence(p, "LR", 1, "omega", 0.78, orbit=orbit,
+                            settings=ContinueSettings(step=0.002, method="natural"))
+    assert [o.params.omega for o in seq.points] == pytest.approx(one.values, abs=1e-12)
+    assert [o.lambda_max for o in seq.points] == pytest.approx(one.lambda_max, rel=1e-8)
+    assert [e["type"] for e in seq.events] == [e["type"] for e in one.events] == ["flip"]
+    assert abs(seq.events[0]["at"] - one.events[0]["at"]) <= EVENT_TOL
