@@ -74,7 +74,7 @@ def test_continue_walls():
     ("periodic", ["--walls", "LQ"], "argument --walls: invalid walls = 'LQ'"),
     ("periodic", ["--walls", "LR", "--periods", "0"], "argument --periods: invalid periods"),
     ("periodic", ["--walls", "LR", "--periods", "2.5"], "argument --periods: invalid periods"),
-    ("continue", ["--walls", "LR", "--method", "natural"], "argument --method: "),
+    ("continue", ["--walls", "LR", "--method", "natural", "--switch"], "argument --switch: "),
     ("continue", ["--walls", "X"], "argument --walls: "),
     ("periodic", ["--walls", ""], "argument --walls: invalid walls = ''"),
     ("boundaries", ["--walls", ""], "argument --walls: invalid walls = ''"),

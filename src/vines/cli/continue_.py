@@ -73,7 +73,7 @@ def add_parser(subparsers) -> VinesArgumentParser:
                    help="refuse a step that needs more than N continuation points "
                         f"[integer >= 1 and <= {MAX_POINTS_MAX}; default {MAX_POINTS_DEFAULT}]")
     add_model_args(p, optional_group="model parameters (the two not continued are required)")
-    add_walls_args(p, "continue an orbit of this wall sequence (arclength only)")
+    add_walls_args(p, "continue an orbit of this wall sequence")
     p.add_argument("--all", action="store_true",
                    help="text output: every point of every branch (default: a summary with "
                         f"the events and {N_SAMPLES} points per branch)")
@@ -162,9 +162,9 @@ def _run_walls(args: argparse.Namespace, values: dict, stop: ModelParams) -> dic
 
     walls = check_walls(args.walls)
     periods = check_periods(args.periods)
-    if args.method != "arclength":
-        args._parser.error(f"argument --method: invalid method = {args.method!r}: must be "
-                           "arclength with --walls")
+    if args.switch and args.method != "arclength":
+        args._parser.error(f"argument --switch: not allowed with --method {args.method} "
+                           "(only with --method arclength)")
     step, max_points, max_inadmissible = _limits(args, values)
     start = dataclasses.replace(stop, **{args.param: values["start"]})
     symmetric = args.branch == "symmetric"
@@ -176,7 +176,8 @@ def _run_walls(args: argparse.Namespace, values: dict, stop: ModelParams) -> dic
                                     events=[], stopped=f"no {walls}/{periods} orbit at start",
                                     switched=[]))
         settings = ContinueSettings(step=step, switch=bool(args.switch),
-                                    max_points=max_points, max_inadmissible=max_inadmissible)
+                                    max_points=max_points, max_inadmissible=max_inadmissible,
+                                    method=args.method)
         br = continue_sequence(start, walls, periods, args.param, values["stop"],
                                orbit=cands[0], settings=settings)
     return branch_json(br)

@@ -10,30 +10,14 @@ Two methods:
   ``follower.follow``); symmetric or asymmetric orbits (``branch``), and with ``switch``
   the asymmetric branches born at the symmetric branch's symmetry-breaking points
   (``follower.switch_at``).
-* ``natural``: natural-parameter continuation. Predictor: secant through the last two
-  points (the orbit's x_L with unwrapped impact time and the flight times, extrapolated
-  linearly in the parameter); corrector: the Newton iteration of ``vines.periodic`` on
-  P2∘P1. A failed correction halves the step; when the step falls below ``min_step`` the
-  branch has (almost surely) reached a fold, which is recorded at the last converged
-  parameter and ends the continuation.
-
-Natural mode locates events between consecutive points by bisection to ``event_tol`` in
-the parameter:
-
-* the number of eigenvalues of J_P2 J_P1 outside the unit circle changes: the crossing
-  eigenvalue (the one closest to the unit circle at the located point) gives the type:
-  complex pair -> neimark-sacker, real -1 -> flip, real +1 -> fold. On a symmetric orbit
-  J_P2 J_P1 = (M J_P1)^2 with M = diag(-1, -1, -1, 1) (the mirror); a +1 crossing whose
-  half-map multiplier mu of M J_P1 is -1 is a symmetry-breaking (pitchfork), mu = +1 a fold;
-* the admissibility flag changes: admissibility-loss (either direction: a grazing contact);
-* the symmetric flag changes: symmetry-breaking.
-
-The natural mode stays 1:1-only and outside the loop: it has no tracer (a fixed parameter
-step, the Newton of ``periodic.solve_orbit`` at that parameter, secant predictor on
-(x_L, s1, s2)) and no test functions (events bisected in the parameter on eigenvalue
-counts and flags), it ends at the first fold by construction, and it is kept as the
-published cross-check of the arclength branches (``tests/test_arclength.py``); a wall
-sequence is continued by arclength only.
+* ``natural``: natural-parameter continuation, the one natural mode of every family
+  (``natural.follow_natural``) on the 1:1 family's ``_Continuer``: secant predictor on the
+  orbit's x_L (impact time unwrapped) and flight times, corrector the Newton iteration of
+  ``vines.periodic`` on P2∘P1; it ends at the first fold (the step falls below
+  ``min_step``); events bisected in the parameter to ``event_tol`` on the eigenvalue count
+  and the admissible and symmetric flags, a crossing typed on the half map M J_P1 of a
+  symmetric orbit (fold vs symmetry-breaking). It is the published cross-check of the
+  arclength branches (``tests/test_arclength.py``) and the stored branch of ``map_solve``.
 """
 from __future__ import annotations
 
@@ -57,34 +41,15 @@ from ..jets import shooting as sh
 from ..maps.impact import map_jacobian
 from .branch import EVENT_TYPES, Branch, make_branch
 from .follower import follow, start_unknowns
+from .natural import NaturalProblem, follow_natural
 from .settings import ContinuationSettings
 
 __all__ = ["continue_branch", "continue_orbit", "ContinuationSettings", "Branch", "EVENT_TYPES"]
 
 
-def _n_outside(o: PeriodicOrbit) -> int:
-    return int(np.sum(np.abs(o.eigenvalues) > 1.0))
-
-
-def _crossing_type(o: PeriodicOrbit, J1=None) -> str:
-    ev = o.eigenvalues
-    k = int(np.argmin(np.abs(np.abs(ev) - 1.0)))
-    lam = ev[k]
-    if abs(lam.imag) > 1e-6 * max(1.0, abs(lam)):
-        return "neimark-sacker"
-    if lam.real < 0.0:
-        return "flip"
-    if o.symmetric and J1 is not None:
-        mu = np.linalg.eigvals(MIRROR_MATRIX @ J1)
-        j = int(np.argmin(np.abs(np.abs(mu) - 1.0)))
-        if abs(mu[j].imag) < 1e-6 and mu[j].real < 0.0:
-            return "symmetry-breaking"
-    return "fold"
-
-
-class _Continuer:
-    """Orbits along the continued parameter (natural mode): the model p0 with the parameter
-    set to a value."""
+class _Continuer(NaturalProblem):
+    """Orbits along the continued parameter (natural mode, ``natural.NaturalProblem``): the
+    model p0 with the parameter set to a value; the unknowns (x_L, s1, s2)."""
 
     def __init__(self, cs: ContinuationSettings, p0: ModelParams):
         self.param, self.p0 = cs.param, p0
@@ -92,7 +57,7 @@ class _Continuer:
     def params(self, value: float) -> ModelParams:
         return replace(self.p0, **{self.param: value})
 
-    def solve(self, value: float, x: np.ndarray, s1: float, s2: float) -> PeriodicOrbit | None:
+    def orbit(self, value: float, x: np.ndarray, s1: float, s2: float) -> PeriodicOrbit | None:
         p = self.params(value)
         o = solve_orbit(p, x, s1, s2)
         if o is None:
@@ -105,29 +70,23 @@ class _Continuer:
             o.x_R[3] += k * T
         return o
 
-    def jac1(self, value: float, o: PeriodicOrbit) -> np.ndarray:
-        return map_jacobian(self.params(value), o.x_L, WALL_L, WALL_R,
-                            t_guess=o.x_L[3] + o.flight_times[0])
+    def solve(self, value: float, x: np.ndarray):
+        o = self.orbit(value, x[:4], x[4], x[5])
+        return None if o is None else (o, _state(o))
+
+    def jumped(self, o: PeriodicOrbit, x_pred: np.ndarray, value: float) -> bool:
+        return abs(o.flight_times[0] - x_pred[4]) > 0.25 * self.params(value).period
+
+    def half_map(self, value: float, o: PeriodicOrbit) -> np.ndarray | None:
+        if not o.symmetric:
+            return None
+        J1 = map_jacobian(self.params(value), o.x_L, WALL_L, WALL_R,
+                          t_guess=o.x_L[3] + o.flight_times[0])
+        return MIRROR_MATRIX @ J1
 
 
 def _state(o):
     return np.concatenate([o.x_L, o.flight_times])
-
-
-def _predict(v, pts):
-    """Secant (or constant) prediction of (x_L, s1, s2) at parameter v from [(v, orbit)]."""
-    if len(pts) == 1:
-        return _state(pts[-1][1])
-    (v0, o0), (v1, o1) = pts[-2], pts[-1]
-    a, b = _state(o0), _state(o1)
-    if v1 == v0:
-        return b
-    return b + (b - a) * (v - v1) / (v1 - v0)
-
-
-def _interp(v, va, oa, vb, ob):
-    a, b = _state(oa), _state(ob)
-    return a + (b - a) * (v - va) / (vb - va)
 
 
 def continue_branch(param: str, start: float, stop: float, step: float | None = None,
@@ -180,7 +139,7 @@ def continue_orbit(cs: ContinuationSettings, p0: ModelParams,
             return make_branch(cs.param, [], [], f"no {cs.branch} 1:1 orbit at start")
         orbit = cands[0]
     else:
-        orbit = cont.solve(cs.start, orbit.x_L, *orbit.flight_times)
+        orbit = cont.orbit(cs.start, orbit.x_L, *orbit.flight_times)
         if orbit is None:
             return make_branch(cs.param, [], [], "the given orbit does not converge at start")
     if cs.method == "natural":
@@ -209,66 +168,7 @@ def _arclength(cs: ContinuationSettings, p0: ModelParams, orbit: PeriodicOrbit) 
 
 
 def _natural(cont: _Continuer, cs: ContinuationSettings, orbit: PeriodicOrbit) -> Branch:
-    """Natural-parameter continuation (module docstring)."""
-    start, stop, step, min_step = cs.start, cs.stop, cs.step_size, cs.min_step
-    sign = cs.sign
-    param = cs.param
-    pts = [(start, orbit)]
-    events = []
-    h = step
-    stopped = "done"
-    while True:
-        v_prev, o_prev = pts[-1]
-        if (stop - v_prev) * sign <= 1e-12 * max(1.0, abs(stop)):
-            break
-        v = v_prev + sign * h
-        if (v - stop) * sign > 0.0:
-            v = stop
-        pred = _predict(v, pts)
-        o = cont.solve(v, pred[:4], pred[4], pred[5])
-        if o is None or abs(o.flight_times[0] - pred[4]) > 0.25 * cont.params(v).period:
-            h *= 0.5
-            if h < min_step:
-                events.append({"type": "fold", "at": v_prev})
-                stopped = "fold or loss of convergence"
-                break
-            continue
-        _locate_events(cont, v_prev, o_prev, v, o, events, cs.event_tol)
-        pts.append((v, o))
-        progress.advance(abs(v - v_prev))
-        h = min(step, 1.5 * h)
-    events.sort(key=lambda e: sign * e["at"])
-    return make_branch(param, pts, events, stopped)
-
-
-def _signature(cont, o):
-    return _n_outside(o), o.admissible, o.symmetric
-
-
-def _locate_events(cont, va, oa, vb, ob, events, tol):
-    sa, sb = _signature(cont, oa), _signature(cont, ob)
-    if sa == sb:
-        return
-    for idx, kind in ((0, "stability"), (1, "admissibility-loss"), (2, "symmetry-breaking")):
-        if sa[idx] == sb[idx]:
-            continue
-        lo, olo, hi, ohi = va, oa, vb, ob
-        while abs(hi - lo) > tol:
-            mid = 0.5 * (lo + hi)
-            pred = _interp(mid, lo, olo, hi, ohi)
-            om = cont.solve(mid, pred[:4], pred[4], pred[5])
-            if om is None:
-                break
-            if _signature(cont, om)[idx] == sa[idx]:
-                lo, olo = mid, om
-            else:
-                hi, ohi = mid, om
-        at = 0.5 * (lo + hi)
-        if kind == "stability":
-            # type from the point just outside/inside, whichever is closer to |lambda| = 1
-            o_near = olo if abs(olo.lambda_max - 1.0) < abs(ohi.lambda_max - 1.0) else ohi
-            v_near = lo if o_near is olo else hi
-            typ = _crossing_type(o_near, cont.jac1(v_near, o_near) if o_near.symmetric else None)
-        else:
-            typ = kind
-        events.append({"type": typ, "at": at})
+    """Natural-parameter continuation (``natural.follow_natural``)."""
+    pts, events, stopped = follow_natural(cont, cs.start, cs.stop, cs.step_size, cs.min_step,
+                                          cs.event_tol, orbit, _state(orbit))
+    return make_branch(cs.param, [(v, o) for v, o, _ in pts], events, stopped)

@@ -34,6 +34,10 @@ continued, with switching at its own flips (``SequenceBranch.switched``).
 Termination: after the point that left [min(start, stop), max(start, stop)] (kept),
 ``max_points`` points, ``max_inadmissible`` consecutive non-admissible points (the start
 point not counted), or a step that cannot be corrected (smallest step: step * 1e-6).
+
+``method="natural"`` (``ContinuationSettings``): the one natural mode of every family
+(``natural.follow_natural``) on ``_NaturalSequence`` instead: parameter steps from start to
+stop with ``solve_sequence`` as the corrector, ending at a fold; no switching.
 """
 from __future__ import annotations
 
@@ -72,6 +76,7 @@ from ..maps.newton import monodromy
 from .arclength import Tracer
 from .branch import SequenceBranch
 from .loop import Follower, Found, Problem
+from .natural import NaturalProblem, follow_natural, half_map
 from .settings import ContinuationSettings
 
 FLIP_NEAR = 1e-3        # a located flip needs an eigenvalue this close to -1 (not a pole)
@@ -295,6 +300,9 @@ def continue_sequence(params: ModelParams, walls: str, periods: int, param: str,
     if stop == start:
         raise ParameterError("stop", stop, f"must differ from the start {param} = {start:g}")
     settings = _check_settings(settings, params, param, stop)
+    if settings.method == "natural" and settings.switch:
+        raise ParameterError("switch", settings.switch,
+                             "must be False with method natural (switching needs arclength)")
     if orbit is not None and not (isinstance(orbit, SequenceOrbit)
                                   and len(orbit.flight_times) == len(walls)):
         raise ParameterError("orbit", orbit, f"must be None or a SequenceOrbit of {walls}/"
@@ -305,8 +313,11 @@ def continue_sequence(params: ModelParams, walls: str, periods: int, param: str,
             return SequenceBranch(walls=walls, periods=periods, param=param, points=[],
                                   stopped=f"no {walls}/{periods} orbit at start")
         orbit = found[0]
+    run = _Run(params, walls, periods, param, start, stop, settings)
+    if settings.method == "natural":
+        return _natural(run, orbit)
     with progress.task(None, f"{walls}/{periods} branch in {param}", "points"):
-        return _trace(_Run(params, walls, periods, param, start, stop, settings), orbit)
+        return _trace(run, orbit)
 
 
 def _check_settings(settings, params: ModelParams, param: str,
@@ -341,6 +352,59 @@ def _trace(run: _Run, orbit: SequenceOrbit) -> SequenceBranch:
     if run.settings.switch:
         br.switched.extend(fw.switched())
     return br
+
+
+class _NaturalSequence(NaturalProblem):
+    """A wall sequence's part of the natural mode (``natural.follow_natural``): the unknowns
+    (x_0 with its impact time unwrapped towards the guess, the n flight times), the
+    corrector ``solve_sequence``, the half map from the orbit's map Jacobians."""
+
+    def __init__(self, run: _Run) -> None:
+        self.run = run
+
+    def params(self, value: float) -> ModelParams:
+        return with_values(self.run.params, {self.run.param: value})
+
+    def solve(self, value: float, x: np.ndarray):
+        p = self.params(value)
+        o = solve_sequence(p, self.run.walls, self.run.periods, x[:4], x[4:])
+        return None if o is None else (o, _unknowns(o, x[3], p.period))
+
+    def jumped(self, o: SequenceOrbit, x_pred: np.ndarray, value: float) -> bool:
+        jump = float(np.max(np.abs(o.flight_times - x_pred[4:])))
+        return jump > 0.25 * self.params(value).period
+
+    def half_map(self, value: float, o: SequenceOrbit) -> np.ndarray | None:
+        return half_map(o.jacobians) if o.symmetric else None
+
+    def event(self, typ: str, at: float, index: int, o: SequenceOrbit) -> dict:
+        p = self.params(at)
+        return {"type": typ, "at": float(at), "eta": p.eta, "omega": p.omega, "F": p.F,
+                "index": index, "_orbit": o}
+
+
+def _unknowns(o: SequenceOrbit, t_guess: float, T: float) -> np.ndarray:
+    """(x_0, flight times) of o, its impact time shifted by whole periods T towards
+    t_guess."""
+    x = np.concatenate([o.states[0], o.flight_times])
+    x[3] += round((t_guess - x[3]) / T) * T
+    return x
+
+
+def _natural(run: _Run, orbit: SequenceOrbit) -> SequenceBranch:
+    """Natural-parameter continuation from ``orbit`` (solved again at the start)."""
+    prob = _NaturalSequence(run)
+    got = prob.solve(run.start, np.concatenate([orbit.states[0], orbit.flight_times]))
+    if got is None:
+        return SequenceBranch(walls=run.walls, periods=run.periods, param=run.param,
+                              points=[], stopped=SequenceProblem.stops["start"])
+    cs = run.settings
+    with progress.task(abs(run.stop - run.start),
+                       f"{run.walls}/{run.periods} branch in {run.param}", run.param):
+        pts, events, stopped = follow_natural(prob, run.start, run.stop, run.step,
+                                              cs.min_step, cs.event_tol, *got)
+    return SequenceBranch(walls=run.walls, periods=run.periods, param=run.param,
+                          points=[o for _, o, _ in pts], events=events, stopped=stopped)
 
 
 def _symmetry_breaking(sys_, st) -> SequenceOrbit | None:

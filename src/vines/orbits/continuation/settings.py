@@ -48,8 +48,10 @@ class ContinuationSettings:
     max_inadmissible  end after this many consecutive non-admissible points
     switch            also continue the branches born at symmetry-breaking (and, for a
                       wall sequence, flip) points
-    min_step, event_tol, method, branch: the 1:1 continuation only (a wall sequence:
-                      arclength from the orbit given, smallest step step * 1e-6)
+    method            arclength or natural (``natural``), for every family
+    min_step, event_tol: the natural mode and the 1:1 arclength continuation (a wall
+                      sequence's arclength: smallest step step * 1e-6)
+    branch            the 1:1 continuation only
     """
 
     param: str | None = None
