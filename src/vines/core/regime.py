@@ -13,6 +13,8 @@ last periods of the window: period p if max_k |x_(k+p) - x_k| <= PERIOD_TOL * ma
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from .tally import ImpactTally
@@ -25,7 +27,7 @@ N_STROBE = 64
 
 def strobe_times(period: float, t_transient: float, t_end: float, n: int = N_STROBE) -> np.ndarray:
     """The last n stroboscopic times t_transient + k T inside the window."""
-    k_max = int(np.floor((t_end - t_transient) / period + 1e-12))
+    k_max = math.floor((t_end - t_transient) / period + 1e-12)
     if t_transient + k_max * period > t_end:     # a window of whole periods, rounded up
         k_max -= 1
     k = np.arange(max(0, k_max - n + 1), k_max + 1)
