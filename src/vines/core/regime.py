@@ -37,9 +37,9 @@ def strobe_times(period: float, t_transient: float, t_end: float, n: int = N_STR
 def detect_period(strobe: np.ndarray, max_period: int = MAX_PERIOD, tol: float = PERIOD_TOL) -> int:
     """Smallest p with strobe[:, k + p] == strobe[:, k] (to tol), or 0 if none."""
     n = strobe.shape[1]
-    scale = max(1.0, float(np.max(np.abs(strobe)))) if n else 1.0
+    scale = max(1.0, float(np.abs(strobe).max())) if n else 1.0
     for p in range(1, min(max_period, n // 2) + 1):
-        if np.max(np.abs(strobe[:, p:] - strobe[:, :-p])) <= tol * scale:
+        if np.abs(strobe[:, p:] - strobe[:, :-p]).max() <= tol * scale:
             return p
     return 0
 

@@ -40,12 +40,12 @@ class ImpactTally:
         """Add a block of impacts (times t in time order, walls +-1), later than every block
         before. The window and the span are slices of the block, found by one binary search
         (a short run's measures cost mostly numpy calls: no masks)."""
-        i0, lo, hi = np.searchsorted(t, (self.t_transient, self.lo, self.hi))
+        i0, lo, hi = t.searchsorted((self.t_transient, self.lo, self.hi))
         wall = wall[i0:]
         if wall.size == 0:
             return
         self.n_window += int(wall.size)
-        change = np.flatnonzero(wall[1:] != wall[:-1])
+        change = (wall[1:] != wall[:-1]).nonzero()[0]
         lengths = np.diff(np.concatenate(([-1], change, [wall.size - 1])))
         if wall[0] == self._last_wall:
             lengths[0] += self._run
