@@ -54,7 +54,7 @@ class Trajectory:
                                                  or times.max() > self.t_last)):
             lo = seg[0, 0] if seg.shape[0] else math.nan
             raise ValueError(f"times must lie in the recorded span [{lo:g}, {self.t_last:g}]")
-        return self.on_segments(np.searchsorted(seg[:, 0], times, side="right") - 1, times)
+        return self.on_segments(seg[:, 0].searchsorted(times, side="right") - 1, times)
 
     def on_segments(self, idx, times) -> np.ndarray:
         """States (4, n) at ``times`` on the closed form of the recorded segments ``idx``
