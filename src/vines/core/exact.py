@@ -50,10 +50,11 @@ class Trajectory:
     def __call__(self, times) -> np.ndarray:
         times = np.ascontiguousarray(np.atleast_1d(times), dtype=float)
         seg = self.segments
-        if seg.shape[0] == 0 or np.any(times < seg[0, 0]) or np.any(times > self.t_last):
+        if seg.shape[0] == 0 or (times.size and (times.min() < seg[0, 0]
+                                                 or times.max() > self.t_last)):
             lo = seg[0, 0] if seg.shape[0] else math.nan
             raise ValueError(f"times must lie in the recorded span [{lo:g}, {self.t_last:g}]")
-        return self.on_segments(np.searchsorted(seg[:, 0], times, side="right") - 1, times)
+        return self.on_segments(seg[:, 0].searchsorted(times, side="right") - 1, times)
 
     def on_segments(self, idx, times) -> np.ndarray:
         """States (4, n) at ``times`` on the closed form of the recorded segments ``idx``

@@ -61,7 +61,7 @@ def make_osc(m: float, d: float, omega: float, F: float) -> np.ndarray:
     ``params.MAX_GAIN``) are refused by ``exact.oscillators`` (``check_conditioning``);
     undamped ones use the exact resonance or the near-resonant form (module docstring).
     """
-    osc = np.zeros(N_OSC)
+    osc = [0.0] * N_OSC                 # filled as a list (cheaper), returned as an array
     sigma = d / (2.0 * m)
     om2 = 1.0 / m
     kappa = om2 - sigma * sigma
@@ -86,7 +86,7 @@ def make_osc(m: float, d: float, omega: float, F: float) -> np.ndarray:
         osc[I_PC] = -F * m * d * omega ** 3 / den
         osc[I_PAMP] = math.hypot(osc[I_PS], osc[I_PC])
     osc[I_RATE] = max(osc[I_OM], omega, sigma + (osc[I_SQ] if kappa < 0 else 0.0))
-    return osc
+    return np.array(osc)
 
 
 @njit(cache=True, nogil=True)

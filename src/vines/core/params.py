@@ -117,7 +117,7 @@ def _allowed(lo, hi, lo_open, hi_open) -> str:
 
 def check_real(name, value, *, lo=None, hi=None, lo_open=False, hi_open=False) -> float:
     """Return ``value`` as a float or raise ParameterError naming ``name``."""
-    x = _as_float(name, value)
+    x = value if type(value) is float and math.isfinite(value) else _as_float(name, value)
     if (lo is not None and (x < lo or (lo_open and x == lo))) \
             or (hi is not None and (x > hi or (hi_open and x == hi))):
         raise ParameterError(name, value, _allowed(lo, hi, lo_open, hi_open))
@@ -171,6 +171,8 @@ def check_step_points(step_given, span: float, step: float, max_points: int,
 
 def check_bool(name, value) -> bool:
     """True or False (also numpy booleans and the integers 0 and 1); else ParameterError."""
+    if isinstance(value, bool):       # the usual case, without the lookups below
+        return value
     numpy_bool = getattr(getattr(value, "dtype", None), "kind", "") == "b" \
         and getattr(value, "ndim", 1) == 0
     if isinstance(value, bool) or numpy_bool or (

@@ -13,6 +13,8 @@ last periods of the window: period p if max_k |x_(k+p) - x_k| <= PERIOD_TOL * ma
 """
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from .tally import ImpactTally
@@ -25,7 +27,7 @@ N_STROBE = 64
 
 def strobe_times(period: float, t_transient: float, t_end: float, n: int = N_STROBE) -> np.ndarray:
     """The last n stroboscopic times t_transient + k T inside the window."""
-    k_max = int(np.floor((t_end - t_transient) / period + 1e-12))
+    k_max = math.floor((t_end - t_transient) / period + 1e-12)
     if t_transient + k_max * period > t_end:     # a window of whole periods, rounded up
         k_max -= 1
     k = np.arange(max(0, k_max - n + 1), k_max + 1)
@@ -35,9 +37,9 @@ def strobe_times(period: float, t_transient: float, t_end: float, n: int = N_STR
 def detect_period(strobe: np.ndarray, max_period: int = MAX_PERIOD, tol: float = PERIOD_TOL) -> int:
     """Smallest p with strobe[:, k + p] == strobe[:, k] (to tol), or 0 if none."""
     n = strobe.shape[1]
-    scale = max(1.0, float(np.max(np.abs(strobe)))) if n else 1.0
+    scale = max(1.0, float(np.abs(strobe).max())) if n else 1.0
     for p in range(1, min(max_period, n // 2) + 1):
-        if np.max(np.abs(strobe[:, p:] - strobe[:, :-p])) <= tol * scale:
+        if np.abs(strobe[:, p:] - strobe[:, :-p]).max() <= tol * scale:
             return p
     return 0
 

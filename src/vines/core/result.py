@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -103,10 +103,9 @@ class SimulationResult:
     def __post_init__(self):
         # every number a Python float or int, whatever a backend computed it in (a numpy
         # scalar's .item() is the same number)
-        for f in fields(self):
-            value = getattr(self, f.name)
+        for name, value in vars(self).items():
             if isinstance(value, np.generic):
-                setattr(self, f.name, value.item())
+                setattr(self, name, value.item())
 
     @property
     def xmax_m(self) -> float:
