@@ -191,10 +191,13 @@ def _multipliers(br, ev):
 
 FAMILY_CASES = {
     # id: (branch, event type, its multiplier, stop reason, the family switched onto)
+    # (walls, periods, the families it switches onto in turn)
     "LR/1-sym": (_lr_sym, "symmetry-breaking", 1.0, "left the parameter interval",
-                 "asymmetric"),
+                 ("LR", 1, [])),
     "LR/1-asym": (_lr_asym, "flip", -1.0, "left the parameter interval", None),
-    "LLRR/1-sym": (_llrr_sym, "symmetry-breaking", 1.0, "left the interval", "LLRR/1"),
+    # the asymmetric LLRR/1 flips in turn: switched onto the period-doubled LLRRLLRR/2
+    "LLRR/1-sym": (_llrr_sym, "symmetry-breaking", 1.0, "left the interval",
+                   ("LLRR", 1, [("LLRRLLRR", 2)])),
     "LRLR/2": (_lrlr, "flip", -1.0, "left the interval", None),
 }
 
@@ -212,17 +215,11 @@ def test_every_family_through_the_one_loop(name):
         return
     (sub,) = br.switched
     assert sub.born_at["type"] == typ and sub.born_at["at"] == ev["at"]
-    if hasattr(sub, "walls"):
-        assert f"{sub.walls}/{sub.periods}" == born
-        assert not any(o.symmetric for o in sub.points)
-        first = getattr(sub.points[0].params, sub.param)
-        # the asymmetric orbit flips in turn: switched onto the period-doubled LLRRLLRR/2
-        assert [(b.walls, b.periods) for b in sub.switched] == [("LLRRLLRR", 2)]
-    else:
-        assert sub.family == born and not sub.symmetric.any()
-        first = sub.values[0]
+    # one branch type for every family: the asymmetric branch born there
+    assert (sub.walls, sub.periods) == born[:2] and not any(o.symmetric for o in sub.orbits)
+    assert [(b.walls, b.periods) for b in sub.switched] == born[2]
     # born next to the event (within the first step of 0.001 / 0.002)
-    assert abs(first - ev["at"]) < 0.002
+    assert abs(getattr(sub.orbits[0].params, sub.param) - ev["at"]) < 0.002
 
 
 def test_both_engines_locate_the_same_lr_events():
