@@ -14,7 +14,7 @@ from vines.orbits.continuation.arclength import NEWTON_TOL
 from vines.orbits.curves.boundaries import boundaries
 from vines.orbits.curves.sequence import crossings, family_from_name
 from vines.orbits.family.map_systems import make_system, orbit_of
-from vines.orbits.family.sequence import pitchfork_seeds, solve_sequence
+from vines.orbits.family.sequence import orbit_through, pitchfork_seeds, solve_sequence
 
 #: the 2:2 orbits of Fig 9 (eta 0.2, omega 0.8, F 0.4): a fold of the symmetric family
 LLRR = dict(F=0.4, box=((0.1, 0.3), (0.7, 0.9)), walls="LLRR", periods=1)
@@ -78,6 +78,22 @@ def test_fold_curve_points_have_eigenvalue_one(llrr):
             assert err <= tol, (z[-2:], err, tol)
             # the monodromy matrix (the half map squared) has the eigenvalue +1 too
             assert np.min(np.abs(o.eigenvalues - 1.0)) <= 3.0 * tol
+
+
+def test_curve_points_are_classified_as_they_stand(llrr):
+    """``orbit_of`` classifies the curve point itself (``orbit_through``, no second Newton:
+    at a fold the residual's Jacobian A - I is singular and a fresh solve from the point
+    drifts by about the square root of its tolerance, enough to flip a marginal
+    admissibility): its start is the point's, its residual the point's own; a start 1e-7
+    off the orbit stays off (a Newton solve would return to the orbit)."""
+    (fold,) = [c for c in llrr if c.type == "fold"]
+    z = fold.z[len(fold.z) // 2]
+    o = orbit_of(_system(fold, LLRR), z)
+    assert np.array_equal(o.states[0, :3], z[:3]) and o.residual < 1e-9
+    p = ModelParams(eta=z[4], omega=z[5], F=LLRR["F"])
+    x_off = z[:4] + np.array([1e-7, 0.0, 0.0, 0.0])
+    off = orbit_through(p, "LLRR", 1, x_off, o.flight_times)
+    assert np.array_equal(off.states[0, :3], x_off[:3]) and off.residual > 1e-9
 
 
 def test_fold_is_where_two_orbits_meet(llrr):

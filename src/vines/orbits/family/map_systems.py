@@ -51,7 +51,7 @@ from ..jets import chain as jet_chain
 from ..maps.impact import impact_map, model_array
 from ..maps.newton import monodromy
 from .family import MIRROR_SIGNS, WALL_CODES, Family
-from .sequence import SequenceOrbit, solve_sequence
+from .sequence import SequenceOrbit, orbit_through
 from .systems import KINDS, compound2
 
 FD_PARAM = 1e-7         # relative central-difference step of a parameter column
@@ -362,7 +362,8 @@ def unknowns(orbit: SequenceOrbit, fam: Family, graze=None, s_g=None) -> list:
 
 
 def orbit_of(system, z) -> SequenceOrbit | None:
-    """The classified orbit (``sequence.solve_sequence``) at a point z of a system."""
+    """The classified orbit through the point z of a system, as it stands
+    (``sequence.orbit_through``: no second Newton, ill-conditioned at a fold)."""
     fl = system.flights(z)
     if fl is None:
         return None
@@ -371,4 +372,4 @@ def orbit_of(system, z) -> SequenceOrbit | None:
     except ParameterError:
         return None
     fam = system.fam
-    return solve_sequence(p, fam.walls, fam.periods, z[:4], fl)
+    return orbit_through(p, fam.walls, fam.periods, z[:4], fl)

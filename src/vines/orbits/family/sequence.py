@@ -39,7 +39,7 @@ from ...core.params import (
 )
 from ...core.walls import impact_velocities
 from ..maps.affine import scan_seeds  # noqa: F401 (re-export)
-from ..maps.impact import admissible_kernel, model_array
+from ..maps.impact import admissible_kernel, impact_map, model_array
 from ..maps.newton import monodromy, newton_sequence
 from .family import (
     WALL_CODES,
@@ -124,6 +124,34 @@ def solve_sequence(p: ModelParams, walls: str, periods: int, x0: ArrayLike,
     if not _primitive(walls, periods, xs, s, T):
         return None
     return _orbit(p, mdl, walls, periods, xs, Js, s, res)
+
+
+def orbit_through(p: ModelParams, walls: str, periods: int, x0: ArrayLike,
+                  flight_times: ArrayLike) -> PeriodicOrbit | None:
+    """The orbit through x0 (pre-impact state at walls[0]) as it stands, classified without
+    Newton: for a point an augmented system has already solved (a curve point). A fresh
+    Newton on the orbit residual alone is ill-conditioned there: at a fold or branch point
+    its Jacobian is singular and a solve from the point drifts by about the square root of
+    the corrector's tolerance, enough to flip a marginal admissibility. flight_times:
+    guesses of the maps' flight times. None where a map fails, a flight time is not
+    positive, the flights do not add up to periods T or the orbit repeats a shorter
+    sequence (as ``solve_sequence``)."""
+    mdl = model_array(p)
+    n, codes, T = len(walls), wall_codes(walls), p.period
+    xs, Js, fl = np.empty((n + 1, 4)), np.empty((n, 4, 4)), np.empty(n)
+    xs[0] = np.asarray(x0, dtype=float)
+    for k in range(n):
+        fl[k] = impact_map(mdl, xs[k], (codes[k], codes[(k + 1) % n]), flight_times[k],
+                           xs[k + 1], Js[k])
+        if not (fl[k] > 0.0):           # nan (a map failed) or not a flight
+            return None
+    if abs(fl.sum() - periods * T) > 1e-8 * (1.0 + periods * T):
+        return None
+    res = float(np.max(np.abs(xs[n] - xs[0] - np.array([0.0, 0.0, 0.0, periods * T]))))
+    xs[:, 3] -= math.floor(xs[0, 3] / T) * T
+    if not _primitive(walls, periods, xs, fl, T):
+        return None
+    return _orbit(p, mdl, walls, periods, xs, Js, fl, res)
 
 
 def _primitive(walls, periods, xs, fl, T) -> bool:
