@@ -74,7 +74,7 @@ def test_shooting_system_on_the_maps_orbits(eta, omega, F):
             np.testing.assert_allclose(Ez[:, k], fd, rtol=1e-6, atol=1e-7)
         ref = orbit_at(p, fam, u)
         A = sh.jacobian_float(sh.monodromy_jets(MODEL, fam, u, eta, omega, F))
-        mono = MIRROR_MATRIX @ ref.J1 if o.symmetric else ref.J2 @ ref.J1
+        mono = MIRROR_MATRIX @ ref.jacobians[0] if o.symmetric else ref.jacobians[1] @ ref.jacobians[0]
         np.testing.assert_allclose(A, mono, atol=1e-10 * np.abs(mono).max())
         assert np.abs(np.linalg.eigvals(mono @ mono if o.symmetric else mono)).max() == \
             pytest.approx(o.lambda_max, rel=1e-9)
@@ -113,7 +113,7 @@ def test_events_along_the_arclength(fold_branch):
     sb, ns = ev["symmetry-breaking"], ev["neimark-sacker"]
     assert sb["connects"] == "asymmetric"
     mu = np.linalg.eigvals(MIRROR_MATRIX @ orbit_at(br.orbits[sb["index"]].params, "symmetric",
-                                                br.orbits[sb["index"]].x_L).J1)
+                                                br.orbits[sb["index"]].x_L).jacobians[0])
     assert np.min(np.abs(mu + 1.0)) < 1e-6
     o = br.orbits[ns["index"]]
     ev_ns = o.eigenvalues[np.argmin(np.abs(np.abs(o.eigenvalues) - 1.0))]

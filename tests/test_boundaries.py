@@ -112,7 +112,7 @@ def test_curve_points_solve_their_conditions(curves):
             assert np.abs(system(z)[0]).max() < 1e-8
             if c.type == "symmetry-breaking":
                 o = orbit_at(ModelParams(z[-2], z[-1], F), "symmetric", z[:4])
-                assert np.min(np.abs(np.linalg.eigvals(MIRROR_MATRIX @ o.J1) + 1.0)) < 1e-6
+                assert np.min(np.abs(np.linalg.eigvals(MIRROR_MATRIX @ o.jacobians[0]) + 1.0)) < 1e-6
 
 
 def test_boundaries_cli_json():

@@ -40,6 +40,7 @@ from .schema import (
     DESIGN_ROBUST_ATTRS,
     DESIGN_ROBUST_UNITS,
     DESIGN_UNITS,
+    FAMILY_CURVE_ATTRS,
     FEATURE_TYPE,
     FLAG_MEANINGS,
     LYAPUNOV_SWEEP_ATTRS,
@@ -298,21 +299,25 @@ def branch_dataset(br, attrs: dict) -> xr.Dataset:
     return _dsg(data, attrs, {k: where for k in BRANCH_POINT_VARS + ("abs_eigenvalues",)})
 
 
-def boundaries_dataset(curves: list, F: float, attrs: dict) -> xr.Dataset:
+def boundaries_dataset(curves: list, F: float, attrs: dict,
+                       named_family: bool = False) -> xr.Dataset:
     """Boundary curves (``orbits.curves.boundaries.Boundaries.curves``) at one F as a CF contiguous
-    ragged array: instance ``curve``, samples ``point`` = (eta, omega) along the curve."""
+    ragged array: instance ``curve``, samples ``point`` = (eta, omega) along the curve;
+    named_family: the curves of a wall sequence named by its walls and periods (their
+    variables' long names say so), not of the 1:1 orbit."""
+    table = FAMILY_CURVE_ATTRS if named_family else BOUNDARY_CURVE_ATTRS
     pts = [np.asarray(c.points, float).reshape(-1, 2) for c in curves]
     allp = np.concatenate(pts) if pts else np.empty((0, 2))
     inst = {
         "curve_type": (np.asarray([c.type for c in curves], dtype="U32"),
-                       *BOUNDARY_CURVE_ATTRS["curve_type"]),
+                       *table["curve_type"]),
         "family": (np.asarray([c.family for c in curves],
                               dtype=f"U{max([16] + [len(c.family) for c in curves])}"),
-                   *BOUNDARY_CURVE_ATTRS["family"]),
+                   *table["family"]),
         "flight": (np.asarray([c.graze[0] if c.graze else 0 for c in curves], "i4"),
-                   *BOUNDARY_CURVE_ATTRS["flight"]),
+                   *table["flight"]),
         "wall": (np.asarray([c.graze[1] if c.graze else "" for c in curves], dtype="U16"),
-                 *BOUNDARY_CURVE_ATTRS["wall"]),
+                 *table["wall"]),
     }
     samples = {q: (allp[:, k], COORD_ATTRS[q]["long_name"], COORD_ATTRS[q]["units"])
                for k, q in enumerate(("eta", "omega"))}

@@ -109,6 +109,15 @@ BOUNDARY_CURVE_ATTRS = {
     "flight": ("grazing flight (1: L->R, 2: R->L; 0: not a grazing curve)", "1"),
     "wall": ("grazing wall (start, target or arrival; empty: not a grazing curve)", ""),
 }
+#: the same variables where the curves are of a named wall sequence (not 1:1)
+FAMILY_CURVE_ATTRS = {
+    **BOUNDARY_CURVE_ATTRS,
+    "family": ("orbit family of the curve (WALLS/N[-sym|-asym])", ""),
+    "flight": ("grazing flight k (from impact k to impact k + 1 of the sequence; 0: not a "
+               "grazing curve)", "1"),
+    "wall": ("grazing wall (L or R: touched inside the flight; arrival: zero relative "
+             "velocity at the impact; empty: not a grazing curve)", ""),
+}
 
 #: stability maps over (eta, omega)
 STABILITY_ATTRS = {

@@ -303,11 +303,9 @@ def boundaries(spec: dict, *, model: dict, code: str, title: str, stability_path
     attrs.update(eta_range=list(res.eta_range), omega_range=list(res.omega_range))
     from ..orbits.family.family import Family
     family = Family(res.walls, res.periods)
-    attrs.update(family.engine.output_keys(family))     # 1:1: the dataset it always was
-    ds = builders.boundaries_dataset(res.curves, res.F, attrs)
-    for name, long_name in family.engine.curve_long_names.items():
-        ds[name].attrs["long_name"] = long_name
-    return ds
+    keys = family.engine.output_keys(family)        # 1:1: none, the dataset it always was
+    attrs.update(keys)
+    return builders.boundaries_dataset(res.curves, res.F, attrs, named_family=bool(keys))
 
 
 def stability_map(spec: dict, *, model: dict, code: str, title: str, n_workers: int = 1):

@@ -102,18 +102,21 @@ def orbit_at(p: ModelParams, family: str, u: ArrayLike) -> PeriodicOrbit | None:
     if not (math.isfinite(f1) and math.isfinite(f2)):
         return None
     res = float(np.max(np.abs(y2 - x - np.array([0.0, 0.0, 0.0, p.period]))))
-    o = classify_orbit(p, mdl, x, xR, (J1, J2), np.array([f1, f2]), res)
-    o.J1, o.J2 = J1, J2
-    return o
+    return classify_orbit(p, mdl, x, xR, (J1, J2), np.array([f1, f2]), res)
+
+
+def test_matrix(family: str, o: PeriodicOrbit) -> np.ndarray:
+    """A = Mirror J_P1 (symmetric) or B = J_P2 J_P1 (asymmetric) of a 1:1 orbit."""
+    J1, J2 = o.jacobians
+    return MIRROR_MATRIX @ J1 if family == "symmetric" else J2 @ J1
 
 
 def test_values(family: str, o: PeriodicOrbit, z: np.ndarray, t: np.ndarray) -> dict:
     """The test functions of the module docstring at one point."""
+    A = test_matrix(family, o)
     if family == "symmetric":
-        A = MIRROR_MATRIX @ o.J1
         out = {"symmetry-breaking": np.linalg.det(A + np.eye(4))}
     else:
-        A = o.J2 @ o.J1
         out = {"flip": np.linalg.det(A + np.eye(4)),
                "symmetry-breaking": o.flight_times[0] - o.flight_times[1]}
     out["neimark-sacker"] = np.linalg.det(np.array(compound2(A.tolist())) - np.eye(6))
@@ -123,8 +126,7 @@ def test_values(family: str, o: PeriodicOrbit, z: np.ndarray, t: np.ndarray) -> 
 
 def is_ns(family: str, o: PeriodicOrbit, tol: float = NS_LOCATE_TOL) -> bool:
     """A complex eigenvalue pair of A (symmetric) or B on the unit circle."""
-    A = MIRROR_MATRIX @ o.J1 if family == "symmetric" else o.J2 @ o.J1
-    ev = np.linalg.eigvals(A)
+    ev = np.linalg.eigvals(test_matrix(family, o))
     k = int(np.argmin(np.abs(np.abs(ev) - 1.0)))
     return abs(ev[k].imag) > 1e-6 and abs(abs(ev[k]) - 1.0) < tol
 

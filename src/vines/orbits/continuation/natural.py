@@ -28,6 +28,7 @@ import numpy as np
 
 from ... import progress
 from ..family.family import MIRROR_MATRIX
+from ..maps.newton import monodromy
 
 
 class NaturalProblem:
@@ -77,10 +78,7 @@ def crossing_type(o, A: np.ndarray | None = None) -> str:
 
 def half_map(jacobians) -> np.ndarray:
     """M J_{h-1} ... J_0 from the n map Jacobians of a symmetric orbit (h = n/2)."""
-    P = jacobians[0]
-    for J in jacobians[1:len(jacobians) // 2]:
-        P = J @ P
-    return MIRROR_MATRIX @ P
+    return MIRROR_MATRIX @ monodromy(jacobians[:len(jacobians) // 2])
 
 
 def follow_natural(problem: NaturalProblem, start: float, stop: float, step: float,

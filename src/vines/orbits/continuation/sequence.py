@@ -130,53 +130,44 @@ class _System:
         return with_values(self.base, {self.param: v})
 
     def residual(self, x0, v):
-        got = orbit_residual(self.params(v), self.fam, np.asarray(x0, float), self.s)
-        if got is None:
-            return None, None
-        return got[0], got[1]
+        """(R, A, flights) of the orbit residual at x0 and the parameter value v, or None
+        where a map fails; ParameterError where v left its range."""
+        return orbit_residual(self.params(v), self.fam, np.asarray(x0, float), self.s)
 
     #: the derivative method of the parameter column (``map_systems.DERIVATIVES``)
     derivatives = "jets"
 
     def __call__(self, z):
+        """(R, R_z): R_z's state columns A - I exact (the maps), its parameter column from
+        the jets or, where they do not apply, central differences; nan where R fails."""
         nan = (np.full(4, np.nan), np.full((4, 5), np.nan))
-        if self.derivatives == "jets":
-            got = self._exact(z)
-            if got is not None:
-                return got if got[0] is not None else nan
         try:
-            R, P = self.residual(z[:4], z[4])
-            h = 1e-7 * (1.0 + abs(z[4]))
-            Rp, _ = self.residual(z[:4], z[4] + h)
-            Rm, _ = self.residual(z[:4], z[4] - h)
+            got = self.residual(z[:4], z[4])
+            col = None if got is None else self._param_column(z, got[2])
         except ParameterError:          # the parameter left its allowed range
             return nan
-        if R is None or Rp is None or Rm is None:
+        if col is None:
             return nan
+        R, P, _ = got
         Rz = np.empty((4, 5))
         Rz[:, :4] = P - np.eye(4)
-        Rz[:, 4] = (Rp - Rm) / (2.0 * h)
+        Rz[:, 4] = col
         return R, Rz
 
-    def _exact(self, z):
-        """(R, R_z) with the exact parameter column (``map_systems.exact_derivatives``);
-        (None, None) where R fails, None where the jets do not apply."""
-        try:
-            p = self.params(z[4])
-        except ParameterError:          # the parameter left its allowed range
-            return None, None
-        x0 = np.asarray(z[:4], float)
-        got = orbit_residual(p, self.fam, x0, self.s)
-        if got is None:
-            return None, None
-        R, P, fl = got
-        exact = exact_derivatives(p, self.fam, x0, fl)
-        if exact is None:
+    def _param_column(self, z, fl):
+        """dR/d(parameter) at z (maps' flight times fl): exact
+        (``map_systems.exact_derivatives``) with ``derivatives = "jets"`` where the jets
+        apply, else a central difference; None where a map fails."""
+        if self.derivatives == "jets":
+            exact = exact_derivatives(self.params(z[4]), self.fam, np.asarray(z[:4], float),
+                                      fl)
+            if exact is not None:
+                return exact[0][:, param_columns((self.param,))[0]]
+        h = 1e-7 * (1.0 + abs(z[4]))
+        plus, minus = self.residual(z[:4], z[4] + h), self.residual(z[:4], z[4] - h)
+        if plus is None or minus is None:
             return None
-        Rz = np.empty((4, 5))
-        Rz[:, :4] = P - np.eye(4)
-        Rz[:, 4] = exact[0][:, param_columns((self.param,))[0]]
-        return R, Rz
+        return (plus[0] - minus[0]) / (2.0 * h)
 
     def orbit(self, z) -> SequenceOrbit | None:
         """The classified orbit at z (a converged point); updates the flight guesses."""

@@ -35,8 +35,6 @@ class Engine:
     class_map_seeds = False
     #: its boundary curves are drawn on the orbit atlas (the 1:1 curves have Fig 16)
     on_atlas = False
-    #: long names of the boundaries dataset's variables that replace the schema's
-    curve_long_names: dict = {}
 
     def affine_seeds(self, p: ModelParams, mdl: np.ndarray, walls: str,
                      periods: int) -> list:
@@ -77,13 +75,6 @@ class MapsEngine(Engine):
 
     name = MAPS
     on_atlas = True
-    curve_long_names = {
-        "family": "orbit family of the curve (WALLS/N[-sym|-asym])",
-        "flight": ("grazing flight k (from impact k to impact k + 1 of the sequence; 0: not "
-                   "a grazing curve)"),
-        "wall": ("grazing wall (L or R: touched inside the flight; arrival: zero relative "
-                 "velocity at the impact; empty: not a grazing curve)"),
-    }
 
     def affine_seeds(self, p, mdl, walls, periods) -> list:
         from .seeds import family_seeds
