@@ -55,6 +55,9 @@ def test_run_evaluates_a_design():
     (["--eta", "0.1", "--clearance", "0.01", "--amplitude", "0.001", "-1"], "--amplitude"),
     (["--eta", "0.1", "--clearance", "0.01", "--n-omega", "x"], "--n-omega"),
     (["--eta", "0.1", "--clearance", "0.01", "--threads", "0"], "--threads"),
+    (["--eta-max", "0.1", "--r-range", "0.8", "0"], "--r-range"),
+    (["--eta-max", "0.1", "--r-range", "0", "nan"], "--r-range"),
+    (["--eta-max", "0.1", "--r-range", "0", "0.8", "--n-r", "1"], "--n-r"),
 ])
 def test_bad_values_name_the_flag(argv, flag):
     with pytest.raises(ParameterError) as err:

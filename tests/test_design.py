@@ -139,6 +139,35 @@ def test_optimiser_never_worse_than_brute_force_grid_nor_lo_alone():
     assert d["cost"]["n_designs"] >= len(brute)
 
 
+def test_restitution_searched_with_eta_and_clearance():
+    """--r-range: the (eta, L, r) grid's slice at a grid r is the fixed-r search's grid at
+    that r, bit for bit; the optimum is never worse than any of them and is what
+    evaluating it at its r gives."""
+    from vines.studies.design import R_TRADE, r_trade
+    res = _small_optimisation(r_range=(0.0, 0.8), n_r=3)
+    d = res.to_dict()
+    worst = np.array(d["search"]["worst_ratio"])
+    assert worst.shape == (2, 4, 3) and d["search"]["r"] == [0.0, 0.4, 0.8]
+    fixed = _small_optimisation(r=0.4)
+    np.testing.assert_array_equal(worst[..., 1], fixed.search["worst_ratio"])
+    assert res.worst_ratio <= worst.min() and res.worst_ratio <= fixed.worst_ratio
+    r = d["vines"]["r"]
+    assert 0.0 <= r <= 0.8 and d["inputs"]["r"] is None
+    again = vines.design(eta=res.eta, clearance_m=res.clearance_m, r=r, amplitudes_m=[0.0015],
+                         omega_band=(0.9, 1.1), n_omega=5, census_n=0, **SHORT)
+    assert again.worst_ratio == res.worst_ratio
+    # r_trade of the fixed-r optimum: each r's clearance re-optimised at the optimum's eta,
+    # never worse than keeping the optimum's clearance, and what evaluating it gives
+    trade = r_trade(fixed)
+    assert trade["r"] == list(R_TRADE) and trade["eta"] == fixed.eta
+    for rr, L, w in zip(trade["r"], trade["clearance_m"], trade["worst_ratio"], strict=True):
+        kw = dict(eta=fixed.eta, r=rr, amplitudes_m=[0.0015], omega_band=(0.9, 1.1),
+                  n_omega=5, census_n=0, **SHORT)
+        assert vines.design(clearance_m=L, **kw).worst_ratio == w
+        assert w <= vines.design(clearance_m=fixed.clearance_m, **kw).worst_ratio
+        assert 0.0075 <= L <= 0.06
+
+
 def test_same_numbers_on_one_or_two_threads():
     kw = dict(eta=0.1, clearance_m=0.015, amplitudes_m=[0.00075, 0.003],
               omega_band=(0.95, 1.05), n_omega=3, census_n=4, **SHORT)
@@ -198,6 +227,14 @@ def test_json_keys_of_the_issue():
     (dict(eta=0.1, clearance_m=0.01, basin_min=2), "basin_min"),
     (dict(eta=0.1, clearance_m=0.01, n_threads=0), "n_threads"),
     (dict(eta=0.1, clearance_m=0.01, t_transient=8000), "t_transient"),
+    (dict(eta_max=0.1, r_range=(0.5, 0.2)), "r_range"),
+    (dict(eta_max=0.1, r_range=(0.5, 0.5)), "r_range"),
+    (dict(eta_max=0.1, r_range=(float("nan"), 0.5)), "r_range"),
+    (dict(eta_max=0.1, r_range=(-0.1, 0.5)), "r_range"),
+    (dict(eta_max=0.1, r_range=(0.0, 1.2)), "r_range"),
+    (dict(eta_max=0.1, r_range=(0.0,)), "r_range"),
+    (dict(eta_max=0.1, r_range=(0.0, 0.8), n_r=1), "n_r"),
+    (dict(eta=0.1, clearance_m=0.01, r_range=(0.0, 0.8)), "r_range"),
 ])
 def test_bad_input_names_the_argument(kw, name):
     with pytest.raises(ParameterError) as err:

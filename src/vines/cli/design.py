@@ -15,6 +15,8 @@ from ..studies.design_checks import (
     DEFAULT_N_OMEGA,
     N_CLEARANCE_DEFAULT,
     N_ETA_DEFAULT,
+    N_R_DEFAULT,
+    R_TRADE,
     VIEW_NAMES,
 )
 from . import design_uncertainty
@@ -27,7 +29,8 @@ FLAG_OF = {"omega_band": "--omega-band", "n_omega": "--n-omega", "amplitude": "-
            "M": "--M", "k": "--k", "c": "--c", "d": "--d", "r": "--r", "eta": "--eta",
            "clearance": "--clearance", "eta_max": "--eta-max",
            "clearance_range": "--clearance-range", "n_eta": "--n-eta",
-           "n_clearance": "--n-clearance", "view": "--view", "census_n": "--census-n",
+           "n_clearance": "--n-clearance", "r_range": "--r-range", "n_r": "--n-r",
+           "view": "--view", "census_n": "--census-n",
            "n_threads": "--threads", "t_end": "--t-end", "t_transient": "--t-transient"}
 
 
@@ -69,6 +72,16 @@ def add_parser(subparsers) -> VinesArgumentParser:
                      help=f"grid points in eta [default {N_ETA_DEFAULT}]")
     des.add_argument("--n-clearance", metavar="N", default=N_CLEARANCE_DEFAULT,
                      help=f"grid points in log clearance [default {N_CLEARANCE_DEFAULT}]")
+    des.add_argument("--r-range", nargs=2, metavar=("LO", "HI"), default=None,
+                     help="with --eta-max: search the restitution too, 0 <= LO < HI <= 1 "
+                          "(--r is then not used) [default: r fixed by --r; the JSON's "
+                          "r_trade gives the worst case at r = "
+                          + ", ".join(f"{r:g}" for r in R_TRADE)
+                          + " with the clearance re-optimised]")
+    des.add_argument("--n-r", metavar="N", default=N_R_DEFAULT,
+                     help=f"grid points in r with --r-range [default {N_R_DEFAULT}]")
+    des.add_argument("--no-r-trade", action="store_true",
+                     help="skip r_trade (its cost: a 1-D clearance search per r)")
     run = p.add_argument_group("attractor view and runs")
     run.add_argument("--view", choices=VIEW_NAMES, default="t_end",
                      help="census view of worst_ratio_any_attractor; the only one is "
@@ -86,8 +99,9 @@ def add_parser(subparsers) -> VinesArgumentParser:
     design_uncertainty.add_args(p)
     p.add_argument("--json", action="store_true",
                    help="print one JSON object on stdout (keys: inputs, curves, lo_alone, "
-                        "tmd, vines, search, worst_case, cost, mistuning; with "
-                        "--uncertainty: uncertainty)")
+                        "tmd, vines, search, worst_case, cost, mistuning; r_trade "
+                        "for an optimised design with r fixed; with --uncertainty: "
+                        "uncertainty)")
     add_model_choice(p)
     return p
 
@@ -109,6 +123,10 @@ def with_model(args: argparse.Namespace, exact) -> dict:
     """The answer of --model: ``exact()`` (the exact object), the slow flow's, or both."""
     if args.model == "exact":
         return exact()
+    if args.r_range is not None:
+        from ..core.params import ParameterError
+        raise ParameterError("r_range", " ".join(args.r_range),
+                             "is searched by the exact model only: use --model exact")
     from ..studies.design_slowflow import difference, slowflow_design
     with quiet_stdout():
         slow = slowflow_design(omega_band=args.omega_band, amplitudes_m=args.amplitude,
@@ -198,8 +216,12 @@ def compute(args: argparse.Namespace) -> dict:
                      c_Ns_per_m=args.c, d=args.d, r=args.r, eta=args.eta,
                      clearance_m=args.clearance, eta_max=args.eta_max,
                      clearance_range_m=args.clearance_range, n_eta=args.n_eta,
-                     n_clearance=args.n_clearance, view=args.view, census_n=args.census_n,
-                     t_end=args.t_end, t_transient=args.t_transient, n_threads=args.threads)
+                     n_clearance=args.n_clearance, r_range=args.r_range, n_r=args.n_r,
+                     view=args.view, census_n=args.census_n, t_end=args.t_end,
+                     t_transient=args.t_transient, n_threads=args.threads)
+        if res.search is not None and args.r_range is None and not args.no_r_trade:
+            from ..studies.design import r_trade
+            res.r_trade = r_trade(res, n_threads=args.threads)
         out = res.to_dict()
         # uncertain parts (studies.uncertainty)
         uncertain = design_uncertainty.compute(args, res)
@@ -228,7 +250,8 @@ def text(d: dict) -> str:
              f"  LO alone: worst x_max/A {_fmt(lo['worst_ratio'])}",
              f"  TMD  eta {t['eta']:g}: f = {t['frequency_ratio']:.4f}, zeta = "
              f"{t['damping_ratio']:.4f}: worst {_fmt(t['worst_ratio'])}",
-             f"  VI NES eta {v['eta']:.4g}, clearance {1e3 * v['clearance_m']:.4g} mm: worst "
+             f"  VI NES eta {v['eta']:.4g}, clearance {1e3 * v['clearance_m']:.4g} mm, r "
+             f"{v['r']:g}: worst "
              f"{_fmt(v['worst_ratio'])} from rest, {_fmt(v['worst_ratio_any_attractor'])} over "
              f"attractors ({v['view'] or 'not evaluated'})"]
     any_ = v["worst_ratio_any_attractor_per_amplitude"] or [None] * len(v["F"])
@@ -236,10 +259,21 @@ def text(d: dict) -> str:
                           any_, strict=True):
         lines.append(f"    A = {1e3 * A:.4g} mm (F = {F:.4g}): {_fmt(w)} from rest, "
                      f"{_fmt(a)} over attractors")
+    lines += r_trade_text(d.get("r_trade"))
     lines.append(f"  cost {d['cost']['wall_s']:.1f} s, {d['cost']['n_runs_from_rest']} runs "
                  f"from rest, {d['cost']['n_runs_census']} census runs")
     lines += design_uncertainty.text(d.get("uncertainty"))
     return "\n".join(lines + mistuning_text(d.get("mistuning")))
+
+
+def r_trade_text(t: dict | None) -> list:
+    """Lines of the worst case against the restitution (none when not computed)."""
+    if t is None:
+        return []
+    return ["  against restitution (eta fixed, clearance re-optimised): " + ", ".join(
+        f"r {r:g}: {_fmt(w)} at {1e3 * L:.3g} mm" for r, L, w in zip(
+            t["r"], t["clearance_m"], t["worst_ratio"], strict=True))
+        + f" ({t['wall_s']:.1f} s)"]
 
 
 def mistuning_text(m: dict | None) -> list:

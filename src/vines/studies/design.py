@@ -28,6 +28,7 @@ whereas the VI NES's is a maximum over the omega grid (each point one simulation
 from __future__ import annotations
 
 import inspect
+import itertools
 import math
 import time
 from collections.abc import Sequence
@@ -61,6 +62,8 @@ from .design_checks import (
     DEFAULT_N_OMEGA,
     N_CLEARANCE_DEFAULT,
     N_ETA_DEFAULT,
+    N_R_DEFAULT,
+    R_TRADE,
 )
 
 #: default clearance range, relative to the amplitudes: [A_max / 2, 100 A_min], widened to
@@ -221,6 +224,40 @@ class Evaluator:
             self.cache[key] = Response(curves=curves[k], peak=peak[k], peak_omega=at[k])
 
 
+class RestitutionEvaluator:
+    """``Evaluator``'s ``responses``/``worst`` for designs (eta, L, r): one Evaluator (with
+    its cache) per restitution, its problem's model at that r; (eta, L) designs run at the
+    problem's own r (the same floats as ``Evaluator``)."""
+
+    def __init__(self, problem: DesignProblem, n_threads: int | None = None):
+        self.problem, self.n_threads = problem, n_threads
+        self.evaluators: dict = {}
+
+    def _at(self, r: float) -> Evaluator:
+        if r not in self.evaluators:
+            pb = replace(self.problem, model=replace(self.problem.model, r=r))
+            self.evaluators[r] = Evaluator(pb, self.n_threads)
+        return self.evaluators[r]
+
+    @property
+    def cache(self) -> dict:
+        return {(*k, r): v for r, ev in self.evaluators.items() for k, v in ev.cache.items()}
+
+    @property
+    def n_runs(self) -> int:
+        return sum(ev.n_runs for ev in self.evaluators.values())
+
+    def responses(self, designs) -> list[Response]:
+        keys = [(float(d[0]), float(d[1]),
+                 float(d[2]) if len(d) > 2 else float(self.problem.model.r)) for d in designs]
+        for r in dict.fromkeys(k[2] for k in keys):       # one batch per restitution
+            self._at(r).responses([k[:2] for k in keys if k[2] == r])
+        return [self._at(k[2]).cache[k[:2]] for k in keys]
+
+    def worst(self, designs) -> list[float]:
+        return [x.worst for x in self.responses(designs)]
+
+
 def attractor_curves(problem: DesignProblem, eta: float, clearance_m: float,
                      from_rest: np.ndarray,
                      n_threads: int | None = None) -> tuple[np.ndarray, float]:
@@ -266,21 +303,27 @@ def _clearance(log10_L) -> float:
     return 10.0 ** float(log10_L)
 
 
+def _design(x) -> tuple:
+    """The design (eta, L[, r]) of a search point x = (eta, log10 L[, r])."""
+    return (x[0], _clearance(x[1]), *x[2:])
+
+
 def compass(ev: Evaluator, start, value, steps, lower, upper) -> tuple:
-    """Compass search in x = (eta, log10 L) from ``start``: try x +- step along each axis
-    (inside [lower, upper]), move to the best strict improvement, else halve the steps,
+    """Compass search in x = (eta, log10 L), or (eta, log10 L, r) with the restitution
+    searched, from ``start``: try x +- step along each axis with a step > 0 (inside
+    [lower, upper]), move to the best strict improvement, else halve the steps,
     N_HALVINGS times. Returns (x, value)."""
     x, h = np.array(start, float), np.array(steps, float)
     for _ in range(N_HALVINGS + 1):
         while True:
             cands = []
-            for axis in range(2):
+            for axis in range(len(x)):
                 for sign in (-1.0, 1.0):
                     y = x.copy()
                     y[axis] = min(max(x[axis] + sign * h[axis], lower[axis]), upper[axis])
                     if y[axis] != x[axis]:
                         cands.append(y)
-            vals = ev.worst([(y[0], _clearance(y[1])) for y in cands])
+            vals = ev.worst([_design(y) for y in cands])
             k = int(np.argmin(vals)) if vals else -1
             if k < 0 or vals[k] >= value:
                 break
@@ -290,27 +333,37 @@ def compass(ev: Evaluator, start, value, steps, lower, upper) -> tuple:
 
 
 def optimise(ev: Evaluator, eta_max: float, clearance_range_m: tuple[float, float],
-             n_eta: int, n_clearance: int) -> dict:
+             n_eta: int, n_clearance: int, r_range: tuple | None = None,
+             n_r: int = N_R_DEFAULT) -> dict:
     """Best (eta, L) of the brute-force grid, then compass searches from the N_STARTS best
     grid points (steps half the grid's). Returns eta, clearance_m, worst_ratio and the
-    grid (eta, clearance_m, worst_ratio (n_eta, n_clearance))."""
+    grid (eta, clearance_m, worst_ratio (n_eta, n_clearance)). With ``r_range`` (lo, hi)
+    (``ev`` a ``RestitutionEvaluator``) r is searched as a third coordinate: a grid of
+    n_r values evenly over the range, the compass in (eta, log10 L, r); then also r and
+    the grid's r, its worst_ratio (n_eta, n_clearance, n_r)."""
     etas, Ls = search_grid(eta_max, clearance_range_m, n_eta, n_clearance)
-    grid = [(e, L) for e in etas for L in Ls]
-    worst = np.array(ev.worst(grid)).reshape(n_eta, n_clearance)
     logs = _log_clearances(clearance_range_m, n_clearance)
-    steps = [0.5 * (etas[1] - etas[0]) if n_eta > 1 else 0.0,
-             0.5 * (logs[1] - logs[0])]
-    lower, upper = [etas[0], logs[0]], [etas[-1], logs[-1]]
+    axes = [etas, logs]
+    if r_range is not None:
+        axes.append(np.linspace(r_range[0], r_range[1], n_r))
+    points = [np.array(x) for x in itertools.product(*axes)]
+    shape = tuple(len(a) for a in axes)
+    worst = np.array(ev.worst([_design(x) for x in points])).reshape(shape)
+    steps = [0.5 * (a[1] - a[0]) if len(a) > 1 else 0.0 for a in axes]
+    lower, upper = [a[0] for a in axes], [a[-1] for a in axes]
     order = np.argsort(worst, axis=None, kind="stable")[:N_STARTS]
-    best = (float(worst.flat[order[0]]), etas[order[0] // n_clearance],
-            Ls[order[0] % n_clearance])
+    best = (float(worst.flat[order[0]]), points[order[0]])
     for flat in order:
-        i, j = divmod(int(flat), n_clearance)
-        x, v = compass(ev, (etas[i], logs[j]), float(worst[i, j]), steps, lower, upper)
+        x, v = compass(ev, points[flat], float(worst.flat[flat]), steps, lower, upper)
         if v < best[0]:
-            best = (v, float(x[0]), _clearance(x[1]))
-    return dict(eta=float(best[1]), clearance_m=float(best[2]), worst_ratio=best[0],
-                grid=dict(eta=etas, clearance_m=Ls, worst_ratio=worst))
+            best = (v, x)
+    x = best[1]
+    out = dict(eta=float(x[0]), clearance_m=float(_clearance(x[1])), worst_ratio=best[0],
+               grid=dict(eta=etas, clearance_m=Ls, worst_ratio=worst))
+    if r_range is not None:
+        out["r"] = float(x[2])
+        out["grid"]["r"] = axes[2]
+    return out
 
 
 # --------------------------------------------------------------------------- result
@@ -342,6 +395,7 @@ class DesignResult:
     unsettled_fraction: float | None
     search: dict | None
     cost: dict = field(default_factory=dict)
+    r_trade: dict | None = None
 
     @property
     def worst_ratio(self) -> float:
@@ -371,7 +425,7 @@ class DesignResult:
 
     def _vines_dict(self) -> dict:
         pb, any_ = self.problem, self.vines_any_attractor
-        return dict(eta=self.eta, clearance_m=self.clearance_m,
+        return dict(eta=self.eta, clearance_m=self.clearance_m, r=pb.model.r,
                     worst_ratio=self.worst_ratio,
                     worst_ratio_any_attractor=self.worst_ratio_any_attractor,
                     view=pb.view if any_ is not None else None,
@@ -397,6 +451,8 @@ class DesignResult:
             search = dict(eta=g["eta"].tolist(), clearance_m=g["clearance_m"].tolist(),
                           worst_ratio=g["worst_ratio"].tolist(), n_starts=N_STARTS,
                           n_halvings=N_HALVINGS)
+            if "r" in g:
+                search["r"] = g["r"].tolist()
         worst_lo, w_lo = self.lo_alone_worst
         return dict(inputs=self.inputs, curves=curves,
                     lo_alone=dict(worst_ratio=_finite(worst_lo), worst_omega=w_lo,
@@ -410,7 +466,41 @@ class DesignResult:
                               f"climbing in omega ({N_REFINE} rounds); x_max over the "
                               "window [t_transient, t_end]: a lower bound of the band "
                               "maximum"),
-                    cost=self.cost)
+                    cost=self.cost, **({} if self.r_trade is None
+                                       else {"r_trade": self.r_trade}))
+
+
+# --------------------------------------------------------------------------- r_trade
+
+def r_trade(result: DesignResult, rs: Sequence[float] = R_TRADE,
+            n_threads: int | None = None) -> dict:
+    """The worst case of an optimised design's VI NES against the restitution: for each r
+    of ``rs``, eta fixed at the optimum's and the clearance alone re-optimised (a 1-D
+    compass search in log10 L from the optimum's L, steps half the search grid's log step
+    halved N_HALVINGS times, inside the clearance range; a local search, at most as bad
+    as the optimum's L at that r). Returns the dict ``r_trade`` of the JSON."""
+    t0, c0 = time.perf_counter(), time.process_time()
+    pb, g = result.problem, result.search
+    logs = np.log10(g["clearance_m"])
+    step = 0.5 * (logs[1] - logs[0])
+    ev = RestitutionEvaluator(pb, n_threads)
+    x0 = math.log10(result.clearance_m)
+    out = []
+    with progress.task(None, "design: r_trade runs from rest", "runs"):
+        for r in rs:
+            start = (result.eta, x0, float(r))
+            v0 = ev.worst([(result.eta, result.clearance_m, float(r))])[0]
+            x, v = compass(ev, start, v0, [0.0, step, 0.0], [result.eta, logs[0], r],
+                           [result.eta, logs[-1], r])
+            L = result.clearance_m if x[1] == x0 else _clearance(x[1])
+            out.append((L, v))
+    return dict(eta=result.eta, r=[float(r) for r in rs],
+                clearance_m=[L for L, _ in out], worst_ratio=[v for _, v in out],
+                reoptimised="the clearance alone, at the optimum's eta (1-D compass search "
+                            "in log10 L from the optimum's clearance); the rest of the "
+                            "problem as the design's",
+                n_designs=len(ev.cache), n_runs_from_rest=ev.n_runs,
+                wall_s=time.perf_counter() - t0, cpu_s=time.process_time() - c0)
 
 
 # --------------------------------------------------------------------------- driver
@@ -420,7 +510,9 @@ class DesignSearch:
     """What ``solve`` does with a problem (validated by ``design``): evaluate the design
     (eta, clearance_m [m], half the cavity length) or, when eta_max is set, optimise one
     with eta <= eta_max and the clearance in clearance_range_m (lo, hi) [m] on an
-    n_eta x n_clearance grid plus a compass search (``optimise``)."""
+    n_eta x n_clearance grid plus a compass search (``optimise``); with r_range (lo, hi)
+    the restitution as well (n_r grid values; the problem's r is then replaced by the
+    optimum's)."""
 
     eta: float | None = None
     clearance_m: float | None = None
@@ -428,6 +520,8 @@ class DesignSearch:
     clearance_range_m: tuple | None = None
     n_eta: int = N_ETA_DEFAULT
     n_clearance: int = N_CLEARANCE_DEFAULT
+    r_range: tuple | None = None
+    n_r: int = N_R_DEFAULT
 
 
 def solve(problem: DesignProblem, search: DesignSearch, *, n_threads: int | None = None,
@@ -442,7 +536,9 @@ def solve(problem: DesignProblem, search: DesignSearch, *, n_threads: int | None
     omega = np.asarray(problem.omega)
     lo_curve = np.asarray(_tmd.lo_ratio(omega, d), dtype=float)
     t1, c1 = time.perf_counter(), time.process_time()
-    ev = Evaluator(problem, n_threads)
+    searched_r = search.r_range is not None
+    ev = RestitutionEvaluator(problem, n_threads) if searched_r else Evaluator(problem,
+                                                                              n_threads)
     if known is not None:             # responses computed by grid_responses elsewhere
         ev.cache.update(known["responses"])
         ev.n_runs += known["n_runs"]
@@ -450,9 +546,12 @@ def solve(problem: DesignProblem, search: DesignSearch, *, n_threads: int | None
     with progress.task(None, "design: runs from rest", "runs"):
         if eta_max is not None:
             best = optimise(ev, eta_max, search.clearance_range_m, search.n_eta,
-                            search.n_clearance)
+                            search.n_clearance, search.r_range, search.n_r)
             eta, clearance_m, grid = best["eta"], best["clearance_m"], best["grid"]
-        rest = ev.responses([(eta, clearance_m)])[0]
+        if searched_r:
+            problem = replace(problem, model=replace(problem.model, r=best["r"]))
+        rest = ev.responses([(eta, clearance_m, problem.model.r)
+                             if searched_r else (eta, clearance_m)])[0]
     t2, c2 = time.perf_counter(), time.process_time()
     any_, unsettled = None, None
     n_points = len(problem.omega) * len(problem.amplitudes_m)
@@ -481,6 +580,7 @@ def design(*, omega_band: Sequence[float] = DEFAULT_BAND, n_omega: int = DEFAULT
            eta: float | None = None, clearance_m: float | None = None,
            eta_max: float | None = None, clearance_range_m: Sequence[float] | None = None,
            n_eta: int = N_ETA_DEFAULT, n_clearance: int = N_CLEARANCE_DEFAULT,
+           r_range: Sequence[float] | None = None, n_r: int = N_R_DEFAULT,
            view: str = "t_end", census_n: int = CENSUS_N_DEFAULT, census_seed: int = 0,
            basin_min: float = BASIN_MIN_DEFAULT, t_end: float = T_END_DEFAULT,
            t_transient: float = T_TRANSIENT_DEFAULT, v_stick: float = V_STICK_DEFAULT,
@@ -494,7 +594,8 @@ def design(*, omega_band: Sequence[float] = DEFAULT_BAND, n_omega: int = DEFAULT
     design (eta, clearance_m [m], half the cavity length) or optimise one with
     eta <= eta_max and the clearance in clearance_range_m (default
     [A_min/2, 100 A_max]) on an n_eta x n_clearance grid plus a compass search (module
-    docstring). The attractor view ``view`` (a key of VIEWS) uses census_n states
+    docstring); r_range (lo, hi) in [0, 1]: the restitution searched as well (n_r grid
+    values, ``optimise``; r is then not used). The attractor view ``view`` (a key of VIEWS) uses census_n states
     (0: skip it) seeded by census_seed and keeps attractors with basin fraction >=
     basin_min. t_end ... root_tol: every simulation's settings (``SolverSettings``).
     Results do not depend on n_threads. Raises ParameterError naming the bad argument.
@@ -538,6 +639,9 @@ def grid_designs(search: DesignSearch) -> list:
 def _prepare(a: dict) -> tuple:
     """(problem, search, inputs, n_threads) from ``design``'s arguments ``a``, validated."""
     mode = _chk.check_mode(a["eta"], a["clearance_m"], a["eta_max"], a["clearance_range_m"])
+    if a["r_range"] is not None and mode == "evaluate":
+        raise ParameterError("r_range", a["r_range"], "is searched with the design: give "
+                                                      "eta_max with it, or fix r")
     band = _chk.check_band(a["omega_band"])
     n_omega = _chk.check_count("n_omega", a["n_omega"], 2, N_OMEGA_MAX)
     amps = _chk.check_amplitudes(a["amplitudes_m"], AMPLITUDE_MAX_M, N_AMPLITUDES_MAX)
@@ -565,12 +669,16 @@ def _prepare(a: dict) -> tuple:
                       n_eta=_chk.check_count("n_eta", a["n_eta"], 1, N_GRID_MAX),
                       n_clearance=_chk.check_count("n_clearance", a["n_clearance"], 2,
                                                    N_GRID_MAX))
+        if a["r_range"] is not None:
+            search.update(r_range=_chk.check_r_range(a["r_range"]),
+                          n_r=_chk.check_count("n_r", a["n_r"], 2, N_GRID_MAX))
     omega = tuple(float(w) for w in np.linspace(band[0], band[1], n_omega))
     problem = DesignProblem(model=model, omega=omega, amplitudes_m=amps, settings=settings,
                             M_kg=M, k_N_per_m=k, c_Ns_per_m=c, view=view, census_n=census_n,
                             census_seed=census_seed, basin_min=basin_min)
     inputs = dict(mode=mode, omega_band=list(band), n_omega=n_omega, amplitude_m=list(amps),
-                  M_kg=M, k_N_per_m=k, c_Ns_per_m=c, d=d, r=model.r,
+                  M_kg=M, k_N_per_m=k, c_Ns_per_m=c, d=d,
+                  r=None if "r_range" in search else model.r,
                   **{k_: (list(v) if isinstance(v, tuple) else v) for k_, v in search.items()},
                   view=view, census_n=census_n, census_seed=census_seed,
                   basin_min=basin_min, settings=settings.as_dict() | {"state0": None})

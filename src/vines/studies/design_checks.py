@@ -29,6 +29,9 @@ DEFAULT_AMPLITUDES_M = (0.00075, 0.003, 0.006)
 N_ETA_DEFAULT = 5
 N_CLEARANCE_DEFAULT = 13
 CENSUS_N_DEFAULT = 64
+#: restitution search (``r_range``): grid points in r; the restitutions of ``r_trade``
+N_R_DEFAULT = 5
+R_TRADE = (0.0, 0.3, 0.5, 0.65, 0.8)
 #: attractor views of the design's worst case (``design.VIEWS``)
 VIEW_NAMES = ("t_end",)
 
@@ -121,6 +124,14 @@ def check_clearance_range(rng: Sequence[float] | None, amplitudes: Sequence[floa
     lo, hi = _pair("clearance_range", rng)
     lo = check_clearance("clearance_range", lo, amplitudes)
     hi = check_real("clearance_range", hi, lo=lo, lo_open=True, hi=1e6)
+    return lo, hi
+
+
+def check_r_range(rng: Sequence[float]) -> tuple[float, float]:
+    """Restitutions searched (lo, hi): 0 <= lo < hi <= 1."""
+    lo, hi = _pair("r_range", rng)
+    lo = check_real("r_range", lo, lo=0.0, hi=1.0)
+    hi = check_real("r_range", hi, lo=lo, lo_open=True, hi=1.0)
     return lo, hi
 
 
