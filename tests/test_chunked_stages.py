@@ -32,6 +32,21 @@ CASES = {
                           "eta_max": 0.1, "n_eta": 1, "n_clearance": 3, "census_n": 0,
                           "t_end": 200.0, "t_transient": 100.0},
                     model=MODEL, simulation=SIM), 3, 3),
+    # the points of the pick-freeze blocks: 2 x (1 + 2) points, none repeated
+    "uncertainty": (dict(spec={"design": {"omega_band": [0.9, 1.1], "n_omega": 3,
+                                          "amplitudes_m": [0.003], "eta": 0.1,
+                                          "clearance_m": 0.02, "t_end": 200.0,
+                                          "t_transient": 100.0},
+                               "parameters": {"r": ["uniform", 0.5, 0.8]}, "samples": 2,
+                               "seed": 0},
+                         model=MODEL, simulation=SIM), 6, 3),
+    # the search grid (1 x 2 designs) on the nominal host and the robust search's 3 hosts
+    "design_robust": (dict(spec={"omega_band": [0.9, 1.1], "n_omega": 3,
+                                 "amplitudes_m": [0.003], "eta_max": 0.1, "n_eta": 1,
+                                 "n_clearance": 2, "census_n": 0, "t_end": 200.0,
+                                 "t_transient": 100.0, "mistuning": 0.1, "n_delta": 3,
+                                 "n_search": 3},
+                           model=MODEL, simulation=SIM), 6, 3),
     "convergence": (dict(study="grid", spec={"F": 0.4, "resolutions": [2, 3]}, model=MODEL,
                          simulation=SIM), 3, 3),
 }

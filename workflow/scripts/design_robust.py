@@ -1,8 +1,10 @@
 """design_robust: one ``design_robust`` entry's designs over the host's drift, nominal and
-robust."""
+robust, from the
+search-grid responses of the entry's chunk parts."""
 from vines.data.netcdf import write_dataset
 from vines.pipeline import stages
 from vines.pipeline.jobs import run_job
+from vines.pipeline.parts import read_parts
 
 sm = snakemake  # noqa: F821  (injected by Snakemake)
 
@@ -11,7 +13,7 @@ def main():
     ds = stages.design_robust(dict(sm.params.spec), model=dict(sm.params.model),
                               simulation=dict(sm.params.simulation), code=sm.params.code,
                               title=f"vines design_robust {sm.wildcards.name}",
-                              n_workers=sm.threads)
+                              n_workers=sm.threads, parts=read_parts(sm.input))
     write_dataset(ds, sm.output[0])
 
 

@@ -1,8 +1,9 @@
 """Chunk jobs of the chunked stages: which items each job computes, and its part file.
 
 A chunked stage (``robust_map``, ``orbit_atlas``, ``basin_slice``, ``lyapunov``,
-``design``, ``convergence``) lists the independent items of one config entry (points,
-eta rows, sweep lines, search designs) in dataset order; ``item_ranges`` cuts them into
+``design``, ``convergence``, ``uncertainty``, ``design_robust``) lists the independent
+items of one config entry (points, eta rows, sweep lines, search designs, sample points,
+search designs on each host) in dataset order; ``item_ranges`` cuts them into
 runs of whole items of about ``points`` points each (the config's ``chunks`` section),
 one job per run. A job writes its results as a part file (``write_part``: a pickle,
 written atomically beside its path); the gather job reads the parts in order
@@ -19,7 +20,8 @@ from pathlib import Path
 #: the config section of their entries
 CHUNKED_STAGES = {"robust_map": "robust_maps", "orbit_atlas": "orbit_atlases",
                   "basin_slice": "basin_slices", "lyapunov": "lyapunov_sweeps",
-                  "design": "designs", "convergence": "convergence"}
+                  "design": "designs", "convergence": "convergence",
+                  "uncertainty": "uncertainty", "design_robust": "design_robust"}
 
 
 def item_ranges(n_items: int, points_per_item: int, points: int) -> list[tuple[int, int]]:
@@ -36,7 +38,8 @@ def stage_items(stage: str, name: str, config: dict) -> tuple[int, int]:
     """(items, points per item) of the entry ``name`` of a chunked stage in a validated
     ``config``: robust_map and basin_slice points (states), orbit_atlas eta rows,
     lyapunov sweep lines, design search-grid designs (runs from rest each: omega values x
-    amplitudes), convergence finest-grid eta rows of the ``grid`` study (the other studies
+    amplitudes), uncertainty sample points, design_robust search-grid designs per host,
+    convergence finest-grid eta rows of the ``grid`` study (the other studies
     and a design that is evaluated, not searched: no items, one job)."""
     from .axes import axis_values
     from .config_checks import atlas_grid
@@ -55,6 +58,10 @@ def stage_items(stage: str, name: str, config: dict) -> tuple[int, int]:
         return lines, axis_values(sw["values"]).size
     if stage == "design":
         return _design_items(config["designs"][name])
+    if stage == "uncertainty":
+        return _uncertainty_items(config["uncertainty"][name])
+    if stage == "design_robust":
+        return _design_robust_items(config["design_robust"][name])
     if stage == "convergence":
         if name != "grid":
             return 0, 1
@@ -72,6 +79,22 @@ def _design_items(entry: dict) -> tuple[int, int]:
     amps = entry.get("amplitudes_m", dc.DEFAULT_AMPLITUDES_M)
     amps = [amps] if isinstance(amps, (int, float)) else amps
     return n, entry.get("n_omega", dc.DEFAULT_N_OMEGA) * len(amps)
+
+
+def _uncertainty_items(entry: dict) -> tuple[int, int]:
+    """(sample points n (k + 2), runs from rest per point: omega values x amplitudes) of
+    an ``uncertainty`` entry."""
+    n, k = int(entry["samples"]), len(entry["parameters"])
+    return n * (k + 2), _design_items(entry["design"] | {"eta_max": 1.0})[1]
+
+
+def _design_robust_items(entry: dict) -> tuple[int, int]:
+    """(search-grid designs on each distinct host of the searches: the nominal one and
+    the robust search's n_search drifts, delta = 0 once; runs per design) of a
+    ``design_robust`` entry (``studies.mistuning.search_hosts``)."""
+    from ..studies.mistuning import search_hosts
+    n, per = _design_items(entry)
+    return n * len(search_hosts(entry["mistuning"], entry["n_search"])), per
 
 
 def chunk_plan(stage: str, name: str, config: dict) -> list[tuple[int, int]]:

@@ -562,20 +562,42 @@ def _solved_design(spec, model, simulation, code, title, n_workers, skip=()) -> 
 MISTUNING_KEYS = ("mistuning", "n_delta", "n_search")
 
 
+def design_robust_part(spec: dict, *, model: dict, simulation: dict, start: int, stop: int,
+                       n_workers: int = 1) -> dict:
+    """The responses of the search-grid designs [start, stop) on the hosts of the nominal
+    and the robust search (``studies.mistuning.search_part``)."""
+    from ..studies.design import prepared
+    from ..studies.mistuning import search_part
+    kw, _ = _design_kw(spec, model, simulation, skip=MISTUNING_KEYS)
+    problem, search = prepared(**kw)
+    return search_part(problem, search, spec["mistuning"], spec["n_search"], start, stop,
+                       n_threads=max(1, int(n_workers)))
+
+
 def design_robust(spec: dict, *, model: dict, simulation: dict, code: str, title: str,
-                  n_workers: int = 1):
+                  n_workers: int = 1, parts: list | None = None):
     """Dataset of one ``design_robust`` entry: the design optimised as ``design`` does,
     its designs over the host's drift delta in [-mistuning, mistuning], and the robust
-    VI NES and re-tuned TMD (``studies.mistuning.mistuning`` with robust=True)."""
-    from ..studies.mistuning import mistuning
-    res, attrs = _solved_design(spec, model, simulation, code, title, n_workers,
-                                skip=MISTUNING_KEYS)
+    VI NES and re-tuned TMD (``studies.mistuning.mistuning`` with robust=True).
+    ``parts``: ``design_robust_part`` results (their designs not run again; the same
+    dataset)."""
+    from ..studies.design import complete
+    from ..studies.mistuning import merged_parts, mistuning
+    known = merged_parts(parts or ())
+    if 0.0 in known:
+        kw, settings = _design_kw(spec, model, simulation, MISTUNING_KEYS)
+        res = complete(known[0.0], **kw, n_threads=max(1, int(n_workers)))
+        attrs = _design_attrs(spec, model, settings, code, title)
+    else:
+        res, attrs = _solved_design(spec, model, simulation, code, title, n_workers,
+                                    skip=MISTUNING_KEYS)
     mis = mistuning(res, spec["mistuning"], n_delta=spec["n_delta"], robust=True,
-                    n_search=spec["n_search"], n_threads=res.cost["n_threads"])
+                    n_search=spec["n_search"], n_threads=res.cost["n_threads"], known=known)
     rob = mis["robust"]
     print(f"design_robust: nominal design {res.cost['cpu_s']:.1f} s CPU; mistuning and "
           f"robust designs {mis['cost']['cpu_s']:.1f} s CPU ({rob['search']['n_designs']} "
-          f"designs, {rob['search']['n_runs']} runs in the robust search); worst over delta: "
+          f"designs, {rob['search']['n_runs']} runs in the robust search; search grids "
+          f"from {len(parts or ())} chunk parts); worst over delta: "
           f"TMD {mis['worst']['tmd']:.3g} -> {rob['worst']['tmd']:.3g}, VI NES "
           f"{mis['worst']['vines']:.3g} -> {rob['worst']['vines']:.3g}")
     return builders.design_robust_dataset(res, mis, attrs)
@@ -583,22 +605,42 @@ def design_robust(spec: dict, *, model: dict, simulation: dict, code: str, title
 
 # ------------------------------------------------------------------ uncertainty
 
+def _uncertain_design(spec: dict, model: dict, simulation: dict, n: int) -> tuple:
+    """(the design of an ``uncertainty`` entry's ``design`` keywords, as a ``designs``
+    entry from rest: census_n = 0; its solver settings)."""
+    from ..studies.design import design as solve_design
+    kw, settings = _design_kw(spec["design"], model, simulation)
+    return solve_design(**{**kw, "census_n": 0}, n_threads=n), settings
+
+
+def uncertainty_part(spec: dict, *, model: dict, simulation: dict, start: int, stop: int,
+                     n_workers: int = 1) -> dict:
+    """The rows of the sample points [start, stop) of ``uncertainty``
+    (``studies.uncertainty.uncertainty_part``); each job builds the entry's design first
+    (a design that is optimised, not evaluated, is searched again in every job)."""
+    from ..studies.uncertainty import uncertainty_part as rows
+    n = max(1, int(n_workers))
+    res, _ = _uncertain_design(spec, model, simulation, n)
+    return rows(res, spec["parameters"], start, stop, samples=spec["samples"],
+                seed=spec["seed"], n_threads=n)
+
+
 def uncertainty(spec: dict, *, model: dict, simulation: dict, code: str, title: str,
-                n_workers: int = 1):
+                n_workers: int = 1, parts: list | None = None):
     """Dataset of one ``uncertainty`` entry: the design of its ``design`` keywords (as a
     ``designs`` entry, from rest: census_n = 0), then ``studies.uncertainty`` with its
-    ``parameters``, ``samples`` and ``seed``."""
-    from ..studies.design import design as solve_design
+    ``parameters``, ``samples`` and ``seed``. ``parts``: ``uncertainty_part`` results
+    (their points not run again; the same dataset)."""
     from ..studies.uncertainty import uncertainty as solve
-    kw, settings = _design_kw(spec["design"], model, simulation)
     n = max(1, int(n_workers))
-    res = solve_design(**{**kw, "census_n": 0}, n_threads=n)
+    res, settings = _uncertain_design(spec, model, simulation, n)
+    known = {k: v for p in parts or () for k, v in p.items()}
     unc = solve(res, spec["parameters"], samples=spec["samples"], seed=spec["seed"],
-                n_threads=n)
+                n_threads=n, known=known)
     cost = unc.cost
     print(f"uncertainty: design eta {res.eta:.4g}, L {res.clearance_m:.4g} m; "
-          f"{cost['n_distinct_points']} points, wall {cost['wall_s']:.1f} s, "
-          f"CPU {cost['cpu_s']:.1f} s")
+          f"{cost['n_distinct_points']} points ({len(known)} from {len(parts or ())} chunk "
+          f"parts), wall {cost['wall_s']:.1f} s, CPU {cost['cpu_s']:.1f} s")
     return builders.uncertainty_dataset(unc, _design_attrs(spec, model, settings, code,
                                                            title))
 

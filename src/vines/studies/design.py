@@ -626,6 +626,11 @@ def grid_responses(start: int, stop: int, **kwargs) -> dict:
     return {"responses": ev.cache, "n_runs": ev.n_runs}
 
 
+def prepared(**kwargs) -> tuple[DesignProblem, DesignSearch]:
+    """The validated problem and search of ``design(**kwargs)``."""
+    return _prepare(_arguments(kwargs))[:2]
+
+
 def grid_designs(search: DesignSearch) -> list:
     """The (eta, clearance_m) of the search grid in the order ``optimise`` runs them (none
     when a design is evaluated, not optimised)."""

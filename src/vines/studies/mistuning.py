@@ -222,13 +222,58 @@ def curves(problem, mu: float, f: float, zeta: float, eta: float, clearance_m: f
 
 # --------------------------------------------------------------------------- robust
 
+def search_deltas(D: float, n_search: int) -> list[float]:
+    """The host drifts of the robust search: n_search points over [-D, D] (0 alone when
+    n_search = 1)."""
+    return delta_grid(D, n_search).tolist() if n_search > 1 else [0.0]
+
+
+def search_hosts(D: float, n_search: int) -> list[float]:
+    """The distinct hosts whose search grids a robust design needs: the nominal one
+    (delta = 0, the nominal search) and the robust search's drifts."""
+    return list(dict.fromkeys([0.0, *search_deltas(float(D), int(n_search))]))
+
+
+def search_part(problem, search, D: float, n_search: int, start: int, stop: int,
+                n_threads=None) -> dict:
+    """The responses of the search-grid designs [start, stop) of ``search_hosts`` x
+    ``design.grid_designs`` (host slowest): {delta: {"responses", "n_runs"}}, as
+    ``design.grid_responses`` gives them for one host; pass the merged parts to
+    ``mistuning`` and (delta = 0) ``design.complete`` as ``known``."""
+    from .design import Evaluator, grid_designs
+    designs = grid_designs(search)
+    out = {}
+    for i in range(start, stop):
+        delta, design = search_hosts(D, n_search)[i // len(designs)], designs[i % len(designs)]
+        if delta not in out:
+            out[delta] = Evaluator(detuned(problem, delta), n_threads)
+        out[delta].responses([design])
+    return {x: {"responses": ev.cache, "n_runs": ev.n_runs} for x, ev in out.items()}
+
+
+def merged_parts(parts) -> dict:
+    """{delta: {"responses", "n_runs"}} of ``search_part`` results merged."""
+    out: dict = {}
+    for part in parts:
+        for x, p in part.items():
+            m = out.setdefault(x, {"responses": {}, "n_runs": 0})
+            m["responses"].update(p["responses"])
+            m["n_runs"] += p["n_runs"]
+    return out
+
+
 class RobustEvaluator:
     """``design.Evaluator``'s ``worst`` for the largest worst case over host drifts
-    ``deltas``: one Evaluator (with its cache) per detuned host."""
+    ``deltas``: one Evaluator (with its cache) per detuned host; ``known``: responses of
+    ``merged_parts`` per drift, not run again."""
 
-    def __init__(self, problem, deltas, n_threads=None):
+    def __init__(self, problem, deltas, n_threads=None, known: dict | None = None):
         from .design import Evaluator
         self.evaluators = [Evaluator(detuned(problem, x), n_threads) for x in deltas]
+        for x, ev in zip(deltas, self.evaluators, strict=True):
+            if known and x in known:
+                ev.cache.update(known[x]["responses"])
+                ev.n_runs += known[x]["n_runs"]
 
     @property
     def cache(self) -> dict:
@@ -265,15 +310,14 @@ def robust_tmd(mu: float, d: float, band, D: float, start: tuple) -> tuple[float
 
 
 def robust_vines(problem, search, D: float, n_search: int, nominal: tuple,
-                 n_threads=None) -> dict:
+                 n_threads=None, known: dict | None = None) -> dict:
     """The VI NES (eta, clearance_m) minimising the largest worst case from rest over
     n_search host drifts in [-D, D]: ``design.optimise`` on a ``RobustEvaluator``, and a
     compass search from the ``nominal`` design (eta, L) too, so that the robust design is
     never worse than the nominal one on this objective; ``search``: the nominal
-    ``design.DesignSearch`` (eta_max, range, grid)."""
+    ``design.DesignSearch`` (eta_max, range, grid); ``known``: ``merged_parts``."""
     from .design import compass, optimise, search_grid
-    ev = RobustEvaluator(problem, delta_grid(D, n_search) if n_search > 1 else [0.0],
-                         n_threads)
+    ev = RobustEvaluator(problem, search_deltas(D, n_search), n_threads, known)
     with progress.task(None, "robust design: runs from rest", "runs"):
         best = optimise(ev, search.eta_max, search.clearance_range_m, search.n_eta,
                         search.n_clearance)
@@ -295,12 +339,24 @@ def robust_vines(problem, search, D: float, n_search: int, nominal: tuple,
 
 # --------------------------------------------------------------------------- driver
 
+def robust_search(result):
+    """The ``design.DesignSearch`` of an optimised ``design.DesignResult``."""
+    from .design import DesignSearch
+    g = result.search
+    return DesignSearch(eta_max=result.inputs["eta_max"],
+                        clearance_range_m=tuple(result.inputs["clearance_range_m"]),
+                        n_eta=len(g["eta"]), n_clearance=len(g["clearance_m"]))
+
+
 def mistuning(result, D, *, n_delta: int = N_DELTA_DEFAULT, robust: bool = False,
-              n_search: int = N_SEARCH_DEFAULT, n_threads=None) -> dict:
+              n_search: int = N_SEARCH_DEFAULT, n_threads=None,
+              known: dict | None = None) -> dict:
     """The JSON block ``mistuning`` of a ``design.DesignResult``: its designs over the
     host's drift (``curves``: keys delta, lo_alone, tmd, vines, vines_any_attractor,
     worst, worst_delta, design), and with ``robust`` (an optimised design only) the
-    robust VI NES and the re-tuned TMD over the same drift (key ``robust``)."""
+    robust VI NES and the re-tuned TMD over the same drift (key ``robust``); ``known``:
+    the robust search grid's responses (``merged_parts`` of ``search_part``), not run
+    again (the same numbers)."""
     D, n_delta, n_search = check_mistuning(D, n_delta, n_search)
     if robust and result.search is None:
         raise ParameterError("robust", True, "optimises a design: give eta_max with it")
@@ -310,19 +366,14 @@ def mistuning(result, D, *, n_delta: int = N_DELTA_DEFAULT, robust: bool = False
                  result.clearance_m, D, n_delta, n_threads).to_dict()
     out["robust"] = None
     if robust:
-        from .design import DesignSearch
-        g = result.search
-        search = DesignSearch(eta_max=result.inputs["eta_max"],
-                              clearance_range_m=tuple(result.inputs["clearance_range_m"]),
-                              n_eta=len(g["eta"]), n_clearance=len(g["clearance_m"]))
-        best = robust_vines(pb, search, D, n_search, (result.eta, result.clearance_m),
-                            n_threads)
+        best = robust_vines(pb, robust_search(result), D, n_search,
+                            (result.eta, result.clearance_m), n_threads, known)
         f, z = robust_tmd(t.eta, pb.model.d, pb.band, D,
                           (t.frequency_ratio, t.damping_ratio))
         rob = curves(pb, t.eta, f, z, best["eta"], best["clearance_m"], D, n_delta,
                      n_threads)
         out["robust"] = rob.to_dict() | dict(
-            search=dict(delta=delta_grid(D, n_search).tolist() if n_search > 1 else [0.0],
+            search=dict(delta=search_deltas(D, n_search),
                         worst_ratio=best["worst_ratio"], n_designs=best["n_designs"],
                         n_runs=best["n_runs"]),
             tmd_search=dict(n_delta=N_TMD_DELTA, n_omega=N_TMD_BAND))

@@ -52,7 +52,7 @@ from .uncertainty_checks import (
 )
 
 __all__ = ["PARAMETERS", "Uncertain", "UncertaintyResult", "evaluate", "sobol_analysis",
-           "uncertainty"]
+           "uncertainty", "uncertainty_part"]
 
 #: bootstrap of the Sobol indices: confidence level, resamples, and the widest 95 %
 #: interval (absolute) of an index still called reliable
@@ -286,22 +286,25 @@ def _notes(sens: dict, mixed: bool) -> list[str]:
     return notes
 
 
-def evaluate(result, parameters: Sequence[Uncertain], n: int, seed: int,
-             n_threads=None) -> UncertaintyResult:
-    """The design of ``result`` (a ``design.DesignResult``) at the n (k + 2) points of
-    ``sobol_blocks``/``pick_freeze_points`` for validated ``parameters``; each distinct point
-    is evaluated once, the points spread over ``n_threads`` threads (each point's runs on
-    one), kept by point: the numbers do not depend on the threads."""
-    import os
-    import time
-    from concurrent.futures import ThreadPoolExecutor
-    t0, c0 = time.perf_counter(), time.process_time()
-    names = [p.name for p in parameters]
+def sample_points(parameters: Sequence[Uncertain], n: int, seed: int) -> np.ndarray:
+    """The parameter values (k, n (k + 2)) of ``sobol_blocks``/``pick_freeze_points``."""
     A, B = sobol_blocks(len(parameters), n, seed)
     units = pick_freeze_points(A, B)
-    points = np.stack([p.ppf(units[i]) for i, p in enumerate(parameters)])
+    return np.stack([p.ppf(units[i]) for i, p in enumerate(parameters)])
+
+
+def point_keys(points: np.ndarray) -> list[tuple]:
+    """One key (the parameter values) per point, in point order."""
+    return [tuple(points[:, j]) for j in range(points.shape[1])]
+
+
+def point_rows(result, names: Sequence[str], keys: Sequence[tuple], n_threads=None) -> dict:
+    """{key: (VI NES worst ratio, its regime, TMD worst ratio)} of the distinct ``keys``
+    (parameter values in ``names`` order) of the design of ``result``, spread over
+    ``n_threads`` threads (each point's runs on one): a point's row depends on it alone."""
+    import os
+    from concurrent.futures import ThreadPoolExecutor
     pb = result.problem
-    keys = [tuple(points[:, j]) for j in range(points.shape[1])]
     distinct = list(dict.fromkeys(keys))
     n_threads = n_threads or os.cpu_count() or 1
 
@@ -312,8 +315,27 @@ def evaluate(result, parameters: Sequence[Uncertain], n: int, seed: int,
 
     with ThreadPoolExecutor(max_workers=n_threads) as ex:
         rows = ex.map(work, distinct) if n_threads > 1 else map(work, distinct)
-        seen = dict(zip(distinct, progress.track(rows, len(distinct), "uncertainty: samples",
+        return dict(zip(distinct, progress.track(rows, len(distinct), "uncertainty: samples",
                                                  "points"), strict=True))
+
+
+def evaluate(result, parameters: Sequence[Uncertain], n: int, seed: int,
+             n_threads=None, known: dict | None = None) -> UncertaintyResult:
+    """The design of ``result`` (a ``design.DesignResult``) at the n (k + 2) points of
+    ``sample_points`` for validated ``parameters``; each distinct point is evaluated once
+    (``point_rows``), those in ``known`` (rows of ``point_rows`` computed elsewhere) not
+    again: the numbers depend neither on the threads nor on ``known``."""
+    import os
+    import time
+    t0, c0 = time.perf_counter(), time.process_time()
+    names = [p.name for p in parameters]
+    points = sample_points(parameters, n, seed)
+    keys = point_keys(points)
+    distinct = list(dict.fromkeys(keys))
+    known = known or {}
+    n_threads = n_threads or os.cpu_count() or 1
+    seen = known | point_rows(result, names, [k for k in distinct if k not in known],
+                              n_threads)
     rows = [seen[key] for key in keys]
     cost = dict(wall_s=time.perf_counter() - t0, cpu_s=time.process_time() - c0,
                 n_distinct_points=len(distinct), n_threads=n_threads)
@@ -326,14 +348,8 @@ def evaluate(result, parameters: Sequence[Uncertain], n: int, seed: int,
         cost=cost)
 
 
-def uncertainty(result, parameters, *, samples: int = N_SAMPLES_DEFAULT, seed: int = 0,
-                n_threads: int | None = None) -> UncertaintyResult:
-    """The design of ``result`` (``vines.design``'s DesignResult) with uncertain parts.
-
-    parameters: a mapping name -> 'uniform:LO:HI' / 'normal:MEAN:SD' (or (DIST, A, B)), or
-    'NAME=SPEC' strings; names and meanings in ``PARAMETERS`` (module docstring);
-    samples: the Sobol base size n (a power of 2; n (k + 2) points for k parameters);
-    seed: the scrambling's seed. Raises ParameterError naming the bad argument."""
+def _checked(result, parameters, samples, seed, n_threads) -> tuple:
+    """(parameters, n, seed, n_threads) of ``uncertainty``'s arguments, validated."""
     from .design import DesignResult
     if not isinstance(result, DesignResult):
         raise ParameterError("result", result, "must be the DesignResult of vines.design")
@@ -344,4 +360,29 @@ def uncertainty(result, parameters, *, samples: int = N_SAMPLES_DEFAULT, seed: i
     seed = check_int("uncertainty_seed", seed, lo=0, hi=2 ** 63 - 1)
     if n_threads is not None:
         n_threads = check_int("n_threads", n_threads, lo=1, hi=4096)
-    return evaluate(result, params, n, seed, n_threads)
+    return params, n, seed, n_threads
+
+
+def uncertainty(result, parameters, *, samples: int = N_SAMPLES_DEFAULT, seed: int = 0,
+                n_threads: int | None = None, known: dict | None = None) -> UncertaintyResult:
+    """The design of ``result`` (``vines.design``'s DesignResult) with uncertain parts.
+
+    parameters: a mapping name -> 'uniform:LO:HI' / 'normal:MEAN:SD' (or (DIST, A, B)), or
+    'NAME=SPEC' strings; names and meanings in ``PARAMETERS`` (module docstring);
+    samples: the Sobol base size n (a power of 2; n (k + 2) points for k parameters);
+    seed: the scrambling's seed; known: the merged rows of ``uncertainty_part`` computed
+    elsewhere (not run again; the same result). Raises ParameterError naming the bad
+    argument."""
+    params, n, seed, n_threads = _checked(result, parameters, samples, seed, n_threads)
+    return evaluate(result, params, n, seed, n_threads, known)
+
+
+def uncertainty_part(result, parameters, start: int, stop: int, *,
+                     samples: int = N_SAMPLES_DEFAULT, seed: int = 0,
+                     n_threads: int | None = None) -> dict:
+    """The rows (``point_rows``) of the points [start, stop) (point order) of
+    ``uncertainty(result, parameters, samples=samples, seed=seed)``: pass the merged dicts
+    of all parts to it as ``known``."""
+    params, n, seed, n_threads = _checked(result, parameters, samples, seed, n_threads)
+    keys = point_keys(sample_points(params, n, seed))[start:stop]
+    return point_rows(result, [p.name for p in params], keys, n_threads)
