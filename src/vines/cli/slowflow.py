@@ -51,7 +51,8 @@ def add_parser(subparsers) -> VinesArgumentParser:
                    help=f"the FRC over N frequencies from A to B [{RANGE_ALLOWED}]")
     p.add_argument("--json", action="store_true",
                    help="print one JSON object on stdout (keys: model, params, rho, xi_min, "
-                        "x_flip, orbits, regime, smr, linear_amplitude, warnings; with "
+                        "x_symmetry_breaking (x_flip: its deprecated name), orbits, regime, "
+                        "from_rest, smr, linear_amplitude, warnings; with "
                         "--omega-range: frc, regimes instead of orbits and regime)")
     return p
 
@@ -96,8 +97,9 @@ def _orbit(o: dict) -> str:
 
 def text(d: dict) -> str:
     """A reader's summary."""
-    lines = [f"slow flow: rho {d['rho']:.6g}, xi_min {d['xi_min']:.6g} (fold), x_flip "
-             f"{d['x_flip']:.6g}"]
+    lines = [f"slow flow: rho {d['rho']:.6g}, xi_min {d['xi_min']:.6g} (fold), "
+             f"x_symmetry_breaking {d['x_symmetry_breaking']:.6g} (upper end of the stable "
+             "branch: the symmetric orbit's symmetry-breaking pitchfork)"]
     if "frc" in d:
         counts = {}
         for g in d["regimes"]:

@@ -1,7 +1,8 @@
 """The averaged slow flow of the symmetric two-impact (1:1) regime: a light ball (eta small),
 light damping, forcing near the LO's resonance (docs/slowflow.md).
 
-numpy only (no numba): the slow invariant manifold and its fold in closed form
+numpy only (no numba): the slow invariant manifold, its fold and symmetry-breaking point
+in closed form
 (``manifold``), the fixed points of the slow flow in closed form with their stability
 (``response``), the public front end with the regime and the warnings (``api``) and the
 clearance that minimises the peak LO amplitude over a band (``optimal``).

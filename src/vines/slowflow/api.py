@@ -73,7 +73,8 @@ class SlowFlowOrbit:
     amplitude: max |z_m| over a period (units of L); ball_amplitude: max |z_b|; phase:
     forcing phase mod(Omega t + phi, 2 pi) at the impact on wall L (as ``PeriodicOrbit``'s
     phase_L); stable: stable in the slow flow and on the SIM's stable branch; branch: the SIM
-    branch ("stable", "unstable" between the fold and X = 1, "flip" beyond the flip).
+    branch ("stable", "unstable" between the fold and X = 1, "symmetry-breaking" beyond the
+    symmetry-breaking point, where a 1:1 orbit with unequal flights takes over).
     """
 
     amplitude: float
@@ -88,29 +89,44 @@ class SlowFlowOrbit:
 
 def regimes(R: Roots, x_linear: np.ndarray) -> np.ndarray:
     """Per frequency: 'two-impact' where a fixed point attracts (slow-stable on the SIM's
-    stable branch, or beyond its flip); else 'no impact' where the LO without impacts stays
+    stable branch, or beyond its symmetry-breaking point); else 'no impact' where the LO without impacts stays
     inside the clearance (amplitude < 1); else 'SMR' (relaxation around the fold)."""
     attracts = np.zeros(x_linear.size, dtype=bool)
     attracts[R.index[R.attracting]] = True
     return np.where(attracts, "two-impact", np.where(x_linear < 1.0, "no impact", "SMR"))
 
 
-def flip_warning(R: Roots) -> list[str]:
-    """The warning where a regime rests on a fixed point beyond the flip."""
+def symmetry_breaking_warning(R: Roots) -> list[str]:
+    """The warning where a regime rests on a fixed point beyond the symmetry-breaking
+    point."""
     beyond = R.attracting & ~R.stable
     if not beyond.any():
         return []
     return [f"the two-impact fixed point at omega = {R.omega[beyond][0]:g} lies beyond the "
-            f"flip of the SIM (LO amplitude {R.X[beyond][0]:.4g} > x_flip): the symmetric "
-            f"1:1 orbit is unstable there, the impacts period-double at about this amplitude"]
+            f"symmetry-breaking point of the SIM (LO amplitude {R.X[beyond][0]:.4g} > "
+            f"x_symmetry_breaking): the symmetric 1:1 orbit is unstable there (a "
+            f"pitchfork: multiplier +1 of the full period), a 1:1 orbit with unequal "
+            f"flights takes over at about this LO amplitude"]
+
+
+def flip_warning(R: Roots) -> list[str]:
+    """Deprecated name of ``symmetry_breaking_warning``."""
+    _deprecated("flip_warning", "symmetry_breaking_warning")
+    return symmetry_breaking_warning(R)
+
+
+def _deprecated(old: str, new: str) -> None:
+    import warnings
+    warnings.warn(f"{old} is deprecated: use {new} (a symmetry-breaking pitchfork, not a "
+                  "flip)", DeprecationWarning, stacklevel=3)
 
 
 @dataclass(frozen=True)
 class SlowFlowResponse:
     """The slow flow's answer at one (eta, omega, F, r, d); lengths in units of L.
 
-    rho, xi_min (the SIM's fold: activation threshold), x_flip (the upper end of its stable
-    branch), orbits (every fixed point, stable first), regime, smr (None or the relaxation
+    rho, xi_min (the SIM's fold: activation threshold), x_symmetry_breaking (the upper end of
+    its stable branch; ``x_flip`` its deprecated name), orbits (every fixed point, stable first), regime, smr (None or the relaxation
     cycle's LO amplitude range (low, 1): low the cycle's smallest amplitude, xi_min or
     below), linear_amplitude (the LO without impacts), warnings (the assumptions the inputs
     leave), smr_cycle (None or the cycle: period, time impacting and free; ``cycle``).
@@ -123,13 +139,19 @@ class SlowFlowResponse:
     d: float
     rho: float
     xi_min: float
-    x_flip: float
+    x_symmetry_breaking: float
     orbits: list
     regime: str
     smr: tuple | None
     linear_amplitude: float
     warnings: list
     smr_cycle: SMRCycle | None = None
+
+    @property
+    def x_flip(self) -> float:
+        """Deprecated name of ``x_symmetry_breaking``."""
+        _deprecated("x_flip", "x_symmetry_breaking")
+        return self.x_symmetry_breaking
 
     def to_dict(self) -> dict:
         smr = None if self.smr is None else {"amplitude_low": self.smr[0],
@@ -141,7 +163,9 @@ class SlowFlowResponse:
         return {"model": "slowflow",
                 "params": {"eta": self.eta, "omega": self.omega, "F": self.F, "r": self.r,
                            "d": self.d},
-                "rho": self.rho, "xi_min": self.xi_min, "x_flip": self.x_flip,
+                "rho": self.rho, "xi_min": self.xi_min,
+                "x_symmetry_breaking": self.x_symmetry_breaking,
+                "x_flip": self.x_symmetry_breaking,    # deprecated key, for one release
                 "orbits": [o.to_dict() for o in self.orbits], "regime": self.regime,
                 "smr": smr,
                 "linear_amplitude": self.linear_amplitude, "warnings": list(self.warnings)}
@@ -177,11 +201,12 @@ def response(eta, omega, F, *, r=R_DEFAULT, d=D_DEFAULT) -> SlowFlowResponse:
     regime = str(regimes(R, xl)[0])
     cycle = smr_cycle(m, float(W[0])) if regime == "SMR" else None
     return SlowFlowResponse(eta=m.eta, omega=float(W[0]), F=m.F, r=m.r, d=m.d, rho=m.rho,
-                            xi_min=sim.xi_min(m.rho), x_flip=sim.x_flip(m.rho),
+                            xi_min=sim.xi_min(m.rho),
+                            x_symmetry_breaking=sim.x_symmetry_breaking(m.rho),
                             orbits=_orbits(R), regime=regime,
                             smr=smr_range(m, cycle) if regime == "SMR" else None,
                             linear_amplitude=float(xl[0]),
-                            warnings=warnings_for(m, W) + flip_warning(R), smr_cycle=cycle)
+                            warnings=warnings_for(m, W) + symmetry_breaking_warning(R), smr_cycle=cycle)
 
 
 @dataclass(frozen=True)
@@ -189,7 +214,8 @@ class FRC:
     """The slow flow's frequency-response curves: one row per fixed point (all branches).
 
     Rows: omega, amplitude (max |z_m|, units of L), ball_amplitude, phase (forcing phase at
-    the L impact, rad), stable, branch (SIM branch code: 1 stable, 2 unstable, 3 flip;
+    the L impact, rad), stable, branch (SIM branch code: 1 stable, 2 unstable, 3
+    symmetry-breaking;
     ``manifold.BRANCH_*``), slow_stable (stable in the slow flow, whatever the branch).
     Per frequency of ``omega_grid``: linear_amplitude, regime.
     """
@@ -206,8 +232,14 @@ class FRC:
     regime: np.ndarray
     rho: float
     xi_min: float
-    x_flip: float
+    x_symmetry_breaking: float
     warnings: list
+
+    @property
+    def x_flip(self) -> float:
+        """Deprecated name of ``x_symmetry_breaking``."""
+        _deprecated("x_flip", "x_symmetry_breaking")
+        return self.x_symmetry_breaking
 
     def to_dict(self) -> dict:
         rows = [{"omega": w, "amplitude": a, "ball_amplitude": b, "phase": p,
@@ -219,7 +251,9 @@ class FRC:
                    for w, g, x in zip(self.omega_grid, self.regime, self.linear_amplitude,
                                       strict=True)]
         return {"model": "slowflow", "rho": self.rho, "xi_min": self.xi_min,
-                "x_flip": self.x_flip, "frc": rows, "regimes": regimes,
+                "x_symmetry_breaking": self.x_symmetry_breaking,
+                "x_flip": self.x_symmetry_breaking,    # deprecated key, for one release
+                "frc": rows, "regimes": regimes,
                 "warnings": list(self.warnings)}
 
 
@@ -231,7 +265,7 @@ def frc_of(m: Model, W: np.ndarray) -> FRC:
                phase=R.phase, stable=R.stable, branch=R.branch,
                slow_stable=R.slow_stable, omega_grid=W, linear_amplitude=xl,
                regime=regimes(R, xl), rho=m.rho, xi_min=sim.xi_min(m.rho),
-               x_flip=sim.x_flip(m.rho), warnings=warnings_for(m, W) + flip_warning(R))
+               x_symmetry_breaking=sim.x_symmetry_breaking(m.rho), warnings=warnings_for(m, W) + symmetry_breaking_warning(R))
 
 
 def frc(eta, omegas, F, *, r=R_DEFAULT, d=D_DEFAULT) -> FRC:

@@ -39,7 +39,8 @@ class SMRCycle:
 
 
 def upper_alpha(X, rh):
-    """Impact phase on the SIM's upper (stable and flip) branch at LO amplitude X."""
+    """Impact phase on the SIM's upper (stable and symmetry-breaking) branch at LO
+    amplitude X."""
     c = np.clip(rh / (X * math.sqrt(1.0 + rh * rh)), -1.0, 1.0)
     return -sim.beta(rh) - np.arccos(c)
 

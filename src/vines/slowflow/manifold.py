@@ -11,20 +11,27 @@ i.e. X(alpha) = rho / (rho cos(alpha) - sin(alpha)) for alpha in (-pi/2 - beta, 
 tan(beta) = 1/rho. Lengths are in units of L (half the cavity), angles in radians.
 The ball's impact map (LO prescribed) has determinant r^2 and trace
 2 r - (pi/2)(1 - r^2) cot(alpha): it is stable for -rho < cot(alpha) < 4/(pi^2 rho), between
-the fold (alpha = -beta, the activation threshold xi_min = rho/sqrt(1 + rho^2)) and the flip
-(cot(alpha) = 4/(pi^2 rho)).
+the fold (alpha = -beta, the activation threshold xi_min = rho/sqrt(1 + rho^2)) and the
+symmetry-breaking point (cot(alpha) = 4/(pi^2 rho)). That map is the half-period map
+composed with the mirror (the alternating signs removed): its eigenvalue -1 there is +1 of
+the full-period map, a symmetry-breaking pitchfork where a 1:1 orbit with unequal flights
+is born (not a period doubling: that comes much later, near X = 1). The former names
+``alpha_flip``, ``x_flip`` and ``BRANCH_FLIP`` are deprecated aliases.
 """
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 
 #: SIM branch codes (the FRC's ``branch``)
-BRANCH_STABLE = 1      # between the fold and the flip: the ball's two impacts are stable
+BRANCH_STABLE = 1      # between the fold and the symmetry-breaking point: stable impacts
 BRANCH_UNSTABLE = 2    # between the fold and X = 1 (zero impact velocity): saddle
-BRANCH_FLIP = 3        # beyond the flip: the two-impact motion period-doubles
-BRANCH_NAMES = {BRANCH_STABLE: "stable", BRANCH_UNSTABLE: "unstable", BRANCH_FLIP: "flip"}
+BRANCH_SYMMETRY_BREAKING = 3   # beyond the symmetry-breaking point: the symmetric motion is
+#                                unstable, a 1:1 orbit with unequal flights takes over
+BRANCH_NAMES = {BRANCH_STABLE: "stable", BRANCH_UNSTABLE: "unstable",
+                BRANCH_SYMMETRY_BREAKING: "symmetry-breaking"}
 
 
 def rho(r: float) -> float:
@@ -42,15 +49,32 @@ def xi_min(rh: float) -> float:
     return rh / math.sqrt(1.0 + rh * rh)
 
 
-def alpha_flip(rh: float) -> float:
-    """Impact phase alpha in (-pi, -pi/2) of the flip: cot(alpha) = 4/(pi^2 rho)."""
+def alpha_symmetry_breaking(rh: float) -> float:
+    """Impact phase alpha in (-pi, -pi/2) of the symmetry-breaking point:
+    cot(alpha) = 4/(pi^2 rho)."""
     cf = 4.0 / (math.pi ** 2 * rh)
     return -math.pi + math.atan2(1.0, cf)
 
 
-def x_flip(rh: float) -> float:
-    """LO amplitude (units of L) at the flip, the upper end of the SIM's stable branch."""
-    return float(amplitude(alpha_flip(rh), rh))
+def x_symmetry_breaking(rh: float) -> float:
+    """LO amplitude (units of L) at the symmetry-breaking point, the upper end of the
+    SIM's stable branch."""
+    return float(amplitude(alpha_symmetry_breaking(rh), rh))
+
+
+#: deprecated name -> (its new name, the object); for one release (``__getattr__``)
+_DEPRECATED = {"alpha_flip": "alpha_symmetry_breaking", "x_flip": "x_symmetry_breaking",
+               "BRANCH_FLIP": "BRANCH_SYMMETRY_BREAKING"}
+
+
+def __getattr__(name: str):
+    if name in _DEPRECATED:
+        new = _DEPRECATED[name]
+        warnings.warn(f"vines.slowflow.manifold.{name} is deprecated: use {new} (it is a "
+                      "symmetry-breaking pitchfork, not a flip)", DeprecationWarning,
+                      stacklevel=2)
+        return globals()[new]
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def amplitude(alpha, rh):
@@ -75,7 +99,7 @@ def branch_of(alpha, rh):
     alpha = np.asarray(alpha, dtype=float)
     out = np.full(alpha.shape, BRANCH_STABLE, dtype=np.int8)
     out[alpha > -beta(rh)] = BRANCH_UNSTABLE
-    out[alpha < alpha_flip(rh)] = BRANCH_FLIP
+    out[alpha < alpha_symmetry_breaking(rh)] = BRANCH_SYMMETRY_BREAKING
     return out
 
 

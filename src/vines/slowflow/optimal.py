@@ -4,7 +4,8 @@ A base amplitude A and a clearance L give F = A/L; the LO's largest amplitude is
 units of L), i.e. the transmissibility X/F. At each frequency the motion from rest
 (docs/slowflow.md, section 7) is the linear response while it stays inside the clearance
 (X_lin < 1, no impact); otherwise the largest attracting two-impact fixed point (beyond the
-SIM's flip too, where the impacts period-double at about that amplitude), or, with none,
+SIM's symmetry-breaking point too, where a 1:1 orbit with unequal flights takes over at
+about that amplitude), or, with none,
 the strongly modulated response, whose LO amplitude reaches X = 1. The worst case over the
 band (and over the amplitudes A_i) is minimised over L on a logarithmic grid, then refined
 by golden-section search in log L around the grid's best point.

@@ -54,8 +54,8 @@ class Roots:
 
     @property
     def attracting(self) -> np.ndarray:
-        """Slow-stable on the stable branch or beyond the flip (where the motion
-        period-doubles but keeps about this amplitude)."""
+        """Slow-stable on the stable branch or beyond the symmetry-breaking point (where a
+        1:1 orbit with unequal flights takes over at about this amplitude)."""
         return (self.branch != sim.BRANCH_UNSTABLE) & self.slow_stable
 
     @property
