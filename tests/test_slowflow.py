@@ -1,5 +1,5 @@
 """The averaged slow flow (``vines.slowflow``) against what does not share its algebra: the
-ball's motion integrated with the LO prescribed (SIM, fold, flip), the averaged equations by
+ball's motion integrated with the LO prescribed (SIM, fold, symmetry-breaking point), the averaged equations by
 quadrature (fixed points, stability) and the exact 1:1 orbits of the impact maps with their
 max |z_m| from the closed-form flow (convergence O(eps), stability, the fold)."""
 import math
@@ -110,10 +110,11 @@ def test_sim_is_the_ball_flight_of_half_a_period(alpha):
     assert t1 - alpha == pytest.approx(math.pi, abs=1e-9)
 
 
-def test_fold_and_flip_bound_the_stable_branch():
+def test_fold_and_symmetry_breaking_bound_the_stable_branch():
     """The ball's impact map with the LO prescribed: perturbations decay between the fold
-    and the flip, grow just outside (iterated map, not the trace formula)."""
-    a_fold, a_flip = -manifold.beta(RHO), manifold.alpha_flip(RHO)
+    and the symmetry-breaking point, grow just outside (iterated map, not the trace
+    formula)."""
+    a_fold, a_flip = -manifold.beta(RHO), manifold.alpha_symmetry_breaking(RHO)
     assert manifold.amplitude(a_fold, RHO) == pytest.approx(manifold.xi_min(RHO))
     for alpha, stable in [(a_fold - 0.1, True), (0.5 * (a_fold + a_flip), True),
                           (a_flip + 0.05, True), (a_fold + 0.1, False),
@@ -184,7 +185,8 @@ KAPPA = 0.5
 def test_converges_to_the_exact_orbits(r, f, sigma, branches):
     """eta = eps, d = kappa eps, F = f eps, Omega = 1 + sigma eps: the slow flow's
     amplitudes differ from the exact orbits' max |z_m| by O(eps): each halving of eps
-    divides the difference by 1.6 to 3.5, on every branch (stable, unstable, flip); the
+    divides the difference by 1.6 to 3.5, on every branch (stable, unstable,
+    symmetry-breaking); the
     stability agrees."""
     diffs = {}
     for eps in EPS:
@@ -200,11 +202,12 @@ def test_converges_to_the_exact_orbits(r, f, sigma, branches):
 
 def test_stability_agrees_away_from_the_boundary():
     """Over a grid at eta = 0.01: wherever the exact multiplier is not within 5 % of the unit
-    circle and the slow flow's amplitude not within 5 % of the SIM's fold or flip (where
+    circle and the slow flow's amplitude not within 5 % of the SIM's fold or
+    symmetry-breaking point (where
     the averaging is singular: the ball's own dynamics slows down), a fixed point called
     stable is a stable exact orbit and vice versa."""
     n = 0
-    ends = (manifold.xi_min(RHO), manifold.x_flip(RHO))
+    ends = (manifold.xi_min(RHO), manifold.x_symmetry_breaking(RHO))
     for f in (0.5, 1.0, 2.0, 3.0):
         for sigma in (-2.0, -1.0, 0.0, 1.0, 2.0):
             eps = 0.01
@@ -214,6 +217,39 @@ def test_stability_agrees_away_from_the_boundary():
                     assert s_slow == s_exact, (f, sigma, lam)
                     n += 1
     assert n >= 20
+
+
+def test_symmetry_breaking_amplitude_is_the_exact_orbits_limit():
+    """eta = eps, d = eps/2, Omega = 1: the exact symmetric 1:1 orbit continued in F
+    (``continue_branch``, natural mode) meets a multiplier +1 of its full period (the
+    half map composed with the mirror: -1), a symmetry-breaking pitchfork; its max |z_m|
+    there tends to the slow flow's x_symmetry_breaking as eps -> 0 at first order: each
+    halving divides the difference by 1.6 to 2.5 (first order: -> 2), and it stays below
+    2.5 eps (its O(eps) coefficient, ~1.9 here, settles within 10 %)."""
+    from vines.orbits import continue_branch
+    xs = manifold.x_symmetry_breaking(RHO)
+
+    def upper_X(F, eta, d):
+        fp = fixed_points(Model(eta, F, R, d), np.array([1.0]))
+        return fp.X[fp.branch != manifold.BRANCH_UNSTABLE].max() - xs
+
+    errors = []
+    for eps in (0.04, 0.02, 0.01, 0.005):
+        eta, d = eps, KAPPA * eps
+        F_slow = brentq(upper_X, 1.2 * eps, 2.0 * eps, args=(eta, d), xtol=1e-15)
+        br = continue_branch("F", 0.95 * F_slow, F_slow, step=0.05 * F_slow / 20,
+                             fixed={"eta": eta, "omega": 1.0}, r=R, d=d, event_tol=1e-12,
+                             method="natural")
+        (sb,) = [e["at"] for e in br.events if e["type"] == "symmetry-breaking"]
+        (o,) = [o for o in find_1to1(eta, 1.0, sb, r=R, d=d, simulation=False)
+                if o.symmetric and o.admissible]
+        assert np.min(np.abs(o.eigenvalues - 1.0)) < 1e-8        # full period: +1
+        errors.append(xs - exact_zm_max(o, eta, 1.0, sb, R, d))
+    errors = np.array(errors)
+    ratios = errors[:-1] / errors[1:]
+    assert np.all((ratios >= 1.6) & (ratios <= 2.5)), errors
+    scaled = errors / np.array([0.04, 0.02, 0.01, 0.005])
+    assert np.all(scaled <= 2.5) and np.ptp(scaled) < 0.1 * scaled[-1], scaled
 
 
 @pytest.mark.parametrize("eta", [0.02, 0.01, 0.005])
@@ -247,7 +283,7 @@ def test_frc_rows_are_the_responses():
         rows = np.flatnonzero(out.omega == w)
         assert sorted(o.amplitude for o in res.orbits) == pytest.approx(
             sorted(out.amplitude[rows]))
-        assert res.regime == out.regime[np.flatnonzero(w == W)[0]]
+        assert res.fixed_point_regime == out.regime[np.flatnonzero(w == W)[0]]
     d = out.to_dict()
     assert {"omega", "amplitude", "ball_amplitude", "phase", "stable", "branch"} <= set(
         d["frc"][0])
@@ -263,6 +299,49 @@ def test_regimes():
     c = r.smr_cycle
     assert c.period == pytest.approx(c.time_impacting + c.time_free) and c.time_free > 0
     assert r.to_dict()["smr"]["period"] == c.period
+
+
+@pytest.mark.parametrize("eta, W, F, regime, decided_by, exact", [
+    # the jump at X = 1 lands in the fixed point's basin (exact: the 1:1 orbit)
+    (0.02, 1.0, 0.02, "two-impact", "slow flow", "1:1"),
+    # a fixed point attracts, but from rest the LO stays inside the clearance
+    (0.02, 0.975, 0.03, "no impact", "slow flow", "no-impact"),
+    # the linear amplitude is below 1, but the start-up beat reaches the clearance: SMR
+    (0.1, 0.975, 0.05, "SMR", "slow flow", "chatter"),
+    # the jump reaches the fold while a fixed point attracts: the exact solver decides
+    (0.05, 1.025, 0.05, "two-impact", "exact solver: 1:1", "1:1"),
+])
+def test_regime_from_rest_is_followed(eta, W, F, regime, decided_by, exact):
+    """The regime from rest is decided by following the slow flow through the jump at
+    X = 1 (or by the exact solver where it cannot), not by assuming that an attracting
+    fixed point is reached; the exact run from rest agrees."""
+    from vines.core.simulation import simulate_batch
+    r = response(eta, W, F)
+    assert (r.regime, r.from_rest.decided_by) == (regime, decided_by)
+    assert str(simulate_batch(eta, W, F, n_threads=1)["regime"]) == exact
+    d = r.to_dict()["from_rest"]
+    assert d["regime"] == regime and d["fixed_point_regime"] == r.fixed_point_regime
+    if regime == "two-impact":
+        assert r.from_rest.jumps >= 1 and any(
+            o.amplitude == r.from_rest.amplitude for o in r.orbits) == (
+            decided_by == "slow flow")
+    if regime == "no impact":
+        assert r.from_rest.jumps == 0 and r.from_rest.amplitude == r.linear_amplitude
+        assert r.fixed_point_regime == "two-impact"
+
+
+def test_flip_names_are_deprecated_aliases():
+    res = response(0.02, 1.0, 0.02)
+    with pytest.warns(DeprecationWarning, match="x_symmetry_breaking"):
+        assert res.x_flip == res.x_symmetry_breaking == manifold.x_symmetry_breaking(RHO)
+    for old, new in (("alpha_flip", "alpha_symmetry_breaking"),
+                     ("x_flip", "x_symmetry_breaking"),
+                     ("BRANCH_FLIP", "BRANCH_SYMMETRY_BREAKING")):
+        with pytest.warns(DeprecationWarning, match=new):
+            assert getattr(manifold, old) is getattr(manifold, new)
+    d = res.to_dict()
+    assert d["x_flip"] == d["x_symmetry_breaking"]
+    assert manifold.BRANCH_NAMES[manifold.BRANCH_SYMMETRY_BREAKING] == "symmetry-breaking"
 
 
 def test_refuses_and_warns_outside_the_assumptions():

@@ -16,7 +16,7 @@ from ..core.params import (
     check_reals,
 )
 from . import manifold as sim
-from .cycle import SMRCycle, smr_cycle
+from .cycle import FromRest, SMRCycle, from_rest, smr_cycle
 from .response import Model, Roots, fixed_points, linear_amplitude
 
 #: above these the slow flow answers with a warning; above the maxima it refuses
@@ -129,7 +129,10 @@ class SlowFlowResponse:
     its stable branch; ``x_flip`` its deprecated name), orbits (every fixed point, stable first), regime, smr (None or the relaxation
     cycle's LO amplitude range (low, 1): low the cycle's smallest amplitude, xi_min or
     below), linear_amplitude (the LO without impacts), warnings (the assumptions the inputs
-    leave), smr_cycle (None or the cycle: period, time impacting and free; ``cycle``).
+    leave), smr_cycle (None or the cycle: period, time impacting and free; ``cycle``),
+    from_rest (how the regime was decided: ``cycle.FromRest``), fixed_point_regime (the
+    regime the fixed points alone suggest, as ``regimes`` and the FRC report it: an
+    attracting fixed point taken to be reached).
     """
 
     eta: float
@@ -146,6 +149,8 @@ class SlowFlowResponse:
     linear_amplitude: float
     warnings: list
     smr_cycle: SMRCycle | None = None
+    from_rest: FromRest | None = None
+    fixed_point_regime: str | None = None
 
     @property
     def x_flip(self) -> float:
@@ -168,6 +173,8 @@ class SlowFlowResponse:
                 "x_flip": self.x_symmetry_breaking,    # deprecated key, for one release
                 "orbits": [o.to_dict() for o in self.orbits], "regime": self.regime,
                 "smr": smr,
+                "from_rest": (None if self.from_rest is None else self.from_rest.to_dict()
+                              | {"fixed_point_regime": self.fixed_point_regime}),
                 "linear_amplitude": self.linear_amplitude, "warnings": list(self.warnings)}
 
 
@@ -189,7 +196,9 @@ def smr_range(m: Model, cycle: SMRCycle | None) -> tuple:
 
 
 def response(eta, omega, F, *, r=R_DEFAULT, d=D_DEFAULT) -> SlowFlowResponse:
-    """The slow flow at one point: its fixed points, their stability and the regime.
+    """The slow flow at one point: its fixed points, their stability and the regime from
+    rest, decided by following the slow flow from rest through the jump at X = 1 to its
+    attractor (``cycle.from_rest``; the exact solver where the slow flow cannot decide).
 
     ParameterError for eta > 0.5, d > 0.5 or r = 1 (no impact dissipation: no SIM);
     ``warnings`` lists the assumptions the inputs leave (eta, d, F or |omega - 1| not small).
@@ -198,7 +207,8 @@ def response(eta, omega, F, *, r=R_DEFAULT, d=D_DEFAULT) -> SlowFlowResponse:
     W = np.array([check_param("omega", omega)])
     R = fixed_points(m, W)
     xl = linear_amplitude(m, W)
-    regime = str(regimes(R, xl)[0])
+    rest = from_rest(m, float(W[0]), R.X[R.attracting].tolist(), float(xl[0]))
+    regime = rest.regime
     cycle = smr_cycle(m, float(W[0])) if regime == "SMR" else None
     return SlowFlowResponse(eta=m.eta, omega=float(W[0]), F=m.F, r=m.r, d=m.d, rho=m.rho,
                             xi_min=sim.xi_min(m.rho),
@@ -206,7 +216,9 @@ def response(eta, omega, F, *, r=R_DEFAULT, d=D_DEFAULT) -> SlowFlowResponse:
                             orbits=_orbits(R), regime=regime,
                             smr=smr_range(m, cycle) if regime == "SMR" else None,
                             linear_amplitude=float(xl[0]),
-                            warnings=warnings_for(m, W) + symmetry_breaking_warning(R), smr_cycle=cycle)
+                            warnings=warnings_for(m, W) + symmetry_breaking_warning(R),
+                            smr_cycle=cycle, from_rest=rest,
+                            fixed_point_regime=str(regimes(R, xl)[0]))
 
 
 @dataclass(frozen=True)
