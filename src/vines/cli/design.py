@@ -44,8 +44,9 @@ def add_parser(subparsers) -> VinesArgumentParser:
                     "base amplitudes, from rest and over every attractor holding >= 1 % of "
                     "a census's states, for a given design (--eta, --clearance) or the best "
                     "one with eta <= --eta-max (grid over eta and log clearance, then a "
-                    "compass search). References: the LO alone and the TMD of mass ratio "
-                    "eta (eta-max) tuned for the same worst case (closed form).")
+                    "compass search; with --r-range the restitution too). References: the "
+                    "LO alone and the TMD of mass ratio eta (eta-max) tuned for the same "
+                    "worst case (closed form).")
     band = p.add_argument_group("excitation")
     band.add_argument("--omega-band", nargs=2, metavar=("LO", "HI"),
                       default=list(DEFAULT_BAND),

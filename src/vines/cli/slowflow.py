@@ -29,7 +29,8 @@ def add_parser(subparsers) -> VinesArgumentParser:
                     "(docs/slowflow.md): rho, the activation threshold xi_min (the fold of "
                     "the slow invariant manifold), every fixed point (LO amplitude max "
                     "|z_m| and ball amplitude in units of L, impact phase at L, stability) "
-                    "and the regime (two-impact, SMR, no impact). Refused for eta > 0.5, "
+                    "and the regime from rest (two-impact, SMR, no impact), followed "
+                    "through the jump onto the SIM. Refused for eta > 0.5, "
                     "d > 0.5 or r = 1; warnings where eta, d, F or |omega - 1| are not small.")
     g = p.add_argument_group("model parameters")
     flags = (("--eta", "a number > 0 and <= 0.5", "ball-to-LO mass ratio m/M"),
@@ -108,7 +109,10 @@ def text(d: dict) -> str:
                      + ", ".join(f"{k}: {v}" for k, v in sorted(counts.items())))
         lines += [f"  omega {p['omega']:.6g}: " + _orbit(p).strip() for p in d["frc"]]
     else:
-        lines.append(f"  regime {d['regime']}; LO without impacts {d['linear_amplitude']:.6g}")
+        fr = d["from_rest"]
+        lines.append(f"  regime {d['regime']} from rest ({fr['decided_by']}, {fr['jumps']} "
+                     f"jump(s) onto the SIM); LO without impacts "
+                     f"{d['linear_amplitude']:.6g}")
         lines += [_orbit(o) for o in d["orbits"]]
         if d["smr"] is not None:
             lines.append(f"  SMR: LO amplitude from {d['smr']['amplitude_low']:.4g} to "
