@@ -13,7 +13,7 @@ SOURCE = ("measured on 2 cores: the full study (config/config.yaml, paper and al
           "the smoke run (config/smoke.yaml, all; 1 thread)")
 #: run -> the chunked stages its costs measured as one job per entry (before they were split
 #: into chunk jobs): ``cost`` spreads an entry's time over its chunk jobs
-WHOLE = {}
+WHOLE = {"paper": ("uncertainty", "design_robust"), "smoke": ("uncertainty", "design_robust")}
 #: what no estimate counts
 NOT_COUNTED = "Snakemake's own work, the numba compilation when its cache is cold"
 
