@@ -65,6 +65,25 @@ def test_bad_values_name_the_flag(argv, flag):
     assert cmd.FLAG_OF[err.value.name] == flag
 
 
+def test_r_trade_and_r_range_in_the_json():
+    """An optimised design's JSON holds r_trade (r = 0 ... 0.8, the clearance re-optimised);
+    --no-r-trade skips it; --r-range searches r (no r_trade, r in the search)."""
+    small = ["--omega-band", "0.95", "1.05", "--n-omega", "3", "--amplitude", "0.0015",
+             "--eta-max", "0.1", "--n-eta", "1", "--n-clearance", "3", "--census-n", "0",
+             "--t-end", "1000", "--t-transient", "600", "--threads", "1"]
+    d = cmd.compute(_parse(small))
+    t = d["r_trade"]
+    assert t["r"] == [0.0, 0.3, 0.5, 0.65, 0.8] and len(t["worst_ratio"]) == 5
+    assert t["eta"] == d["vines"]["eta"] and "clearance alone" in t["reoptimised"]
+    i = t["r"].index(0.65)      # the design's own r: never worse than the optimum
+    assert t["worst_ratio"][i] <= d["vines"]["worst_ratio"]
+    assert "against restitution" in cmd.text(d)
+    assert "r_trade" not in cmd.compute(_parse([*small, "--no-r-trade"]))
+    d = cmd.compute(_parse([*small, "--r-range", "0", "0.8", "--n-r", "2"]))
+    assert "r_trade" not in d and d["search"]["r"] == [0.0, 0.8]
+    assert d["inputs"]["r_range"] == [0.0, 0.8] and 0.0 <= d["vines"]["r"] <= 0.8
+
+
 def test_c_and_d_are_exclusive():
     with pytest.raises(SystemExit):
         _parse(["--c", "2", "--d", "0.01", "--eta", "0.1", "--clearance", "0.01"])
