@@ -168,11 +168,20 @@ def optimal_tmd(mu: float, d: float, band: Sequence[float], *,
     d = check_param("d", d)
     band = check_band(band, "band")
     if max_travel is not None:
-        max_travel = check_real("max_travel", max_travel, lo=0.0, lo_open=True)
+        check_real("max_travel", max_travel, lo=0.0, lo_open=True)
     free = _free_optimum(mu, d, band)
-    if max_travel is None or free.worst_travel <= max_travel:
+    return free if max_travel is None else limit_travel(free, d, band, max_travel)
+
+
+def limit_travel(free: TunedMassDamper, d: float, band: Sequence[float],
+                 max_travel: float) -> TunedMassDamper:
+    """``optimal_tmd(free.eta, d, band, max_travel=max_travel)`` given the free optimum
+    ``free`` of the same (mu, d, band): ``free`` itself when its band travel is within
+    max_travel, else the travel-limited optimum (module docstring)."""
+    max_travel = check_real("max_travel", max_travel, lo=0.0, lo_open=True)
+    if free.worst_travel <= max_travel:
         return free
-    return _travel_limited_optimum(mu, d, band, max_travel)
+    return _travel_limited_optimum(free.eta, d, band, max_travel)
 
 
 def _design(mu, d, band, f, z) -> TunedMassDamper:
