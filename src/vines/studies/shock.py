@@ -349,7 +349,9 @@ def check_energy_range(rng, M: float, v_unit: float) -> np.ndarray:
         raise ParameterError("energy_range", rng, "must be three values A B N") from None
     hi = 0.5 * M * (V0_MAX * v_unit) ** 2
     a = check_real("energy_range", a, lo=0.0, lo_open=True, hi=hi)
-    b = check_real("energy_range", b, lo=a, lo_open=True, hi=hi)
+    b = check_real("energy_range", b, lo=0.0, lo_open=True, hi=hi)
+    if not a < b:
+        raise ParameterError("energy_range", list(rng), "must be A B N with 0 < A < B")
     n = check_int("energy_range", n, lo=2, hi=N_ENERGIES_MAX)
     return np.geomspace(a, b, n)
 
@@ -494,7 +496,8 @@ def shock(*, eta, clearance_m, velocity_m_s=None, energy_J=None, energy_range=No
                 np.quantile(dist, QUANTILES, axis=1).T.tolist() if mode == "energy_range"
                 else np.quantile(dist[0], QUANTILES).tolist()),
             "description": STARTS_DESCRIPTION}
-    out["cost"] = {"wall_s": time.perf_counter() - t0, "n_runs": len(decays)}
+    out["cost"] = {"wall_s": time.perf_counter() - t0,
+                   "n_runs": len(decays) + starts * len(velocities)}
     return out
 
 
