@@ -618,6 +618,7 @@ def design_dataset(result, attrs: dict) -> xr.Dataset:
                "vines_worst_ratio_any_attractor": vin["worst_ratio_any_attractor"],
                "unsettled_fraction_max": vin["unsettled_fraction_max"]}
     data.update({k: _dv(k, (), _nan(v)) for k, v in scalars.items()})
+    data.update(_design_travel(result, out))
     own = {"Conventions": CONVENTIONS, "mode": out["inputs"].get("mode", ""),
            "view": pb.view, "view_description": vin["view_description"] or "not evaluated "
            "(census_n = 0)", "d": pb.model.d, "r": pb.model.r, "M_kg": pb.M_kg,
@@ -626,6 +627,24 @@ def design_dataset(result, attrs: dict) -> xr.Dataset:
            "t_end": pb.settings.t_end, "t_transient": pb.settings.t_transient,
            **{f"worst_case_{k}": v for k, v in out["worst_case"].items()}}
     return xr.Dataset(data, coords=coords, attrs={**own, **attrs})
+
+
+def _design_travel(result, out: dict) -> dict:
+    """The strokes of a design and the TMD of equal travel (when one exists)."""
+    W, omega, d = ("omega",), np.asarray(result.problem.omega), result.problem.model.d
+    tmd, eq = out["tmd"], out["tmd_equal_travel"]
+    data = {"tmd_travel": _dv("tmd_travel", W, result.tmd.travel(omega, d)),
+            **{k: _dv(k, (), _nan(v)) for k, v in (
+                ("tmd_worst_travel", tmd["worst_travel"]), ("tmd_stroke", tmd["stroke_m"]),
+                ("vines_stroke", out["vines"]["stroke_m"]))}}
+    if eq is not None:
+        data["tmd_equal_travel_ratio"] = _dv("tmd_equal_travel_ratio", W,
+                                             result.tmd_equal_travel.ratio(omega, d))
+        data.update({f"tmd_equal_travel_{k}": _dv(f"tmd_equal_travel_{k}", (), _nan(eq[key]))
+                     for k, key in (("frequency_ratio", "frequency_ratio"),
+                                    ("damping_ratio", "damping_ratio"),
+                                    ("worst_ratio", "worst_ratio"), ("stroke", "stroke_m"))})
+    return data
 
 
 def _rv(name, prefix, dims, data) -> xr.Variable:

@@ -315,11 +315,24 @@ DESIGN_ATTRS = {
     "vines_worst_ratio_any_attractor": "worst-case transmissibility of the VI NES over "
                                        "attractors",
     "unsettled_fraction_max": "largest share of census runs that stopped early",
+    "tmd_travel": "travel |u - x|/A of the optimal TMD's mass relative to the LO (closed "
+                  "form)",
+    "tmd_worst_travel": "largest travel |u - x|/A of the optimal TMD over the band",
+    "tmd_stroke": "stroke of the optimal TMD: tmd_worst_travel times the largest amplitude",
+    "vines_stroke": "travel of the ball relative to the LO: +-L, the clearance",
+    "tmd_equal_travel_ratio": "transmissibility x_max/A with the TMD whose stroke stays "
+                              "within the VI NES's clearance (closed form)",
+    "tmd_equal_travel_frequency_ratio": "tuning w_a/w0 of the TMD of equal travel",
+    "tmd_equal_travel_damping_ratio": "damping ratio of the TMD of equal travel",
+    "tmd_equal_travel_worst_ratio": "worst-case transmissibility with the TMD of equal "
+                                    "travel over the band",
+    "tmd_equal_travel_stroke": "stroke of the TMD of equal travel at the largest amplitude",
 }
 #: units of the design variables that are not dimensionless
 DESIGN_UNITS = {"amplitude": "m", "search_clearance": "m", "tmd_mass": "kg",
                 "tmd_stiffness": "N m-1", "tmd_damping": "N s m-1",
-                "vines_clearance": "m", "vines_mass": "kg"}
+                "vines_clearance": "m", "vines_mass": "kg", "tmd_stroke": "m",
+                "vines_stroke": "m", "tmd_equal_travel_stroke": "m"}
 
 #: design_robust datasets (``vines.studies.mistuning``): worst cases over the host's drift
 #: delta (nominal designs on ``delta``, robust ones on ``robust_delta``) and the designs
