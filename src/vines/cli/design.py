@@ -86,7 +86,8 @@ def add_parser(subparsers) -> VinesArgumentParser:
     design_uncertainty.add_args(p)
     p.add_argument("--json", action="store_true",
                    help="print one JSON object on stdout (keys: inputs, curves, lo_alone, "
-                        "tmd, vines, search, worst_case, cost, mistuning; with "
+                        "tmd, tmd_equal_travel, vines, search, worst_case, stroke, cost, "
+                        "mistuning; with "
                         "--uncertainty: uncertainty)")
     add_model_choice(p)
     return p
