@@ -112,3 +112,10 @@ def test_shock_keeps_the_centred_start_and_adds_the_distribution():
     assert more["tmd"]["stroke_m"] > 0.0424
     with pytest.raises(ParameterError, match="starts"):
         shock(**kw, starts=-1)
+
+
+@pytest.mark.parametrize("kw, name", [(dict(mu=0.0, d=0.01), "mu"), (dict(mu=0.1, d=-1.0), "d"),
+                                      (dict(mu=math.nan, d=0.01), "mu")])
+def test_bad_mass_or_damping_is_refused(kw, name):
+    with pytest.raises(ParameterError, match=name):
+        st.tmd_fastest(**kw)

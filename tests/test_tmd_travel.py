@@ -123,3 +123,22 @@ def test_unreachable_travel_limit_is_refused():
     # only damping, and no damping ratio up to ZETA_MAX_LIMITED keeps the travel this small
     with pytest.raises(ParameterError, match="max_travel.*every tuning"):
         tmd.optimal_tmd(0.1, 0.0, (0.5, 1.5), max_travel=1e-3)
+
+
+def test_design_reports_strokes_and_the_tmd_at_equal_travel():
+    import vines
+    kw = dict(eta=0.1, amplitudes_m=[0.003, 0.006], omega_band=BAND, n_omega=3, census_n=0,
+              t_end=300.0, t_transient=200.0)
+    tight = vines.design(clearance_m=0.0424, **kw).to_dict()
+    t, eq, v = tight["tmd"], tight["tmd_equal_travel"], tight["vines"]
+    assert t["stroke_m"] == pytest.approx(0.006 * t["worst_travel"], rel=1e-15)
+    assert t["x_max_m"] == pytest.approx(0.006 * t["worst_ratio"], rel=1e-15)
+    assert v["stroke_m"] == 0.0424 and eq["max_stroke_m"] == 0.0424
+    assert eq["binding"] and eq["stroke_m"] == pytest.approx(0.0424, rel=1e-9)
+    assert eq["worst_ratio"] > t["worst_ratio"]
+    assert tight["lo_alone"]["x_max_m"] == pytest.approx(
+        0.006 * tight["lo_alone"]["worst_ratio"], rel=1e-15)
+    # a clearance beyond the free TMD's stroke: the same TMD, not binding
+    loose = vines.design(clearance_m=0.1, **kw).to_dict()
+    assert not loose["tmd_equal_travel"]["binding"]
+    assert {k: loose["tmd_equal_travel"][k] for k in loose["tmd"]} == loose["tmd"]

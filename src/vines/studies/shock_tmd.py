@@ -25,7 +25,8 @@ import math
 
 import numpy as np
 
-from ..core.params import ParameterError, check_real
+from ..core.params import ParameterError, check_param, check_real
+from .design_checks import check_eta
 from .shock import tmd_system
 
 #: grid steps per period of the fastest mode when stepping a free response
@@ -50,6 +51,7 @@ def tmd_fastest(mu: float, d: float) -> tuple[float, float, float]:
     """(f, zeta, rate): the TMD tuning whose free vibration on the LO (damping d) has the
     largest slowest decay rate: the two modes coalesce (module docstring)."""
     from scipy.optimize import fsolve
+    mu, d = check_eta("mu", mu), check_param("d", d)
     g = 1.0 / (1.0 + mu)
     a0 = math.sqrt(mu * g)
     if d == 0.0:
