@@ -58,6 +58,32 @@ part `first_order`, `total_order`, their 95 % bootstrap intervals `first_order_c
 `total_order_ci` and `reliable` (both intervals at most 0.1 wide), or null when the worst
 ratio does not vary; `sensitivity_notes` (where the indices are unreliable: wide
 intervals, or the worst point changing regime between points); `cost`.
+
+Travel (every design): `tmd` holds `worst_travel` (largest |u - x|/A of the TMD's mass
+relative to the LO over the band, closed form), `stroke_m` (that times the largest
+amplitude) and `x_max_m` (the LO's own largest displacement, worst ratio times the largest
+amplitude); `lo_alone` holds `x_max_m`; `vines` holds `stroke_m` (the ball's travel
+relative to the LO is +-L: the clearance) and `x_max_m` (largest over the amplitudes, from
+rest). `tmd_equal_travel`: the TMD of the same mass minimising the same worst case with
+its stroke at the largest amplitude at most the VI NES's clearance: the keys of `tmd` and
+`max_stroke_m` (L), `binding` (false: it is `tmd`, whose stroke is within L); null when no
+tuning meets the limit. `stroke`: what each of these numbers is. With `--mistuning`,
+`mistuning` adds `n_delta` (the grid; `delta` also holds the points where the VI NES's
+worst case was refined), `tmd_stroke_m` (the TMD's largest stroke over the drift) and
+`tmd_equal_travel` (`design`, `tmd`: its worst ratio at each delta, `worst`,
+`worst_delta`, `stroke_m`, `max_stroke_m`).
+""", "shock": """Besides the band-tuned `tmd`: `tmd_fastest` (the tuning maximising the
+slowest decay rate: both modes coalesce, docs/design.md) and `tmd_equal_travel` (the
+fastest-decaying tuning whose peak stroke after the largest shock is at most the clearance
+L; `max_stroke_m`, `binding`; null when no tuning meets it), each with the decay keys of
+`tmd`, `design` (`eta`, `frequency_ratio`, `damping_ratio`), `stroke_m` (peak |y - x|
+after the shock at the largest velocity, closed form), `stroke_per_velocity_s` (the same
+per m/s: the system is linear), `x_max_m` (the LO's own peak |x|) and
+`slowest_decay_rate_per_s`. `lo_alone` holds `x_max_m`; `vines` holds `stroke_m` (+-L).
+`starts` (null without `--starts`): `n`, `seed`, `ball_position` (units of L from the
+centre), `ball_velocity_fraction` (of V0), `dissipated_fraction` (per start; per energy
+and start for a range), `quantiles` and `dissipated_fraction_quantiles` (per energy for a
+range), `description`. `stroke`: what each number is.
 """}
 
 

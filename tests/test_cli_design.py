@@ -108,3 +108,18 @@ def test_command_line():
     assert proc.returncode == 2 and proc.stderr.strip() == (
         "vines design: error: missing required option --clearance: give eta and clearance "
         "(evaluate a design) or eta_max (optimise one)")
+
+
+def test_text_counts_the_whole_cost_and_explains_the_host_frequencies():
+    d = {"cost": {"wall_s": 9.5, "n_runs_from_rest": 10, "n_runs_census": 0},
+         "mistuning": {"cost": {"wall_s": 70.5}}}
+    line = cmd._cost_text(d)
+    assert "9.5 s for the design" in line and "mistuning 70.5 s" in line
+    assert "80.0 s in all" in line
+    m = {"D": 0.1, "delta": [-0.1, -0.0375, -0.05, 0.0, 0.025, 0.0375, 0.05, 0.075, 0.1],
+         "n_delta": 7, "robust": None,
+         "worst": {"lo_alone": 90.0, "tmd": 6.8, "vines": 48.0, "vines_any_attractor": None},
+         "design": {"tmd": {"frequency_ratio": 0.9}, "vines": {"eta": 0.1,
+                                                              "clearance_m": 0.04}}}
+    head = cmd.mistuning_text(m)[0]
+    assert "9 host frequencies: a grid of 7 and 2 added" in head

@@ -176,11 +176,17 @@ def test_cli_json_and_refusals():
     for bad, flag in ((["--velocity", "nan"], "--velocity"),
                       (["--energy", "-2"], "--energy"),
                       (["--energy-range", "3", "1", "5"], "--energy-range"),
-                      (["--velocity", "1", "--periods", "0"], "--periods")):
+                      (["--velocity", "1", "--periods", "0"], "--periods"),
+                      (["--velocity", "1", "--starts", "-1"], "--starts"),
+                      (["--velocity", "1", "--starts", "2", "--seed", "x"], "--seed")):
         res = run_vines("shock", "--eta", "0.1", "--clearance", "0.0424", *bad)
         assert res.returncode == 2 and res.stdout == ""
         lines = res.stderr.strip().splitlines()
         assert len(lines) == 1 and flag in lines[0], res.stderr
+    # a reversed range: what is allowed, not a bound taken from the first value
+    res = run_vines("shock", "--eta", "0.1", "--clearance", "0.0424", "--energy-range",
+                    "1000", "0.1", "50")
+    assert res.returncode == 2 and "0 < A < B" in res.stderr and "> 1000" not in res.stderr
 
 
 def test_decay_times_bracket_the_levels():

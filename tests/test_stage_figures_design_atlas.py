@@ -128,6 +128,11 @@ def test_design_figure_from_a_tiny_design(tmp_path):
     # the chosen design is never worse than the best grid design; attractors >= from rest
     assert float(ds["vines_worst_ratio"]) <= float(ds["search_worst_ratio"].min()) + 1e-12
     assert np.all(ds["vines_ratio_any_attractor"].values >= ds["vines_ratio"].values)
+    # strokes: the TMD's at the largest amplitude, the VI NES's +-L; one eta: on the edge
+    from vines.plotting.design import _edge_note
+    assert float(ds["tmd_stroke"]) == pytest.approx(0.006 * float(ds["tmd_worst_travel"]))
+    assert float(ds["vines_stroke"]) == float(ds["vines_clearance"])
+    assert r"\eta_{\max}" in _edge_note(ds)
     path = write_dataset(ds, tmp_path / "design_x.nc")
     png = _run("design", tmp_path, "design", designs=[str(path)])
     assert png.read_bytes()[:4] == b"\x89PNG"

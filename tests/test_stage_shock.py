@@ -14,7 +14,8 @@ MODEL = {"r": 0.65, "d": D_DEFAULT}
 #: the default design (activation ~10.7 J): 1 J below activation, 100 J above it
 SPEC = {"eta": 0.1, "clearance_m": 0.0424, "energy_range_J": [1.0, 100.0], "n_energies": 3,
         "history_energies_J": [5.0, 100.0], "periods": 2.0, "omega_band": [0.8, 1.2],
-        "M_kg": 3.807, "k_N_per_m": 11680.0, "c_Ns_per_m": None, "d": None}
+        "M_kg": 3.807, "k_N_per_m": 11680.0, "c_Ns_per_m": None, "d": None, "starts": 3,
+        "seed": 0}
 
 
 def lo_energy_left(d: float, t):
@@ -62,6 +63,24 @@ def test_energy_balance_and_history_agree_with_the_curve(ds):
     assert ds["vines_history_n_impacts"].values[-1, -1] == ds["vines_n_impacts"].values[-1] > 0
     assert float(ds["optimal_dissipated_fraction"]) == frac.max()
     assert set(ds["vines_status"].values) == {"ok"}
+
+
+def test_travel_and_ball_starts(ds):
+    V = ds["velocity"].values
+    L = SPEC["clearance_m"]
+    assert float(ds["vines_stroke"]) == L
+    # linear strokes grow like V0; the TMD of equal travel reaches L at the largest energy
+    for name in ("tmd", "tmd_fastest", "tmd_equal_travel", "lo_alone"):
+        key = f"{name}_x_max" if name == "lo_alone" else f"{name}_stroke"
+        np.testing.assert_allclose(ds[key].values / V, ds[key].values[-1] / V[-1], rtol=1e-12)
+    assert float(ds["tmd_equal_travel_stroke"][-1]) == pytest.approx(L, rel=1e-8)
+    assert float(ds["tmd_stroke"][-1]) > L
+    assert float(ds["tmd_fastest_decay_rate"]) > float(ds["tmd_equal_travel_decay_rate"])
+    f = ds["vines_start_dissipated_fraction"].values
+    q = ds["vines_start_quantile"].values
+    assert f.shape == (3, 3) and q.shape == (3, 5)
+    assert np.all((f.min(axis=1) <= q[:, 0]) & (q[:, -1] <= f.max(axis=1)))
+    assert np.all(np.abs(ds["ball_position"].values) < 1)
 
 
 def test_shock_figure_from_the_stage_dataset(ds, tmp_path):

@@ -618,6 +618,7 @@ def design_dataset(result, attrs: dict) -> xr.Dataset:
                "vines_worst_ratio_any_attractor": vin["worst_ratio_any_attractor"],
                "unsettled_fraction_max": vin["unsettled_fraction_max"]}
     data.update({k: _dv(k, (), _nan(v)) for k, v in scalars.items()})
+    data.update(_design_travel(result, out))
     own = {"Conventions": CONVENTIONS, "mode": out["inputs"].get("mode", ""),
            "view": pb.view, "view_description": vin["view_description"] or "not evaluated "
            "(census_n = 0)", "d": pb.model.d, "r": pb.model.r, "M_kg": pb.M_kg,
@@ -626,6 +627,24 @@ def design_dataset(result, attrs: dict) -> xr.Dataset:
            "t_end": pb.settings.t_end, "t_transient": pb.settings.t_transient,
            **{f"worst_case_{k}": v for k, v in out["worst_case"].items()}}
     return xr.Dataset(data, coords=coords, attrs={**own, **attrs})
+
+
+def _design_travel(result, out: dict) -> dict:
+    """The strokes of a design and the TMD of equal travel (when one exists)."""
+    W, omega, d = ("omega",), np.asarray(result.problem.omega), result.problem.model.d
+    tmd, eq = out["tmd"], out["tmd_equal_travel"]
+    data = {"tmd_travel": _dv("tmd_travel", W, result.tmd.travel(omega, d)),
+            **{k: _dv(k, (), _nan(v)) for k, v in (
+                ("tmd_worst_travel", tmd["worst_travel"]), ("tmd_stroke", tmd["stroke_m"]),
+                ("vines_stroke", out["vines"]["stroke_m"]))}}
+    if eq is not None:
+        data["tmd_equal_travel_ratio"] = _dv("tmd_equal_travel_ratio", W,
+                                             result.tmd_equal_travel.ratio(omega, d))
+        data.update({f"tmd_equal_travel_{k}": _dv(f"tmd_equal_travel_{k}", (), _nan(eq[key]))
+                     for k, key in (("frequency_ratio", "frequency_ratio"),
+                                    ("damping_ratio", "damping_ratio"),
+                                    ("worst_ratio", "worst_ratio"), ("stroke", "stroke_m"))})
+    return data
 
 
 def _rv(name, prefix, dims, data) -> xr.Variable:
@@ -806,6 +825,7 @@ def shock_dataset(curve: dict, histories: list, history_energies, time_periods,
                "optimal_dissipated_fraction": curve["optimal"]["dissipated_fraction"]}
     data.update({k: _sv(k, (), _nan(v)) for k, v in scalars.items()})
     data.update(_shock_histories(histories, np.size(time_periods)))
+    data.update(_shock_travel(curve))
     coords = {"energy": _sv("energy", E, c["energy_J"]),
               "history_energy": _sv("history_energy", ("history_energy",),
                                     history_energies),
@@ -816,6 +836,41 @@ def shock_dataset(curve: dict, histories: list, history_energies, time_periods,
            "omega_band": np.asarray(inp["omega_band"], dtype="f8"),
            "natural_period_s": curve["scales"]["natural_period_s"]}
     return xr.Dataset(data, coords=coords, attrs={**own, **attrs})
+
+
+def _shock_travel(curve: dict) -> dict:
+    """The strokes and the other TMDs of a shock curve (linear: the stroke is the stroke
+    per velocity times V0) and the VI NES's dissipated fraction over random ball starts
+    (when the curve has them)."""
+    E, V = ("energy",), np.asarray(curve["curve"]["velocity_m_s"], dtype=float)
+    lo = curve["lo_alone"]
+    out = {"vines_stroke": _sv("vines_stroke", (), curve["inputs"]["clearance_m"]),
+           "lo_alone_x_max": _sv("lo_alone_x_max", E, lo["x_max_m"] / V.max() * V)}
+    for name in ("tmd", "tmd_fastest", "tmd_equal_travel"):
+        t = curve.get(name)
+        if t is None:
+            continue
+        out[f"{name}_stroke"] = _sv(f"{name}_stroke", E, t["stroke_per_velocity_s"] * V)
+        if name != "tmd":
+            for key in ("dissipated_fraction", "t_1"):
+                out[f"{name}_{key}"] = _sv(f"{name}_{key}", (), _nan(t[key]))
+            for key in ("frequency_ratio", "damping_ratio"):
+                out[f"{name}_{key}"] = _sv(f"{name}_{key}", (), t["design"][key])
+        out[f"{name}_decay_rate"] = _sv(f"{name}_decay_rate", (),
+                                        t["slowest_decay_rate_per_s"])
+    st = curve.get("starts")
+    if st:
+        S, Q = ("start",), ("quantile",)
+        out.update(
+            ball_position=_sv("ball_position", S, st["ball_position"]),
+            ball_velocity_fraction=_sv("ball_velocity_fraction", S,
+                                       st["ball_velocity_fraction"]),
+            vines_start_dissipated_fraction=_sv("vines_start_dissipated_fraction", E + S,
+                                                st["dissipated_fraction"]),
+            vines_start_quantile=_sv("vines_start_quantile", E + Q,
+                                     st["dissipated_fraction_quantiles"]),
+            quantile=_sv("quantile", Q, st["quantiles"]))
+    return out
 
 
 def _shock_histories(histories: list, n: int) -> dict:

@@ -315,11 +315,24 @@ DESIGN_ATTRS = {
     "vines_worst_ratio_any_attractor": "worst-case transmissibility of the VI NES over "
                                        "attractors",
     "unsettled_fraction_max": "largest share of census runs that stopped early",
+    "tmd_travel": "travel |u - x|/A of the optimal TMD's mass relative to the LO (closed "
+                  "form)",
+    "tmd_worst_travel": "largest travel |u - x|/A of the optimal TMD over the band",
+    "tmd_stroke": "stroke of the optimal TMD: tmd_worst_travel times the largest amplitude",
+    "vines_stroke": "travel of the ball relative to the LO: +-L, the clearance",
+    "tmd_equal_travel_ratio": "transmissibility x_max/A with the TMD whose stroke stays "
+                              "within the VI NES's clearance (closed form)",
+    "tmd_equal_travel_frequency_ratio": "tuning w_a/w0 of the TMD of equal travel",
+    "tmd_equal_travel_damping_ratio": "damping ratio of the TMD of equal travel",
+    "tmd_equal_travel_worst_ratio": "worst-case transmissibility with the TMD of equal "
+                                    "travel over the band",
+    "tmd_equal_travel_stroke": "stroke of the TMD of equal travel at the largest amplitude",
 }
 #: units of the design variables that are not dimensionless
 DESIGN_UNITS = {"amplitude": "m", "search_clearance": "m", "tmd_mass": "kg",
                 "tmd_stiffness": "N m-1", "tmd_damping": "N s m-1",
-                "vines_clearance": "m", "vines_mass": "kg"}
+                "vines_clearance": "m", "vines_mass": "kg", "tmd_stroke": "m",
+                "vines_stroke": "m", "tmd_equal_travel_stroke": "m"}
 
 #: design_robust datasets (``vines.studies.mistuning``): worst cases over the host's drift
 #: delta (nominal designs on ``delta``, robust ones on ``robust_delta``) and the designs
@@ -447,6 +460,40 @@ SHOCK_ATTRS = {
     "vines_history_by_impacts": ("fraction of E0 dissipated by impacts so far (VI NES)", "1"),
     "vines_history_n_impacts": ("impacts so far (VI NES; -1: after the run stopped)", "1"),
     "tmd_remaining": ("energy left with the TMD, fraction of E0", "1"),
+    "vines_stroke": ("travel of the ball relative to the LO: +-L, the clearance", "m"),
+    "lo_alone_x_max": ("peak |x| of the LO alone after the shock", "m"),
+    "tmd_stroke": ("peak |y - x| of the band-tuned TMD's mass relative to the LO after the "
+                   "shock", "m"),
+    "tmd_fastest_stroke": ("peak |y - x| of the fastest-decaying TMD after the shock", "m"),
+    "tmd_equal_travel_stroke": ("peak |y - x| of the fastest TMD whose stroke stays within "
+                                "L at the largest energy, after the shock", "m"),
+    "tmd_decay_rate": ("slowest decay rate of LO + band-tuned TMD", "s-1"),
+    "tmd_fastest_decay_rate": ("slowest decay rate of LO + TMD, maximised (the modes "
+                               "coalesce)", "s-1"),
+    "tmd_equal_travel_decay_rate": ("slowest decay rate of LO + TMD, maximised with the "
+                                    "stroke within L at the largest energy", "s-1"),
+    "tmd_fastest_dissipated_fraction": ("fraction of E0 dissipated within the window with "
+                                        "the fastest-decaying TMD (any E0)", "1"),
+    "tmd_fastest_t_1": ("time to decay to 1 % of E0 with the fastest-decaying TMD (NaN: "
+                        "not within the window)", "s"),
+    "tmd_fastest_frequency_ratio": ("tuning w_a/w0 of the fastest-decaying TMD", "1"),
+    "tmd_fastest_damping_ratio": ("damping ratio of the fastest-decaying TMD", "1"),
+    "tmd_equal_travel_dissipated_fraction": ("fraction of E0 dissipated within the window "
+                                             "with the TMD of equal travel (any E0)", "1"),
+    "tmd_equal_travel_t_1": ("time to decay to 1 % of E0 with the TMD of equal travel "
+                             "(NaN: not within the window)", "s"),
+    "tmd_equal_travel_frequency_ratio": ("tuning w_a/w0 of the TMD of equal travel", "1"),
+    "tmd_equal_travel_damping_ratio": ("damping ratio of the TMD of equal travel", "1"),
+    "ball_position": ("ball's position at the moment of the shock, units of L from the "
+                      "cavity centre (uniform over the cavity, seeded)", "1"),
+    "ball_velocity_fraction": ("ball's velocity at the moment of the shock, fraction of the "
+                               "LO's V0 (uniform in (-1, 1), seeded)", "1"),
+    "vines_start_dissipated_fraction": ("fraction of the initial energy (LO and ball) "
+                                        "dissipated within the window by the VI NES from "
+                                        "each ball start", "1"),
+    "vines_start_quantile": ("quantiles of vines_start_dissipated_fraction over the ball "
+                             "starts", "1"),
+    "quantile": ("probability level of vines_start_quantile", "1"),
     "lo_alone_remaining": ("energy left, LO alone, fraction of E0", "1"),
 }
 

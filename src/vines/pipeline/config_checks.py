@@ -387,8 +387,8 @@ def _check_shock(key: str, sh: dict, limits: dict) -> None:
                               f"{err.value!r}: {err.allowed}") from None
     _check_t_end(f"{key}.periods", 2.0 * math.pi * sh["periods"], limits,
                  "2 pi periods")
-    _check_size(key, sh["n_energies"] + len(sh["history_energies_J"]), limits,
-                "runs (n_energies + history_energies_J)")
+    _check_size(key, sh["n_energies"] * (1 + sh["starts"]) + len(sh["history_energies_J"]),
+                limits, "runs (n_energies (1 + starts) + history_energies_J)")
 
 
 def check_shocks(config: dict, model: dict, limits: dict) -> None:

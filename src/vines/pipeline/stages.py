@@ -719,7 +719,8 @@ def shock(spec: dict, *, model: dict, code: str, title: str):
     from ..studies.shock import shock as free_decay
     kw = {k: spec[k] for k in SHOCK_KEYS if spec.get(k) is not None}
     lo, hi = spec["energy_range_J"]
-    curve = free_decay(**kw, r=model["r"], energy_range=(lo, hi, spec["n_energies"]))
+    curve = free_decay(**kw, r=model["r"], energy_range=(lo, hi, spec["n_energies"]),
+                       starts=spec.get("starts", 0), seed=spec.get("seed", 0))
     histories = [free_decay(**kw, r=model["r"], energy_J=E)
                  for E in spec["history_energies_J"]]
     opt = curve["optimal"]

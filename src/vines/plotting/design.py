@@ -37,6 +37,9 @@ def _curve_panel(ax, ds, j, k):
     ax.plot(W, ds["lo_alone_ratio"].values, color=C_LO_ALONE, lw=1.6, label="LO alone")
     ax.plot(W, ds["tmd_ratio"].values, color=C_TMD, lw=1.6,
             label=rf"optimal TMD ($\eta$ = {fmt(float(ds['tmd_eta']))})")
+    if "tmd_equal_travel_ratio" in ds:
+        ax.plot(W, ds["tmd_equal_travel_ratio"].values, ":", color=C_TMD, lw=1.8,
+                label=r"TMD with stroke $\leq L$ at the largest $A$")
     ax.plot(W, ds["vines_ratio"].values[j], "o-", color=C_VINES, ms=3, lw=1.4,
             label="VI NES, from rest")
     if "vines_ratio_any_attractor" in ds:
@@ -50,6 +53,17 @@ def _curve_panel(ax, ds, j, k):
     ax.set_ylabel(r"$x_{\max}/A$")
     A, F = float(ds["amplitude"][j]), float(ds["F"][j])
     panel_label(ax, k, rf"$A$ = {fmt(A * 1e3)} mm, $F$ = {F:.3g}")
+    if "tmd_worst_travel" in ds:
+        ax.text(0.02, 0.02, _travel_note(ds, A), transform=ax.transAxes, fontsize=7,
+                va="bottom", bbox=dict(facecolor="white", alpha=0.8, lw=0))
+
+
+def _travel_note(ds, A) -> str:
+    """Each absorber's stroke relative to the LO at amplitude A."""
+    L = 1e3 * float(ds["vines_stroke"])
+    note = (f"stroke at this A: TMD {1e3 * A * float(ds['tmd_worst_travel']):.3g} mm, "
+            rf"VI NES ball $\pm L$ = {L:.3g} mm")
+    return note
 
 
 def _search_panel(fig, ax, ds, i):
@@ -67,14 +81,28 @@ def _search_panel(fig, ax, ds, i):
             mec="black", ms=16)
     ax.set_xlabel(r"clearance $L$ (mm)")
     ax.set_ylabel(LABELS["eta"])
-    panel_label(ax, i, "search grid, star: chosen design")
+    panel_label(ax, i, "search grid, star: chosen design" + _edge_note(ds))
+
+
+def _edge_note(ds) -> str:
+    """What edge of the search grid the chosen design lies on (a bound of the search,
+    not an interior optimum), or nothing."""
+    eta, L = float(ds["vines_eta"]), float(ds["vines_clearance"])
+    etas, Ls = ds["search_eta"].values, ds["search_clearance"].values
+    edges = []
+    if eta >= etas.max() * (1 - 1e-12):
+        edges.append(r"$\eta = \eta_{\max}$")
+    lo, hi = float(Ls.min()) * (1 + 1e-12), float(Ls.max()) * (1 - 1e-12)
+    if not lo < L < hi:
+        edges.append("an end of the $L$ range")
+    return "" if not edges else "\n(on the edge of the search: " + ", ".join(edges) + ")"
 
 
 def _ratio_range(ds):
     """y range (log) of a row's curve panels holding every curve of every amplitude (the
     shared axis would otherwise keep the first panel's range and clip the others)."""
     names = ("lo_alone_ratio", "tmd_ratio", "vines_ratio", "vines_ratio_any_attractor",
-             "vines_peak_ratio")
+             "vines_peak_ratio", "tmd_equal_travel_ratio")
     vals = np.concatenate([np.ravel(ds[v].values) for v in names if v in ds])
     vals = vals[np.isfinite(vals) & (vals > 0)]
     return 0.8 * float(vals.min()), 1.25 * float(vals.max())
@@ -82,12 +110,17 @@ def _ratio_range(ds):
 
 def design_summary(ds) -> str:
     any_ = float(ds["vines_worst_ratio_any_attractor"])
+    equal = ("" if "tmd_equal_travel_worst_ratio" not in ds else
+             f", TMD with stroke <= L {float(ds['tmd_equal_travel_worst_ratio']):.3g}")
+    stroke = ("" if "tmd_stroke" not in ds else
+              f"\nstrokes at the largest A: TMD {1e3 * float(ds['tmd_stroke']):.3g} mm, "
+              f"VI NES +-L {1e3 * float(ds['vines_stroke']):.3g} mm")
     return (f"worst x_max/A: LO alone {float(ds['lo_alone_worst_ratio']):.3g}, TMD "
-            f"{float(ds['tmd_worst_ratio']):.3g}, VI NES from rest "
+            f"{float(ds['tmd_worst_ratio']):.3g}{equal}, VI NES from rest "
             f"{float(ds['vines_worst_ratio']):.3g}"
             + ("" if np.isnan(any_) else f", over attractors {any_:.3g}")
             + f" (eta = {float(ds['vines_eta']):.3g}, L = "
-              f"{float(ds['vines_clearance']) * 1e3:.3g} mm)")
+              f"{float(ds['vines_clearance']) * 1e3:.3g} mm){stroke}")
 
 
 def design_figure(designs):

@@ -1,6 +1,8 @@
 """The shock figure's panels: the fraction of a shock's energy dissipated within the window
-against the initial energy, and the energy left in time at a few initial energies, for the
-VI NES, the equal-mass TMD and the LO alone (datasets of the stage ``shock``)."""
+against the initial energy (with its spread over random ball starts), the energy left in
+time at a few initial energies, and each absorber's travel against the initial energy, for
+the VI NES, the equal-mass TMDs (band-tuned, fastest, fastest within the clearance) and the
+LO alone (datasets of the stage ``shock``)."""
 from __future__ import annotations
 
 import numpy as np
@@ -37,10 +39,21 @@ def curve_panel(ax, ds: xr.Dataset) -> None:
     ax.axhline(float(ds["lo_alone_dissipated_fraction"]), color=C_LO_ALONE, lw=1.6,
                label="LO alone")
     ax.axhline(float(ds["tmd_dissipated_fraction"]), color=C_TMD, lw=1.6,
-               label=rf"TMD, equal mass ($f$ = {float(ds['tmd_frequency_ratio']):.3g}, "
+               label=rf"TMD, equal mass, band-tuned ($f$ = {float(ds['tmd_frequency_ratio']):.3g}, "
                      rf"$\zeta$ = {float(ds['tmd_damping_ratio']):.3g})")
+    for name, ls, what in (("tmd_fastest", "-.", "fastest decay"),
+                           ("tmd_equal_travel", ":", "fastest decay, stroke <= L")):
+        if f"{name}_dissipated_fraction" in ds:
+            ax.axhline(float(ds[f"{name}_dissipated_fraction"]), color=C_TMD, ls=ls, lw=1.6,
+                       label=f"TMD, {what}")
+    if "vines_start_quantile" in ds:
+        q = ds["vines_start_quantile"].values
+        ax.fill_between(E, q[:, 0], q[:, -1], color=C_VINES, alpha=0.18, lw=0,
+                        label=f"VI NES, {ds.sizes['start']} random ball starts: 5-95 %")
+        ax.fill_between(E, q[:, 1], q[:, -2], color=C_VINES, alpha=0.35, lw=0,
+                        label="VI NES, random ball starts: 25-75 %")
     ax.plot(E, ds["vines_dissipated_fraction"].values, "o-", color=C_VINES, ms=3, lw=1.4,
-            label="VI NES, total")
+            label="VI NES, total (ball at rest in the centre)")
     ax.plot(E, ds["vines_by_impacts"].values, "--", color=C_VINES, lw=1.2,
             label="VI NES, by impacts")
     ax.axvline(float(ds["activation_energy"]), color="black", ls=":", lw=1.0,
@@ -76,6 +89,21 @@ def decay_panel(ax, ds: xr.Dataset) -> None:
     ax.set_ylabel(r"energy left $E/E_0$")
 
 
+def travel_panel(ax, ds: xr.Dataset) -> None:
+    """Peak travel relative to the LO against E0 (log-log): each TMD's peak |y - x| after
+    the shock (linear: grows like V0), the VI NES's +-L and the LO alone's own x_max."""
+    E = ds["energy"].values
+    ax.axhline(1e3 * float(ds["vines_stroke"]), color=C_VINES, lw=1.8,
+               label="VI NES: ball travel L")
+    for name, ls in (("tmd", "-"), ("tmd_fastest", "-."), ("tmd_equal_travel", ":")):
+        if f"{name}_stroke" in ds:
+            ax.loglog(E, 1e3 * ds[f"{name}_stroke"].values, ls, color=C_TMD, lw=1.6)
+    ax.loglog(E, 1e3 * ds["lo_alone_x_max"].values, "--", color=C_LO_ALONE, lw=1.2,
+              label=r"LO alone: its own peak $|x|$")
+    ax.set_xlabel(r"initial energy $E_0$ (J)")
+    ax.set_ylabel(r"peak travel after the shock (mm)")
+
+
 def summary(ds: xr.Dataset) -> str:
     """One line: the design, the activation and best energies, the three fractions."""
     a = ds.attrs
@@ -89,13 +117,15 @@ def summary(ds: xr.Dataset) -> str:
 
 def shock_figure(rows):
     """One row per shock dataset: ``curve_panel`` and ``decay_panel``; one legend below."""
-    fig, axes = figure(len(rows), 2, width=10.0, height=3.9 * len(rows) + 0.7)
+    fig, axes = figure(len(rows), 3, width=15.0, height=3.9 * len(rows) + 0.9)
     for i, ds in enumerate(rows):
         curve_panel(axes[i, 0], ds)
         decay_panel(axes[i, 1], ds)
+        travel_panel(axes[i, 2], ds)
         where = rf"$\eta$ = {ds.attrs['eta']:g}, $L$ = {ds.attrs['clearance_m'] * 1e3:.3g} mm"
-        panel_label(axes[i, 0], 2 * i, f"dissipated against initial energy ({where})")
-        panel_label(axes[i, 1], 2 * i + 1, f"energy left in time ({where})")
+        panel_label(axes[i, 0], 3 * i, f"dissipated against initial energy ({where})")
+        panel_label(axes[i, 1], 3 * i + 1, f"energy left in time ({where})")
+        panel_label(axes[i, 2], 3 * i + 2, "travel relative to the LO")
         axes[i, 1].legend(fontsize=7, loc="lower left", frameon=False)
         print(summary(ds))
     summary_and_legend(fig, [], axes[0, 0], ncol=3)

@@ -177,20 +177,23 @@ def _damping_integral(traj, cuts, d) -> np.ndarray:
 
 
 def vines_decay(eta: float, r: float, d: float, v0: float, periods: float,
-                max_impacts: int | None = None) -> Decay:
-    """Free decay of the VI NES from (z_m, z_m', z_b, z_b') = (0, v0, 0, 0) with F = 0 over
-    ``periods`` natural periods of the LO, by the exact solver (validated inputs)."""
+                max_impacts: int | None = None, ball: tuple = (0.0, 0.0)) -> Decay:
+    """Free decay of the VI NES from (z_m, z_m', z_b, z_b') = (0, v0, ball) with F = 0 over
+    ``periods`` natural periods of the LO, by the exact solver (validated inputs; the
+    ball's position |z_b| < 1 in the cavity and velocity, default at rest in the centre;
+    fractions of the initial energy of LO and ball)."""
     from ..core.exact import run_exact
     from ..core.params import MAX_IMPACTS_DEFAULT, ModelParams, SolverSettings
     times = report_times(periods)
     t_end = float(times[-1])
     p = ModelParams(eta=eta, omega=1.0, F=0.0, r=r, d=d)   # omega is idle at F = 0
-    st = SolverSettings(t_end=t_end, t_transient=0.0, state0=(0.0, v0, 0.0, 0.0),
+    zb, vb = (float(x) for x in ball)
+    st = SolverSettings(t_end=t_end, t_transient=0.0, state0=(0.0, v0, zb, vb),
                         max_impacts=max_impacts or MAX_IMPACTS_DEFAULT)
     raw = run_exact(p, st)
     traj = raw.state_at
     seg = traj.segments
-    e0 = 0.5 * v0 * v0
+    e0 = 0.5 * v0 * v0 + 0.5 * eta * vb * vb
     t_last = raw.t_last
     times = times[times <= t_last]
     # energy jumps at events: end of segment i against start of segment i + 1
@@ -281,6 +284,29 @@ def linear_decay(system: tuple, periods: float) -> Decay:
     return Decay(times, out[0], out[1], zero, out[2], zero.astype(np.int64), t_levels)
 
 
+def ball_starts(n: int, seed: int) -> tuple[np.ndarray, np.ndarray]:
+    """n ball states at the moment of the shock (numpy Generator seeded by ``seed``):
+    positions uniform over the cavity (-1, 1) (units of L, the LO at its centre) and
+    velocities uniform in (-1, 1) as fractions of the LO's initial velocity v0."""
+    rng = np.random.default_rng(seed)
+    draws = rng.uniform(-1.0, 1.0, size=(2, n))
+    return draws[0], draws[1]
+
+
+def start_distribution(eta: float, r: float, d: float, v0s, periods: float,
+                       positions, velocity_fractions) -> np.ndarray:
+    """Dissipated fraction of the VI NES (shape (len(v0s), n)) from each ball start
+    (``ball_starts``) at each initial LO velocity v0 (units of L w0)."""
+    out = np.empty((len(v0s), len(positions)))
+    pairs = [(i, j) for i in range(len(v0s)) for j in range(len(positions))]
+    for i, j in _progress.track(pairs, len(pairs), "shock", "ball starts"):
+        v0 = float(v0s[i])
+        dec = vines_decay(eta, r, d, v0, periods,
+                          ball=(positions[j], velocity_fractions[j] * v0))
+        out[i, j] = 1.0 - dec.remaining[-1]
+    return out
+
+
 def energy_curve(eta: float, r: float, d: float, v0s, periods: float) -> list[Decay]:
     """``vines_decay`` at each initial velocity of ``v0s`` (progress task TASK)."""
     return [vines_decay(eta, r, d, float(v), periods)
@@ -293,6 +319,9 @@ def energy_curve(eta: float, r: float, d: float, v0s, periods: float) -> list[De
 V0_MAX = 1e6
 #: most energies of one curve
 N_ENERGIES_MAX = 10_000
+#: most ball starts per energy, and the quantiles of their dissipated fractions reported
+N_STARTS_MAX = 4096
+QUANTILES = (0.05, 0.25, 0.5, 0.75, 0.95)
 #: JSON keys of one system's decay, in order
 KEYS = ("t_reached", "dissipated_fraction", "by_damping", "by_impacts", "by_absorber",
         "remaining_fraction", "n_impacts", "t_10", "t_1", "status")
@@ -320,7 +349,9 @@ def check_energy_range(rng, M: float, v_unit: float) -> np.ndarray:
         raise ParameterError("energy_range", rng, "must be three values A B N") from None
     hi = 0.5 * M * (V0_MAX * v_unit) ** 2
     a = check_real("energy_range", a, lo=0.0, lo_open=True, hi=hi)
-    b = check_real("energy_range", b, lo=a, lo_open=True, hi=hi)
+    b = check_real("energy_range", b, lo=0.0, lo_open=True, hi=hi)
+    if not a < b:
+        raise ParameterError("energy_range", list(rng), "must be A B N with 0 < A < B")
     n = check_int("energy_range", n, lo=2, hi=N_ENERGIES_MAX)
     return np.geomspace(a, b, n)
 
@@ -366,19 +397,27 @@ def _series(decays: list[Decay], key: str, time_unit: float) -> list:
 
 def shock(*, eta, clearance_m, velocity_m_s=None, energy_J=None, energy_range=None,
           periods=N_PERIODS_DEFAULT, M_kg=None, k_N_per_m=None, c_Ns_per_m=None, d=None,
-          r=None, omega_band=None) -> dict:
+          r=None, omega_band=None, starts=0, seed=0) -> dict:
     """Free decay after an impulse: the VI NES (eta, clearance) by the exact solver, the
     equal-mass TMD tuned for ``omega_band`` as ``vines.design`` tunes it, the LO alone.
 
     Give one of velocity_m_s (LO's initial velocity), energy_J (E0 = M V0^2 / 2) or
     energy_range (A, B, N: N energies from A to B J, geometric). Window: ``periods``
-    natural periods of the LO. Structure as ``vines.design`` (Table 1 by default). Returns
-    a JSON-ready dict (keys inputs, scales, activation, vines, tmd, lo_alone and, for one
-    shock, history and the VI NES's impacts_stop_amplitude beside the slow flow's xi_min;
-    for a range, curve and optimal). ParameterError on bad input.
+    natural periods of the LO. Structure as ``vines.design`` (Table 1 by default).
+    Besides the band-tuned TMD (``tmd``): the TMD decaying fastest (``tmd_fastest``) and
+    the fastest whose travel stays within the clearance at the largest shock
+    (``tmd_equal_travel``), each with its stroke (``shock_tmd``). ``starts`` > 0: that
+    many ball states at the moment of the shock (``ball_starts``, seeded by ``seed``) and
+    the distribution of the VI NES's dissipated fraction over them (key ``starts``; the
+    ball at rest in the centre stays the VI NES's own result). Returns a JSON-ready dict
+    (keys inputs, scales, activation, vines, tmd, tmd_fastest, tmd_equal_travel, lo_alone,
+    stroke, starts and, for one shock, history and the VI NES's impacts_stop_amplitude
+    beside the slow flow's xi_min; for a range, curve and optimal). ParameterError on bad
+    input.
     """
     import time
 
+    from ..core.params import check_int
     from .tmd import optimal_tmd
     t0 = time.perf_counter()
     inp = check_inputs(eta=eta, clearance_m=clearance_m, periods=periods, M_kg=M_kg,
@@ -393,10 +432,15 @@ def shock(*, eta, clearance_m, velocity_m_s=None, energy_J=None, energy_range=No
         velocities = np.sqrt(2.0 * energies / M)
     else:
         velocities = np.array([_initial_velocity(velocity_m_s, energy_J, M, v_unit)])
+    starts = check_int("starts", starts, lo=0, hi=N_STARTS_MAX)
+    seed = check_int("seed", seed, lo=0, hi=2**63 - 1)
     tmd = optimal_tmd(eta, d, band)
+    tunings = _shock_tunings(eta, d, tmd, v_unit / float(velocities.max()))
     lin = {"tmd": linear_decay(tmd_system(d, eta, tmd.frequency_ratio, tmd.damping_ratio),
                                periods),
            "lo_alone": linear_decay(lo_system(d), periods)}
+    lin.update({name: linear_decay(tmd_system(d, eta, t["f"], t["zeta"]), periods)
+                for name, t in tunings.items() if t is not None and name != "tmd"})
     decays = energy_curve(eta, r, d, velocities / v_unit, periods)
     v_act = activation_velocity(d) * v_unit
     out = {
@@ -407,9 +451,21 @@ def shock(*, eta, clearance_m, velocity_m_s=None, energy_J=None, energy_range=No
                    "window_s": 2.0 * math.pi * periods / w0, "velocity_unit_m_s": v_unit,
                    "energy_unit_J": M * v_unit * v_unit},
         "activation": {"velocity_m_s": v_act, "energy_J": 0.5 * M * v_act * v_act},
-        "tmd": {**lin["tmd"].summary(1.0 / w0), "design": tmd.to_dict()},
-        "lo_alone": lin["lo_alone"].summary(1.0 / w0),
+        "tmd": {**lin["tmd"].summary(1.0 / w0), "design": tmd.to_dict(),
+                **_stroke(tunings["tmd"], velocities, w0)},
+        "lo_alone": {**lin["lo_alone"].summary(1.0 / w0),
+                     "x_max_m": _lo_peak(d) * float(velocities.max()) / w0},
     }
+    for name in ("tmd_fastest", "tmd_equal_travel"):
+        t = tunings[name]
+        out[name] = None if t is None else {
+            **lin[name].summary(1.0 / w0),
+            "design": {"eta": eta, "frequency_ratio": t["f"], "damping_ratio": t["zeta"]},
+            **_stroke(t, velocities, w0)}
+    if out["tmd_equal_travel"] is not None:
+        out["tmd_equal_travel"].update(max_stroke_m=L,
+                                       binding=tunings["tmd_equal_travel"]["binding"])
+    out["stroke"] = STROKE_DESCRIPTION
     if mode == "energy_range":
         out["curve"] = _curve(decays, energies, velocities, lin, 1.0 / w0)
         frac = np.array(out["curve"]["vines"]["dissipated_fraction"])
@@ -417,7 +473,7 @@ def shock(*, eta, clearance_m, velocity_m_s=None, energy_J=None, energy_range=No
         out["optimal"] = {"energy_J": float(energies[best]),
                           "velocity_m_s": float(velocities[best]),
                           "dissipated_fraction": float(frac[best])}
-        out["vines"] = {"n_sticks": [dec.n_sticks for dec in decays]}
+        out["vines"] = {"n_sticks": [dec.n_sticks for dec in decays], "stroke_m": L}
     else:
         dec = decays[0]
         out["inputs"].update(velocity_m_s=float(velocities[0]),
@@ -425,10 +481,82 @@ def shock(*, eta, clearance_m, velocity_m_s=None, energy_J=None, energy_range=No
         stop = dec.stop_amplitude
         out["vines"] = {**dec.summary(1.0 / w0), "n_sticks": dec.n_sticks,
                         "impacts_stop_amplitude": None if math.isnan(stop) else stop,
-                        "xi_min": xi_min(r)}
+                        "xi_min": xi_min(r), "stroke_m": L}
         out["history"] = _history(dec, lin, 1.0 / w0)
-    out["cost"] = {"wall_s": time.perf_counter() - t0, "n_runs": len(decays)}
+    out["starts"] = None
+    if starts > 0:
+        pos, frac = ball_starts(starts, seed)
+        dist = start_distribution(eta, r, d, velocities / v_unit, periods, pos, frac)
+        out["starts"] = {
+            "n": starts, "seed": seed, "ball_position": pos.tolist(),
+            "ball_velocity_fraction": frac.tolist(),
+            "dissipated_fraction": dist.tolist() if mode == "energy_range" else dist[0].tolist(),
+            "quantiles": list(QUANTILES),
+            "dissipated_fraction_quantiles": (
+                np.quantile(dist, QUANTILES, axis=1).T.tolist() if mode == "energy_range"
+                else np.quantile(dist[0], QUANTILES).tolist()),
+            "description": STARTS_DESCRIPTION}
+    out["cost"] = {"wall_s": time.perf_counter() - t0,
+                   "n_runs": len(decays) + starts * len(velocities)}
     return out
+
+
+#: what ``stroke_m`` and ``x_max_m`` mean in a shock's JSON (key ``stroke``)
+STROKE_DESCRIPTION = {
+    "tmd": "peak |y - x| after the shock: the TMD mass's largest displacement relative to "
+           "the LO over all later time (closed form, linear in the initial velocity; at the "
+           "largest velocity of a range); stroke_per_velocity_s: the same per m/s",
+    "vines": "the ball's travel relative to the LO: +-L, the clearance",
+    "x_max_m": "the LO's own peak |x| after the shock (linear systems, largest velocity)",
+    "tmd_fastest": "the tuning maximising the slowest decay rate of LO + TMD: the two "
+                   "modes coalesce (docs/design.md)",
+    "tmd_equal_travel": "the fastest-decaying tuning whose stroke stays within the "
+                        "clearance L at the largest shock (binding: whether the limit "
+                        "changes it; null when no tuning meets it)"}
+#: what the ``starts`` block holds
+STARTS_DESCRIPTION = (
+    "the ball's state at the moment of the shock drawn at random (numpy Generator, seed): "
+    "position uniform over the cavity (units of L, LO at the centre), velocity uniform "
+    "within +-v0 (fractions of the LO's initial velocity); dissipated_fraction: of the "
+    "initial energy of LO and ball, per start (per energy for a range); the VI NES's own "
+    "keys keep the ball at rest in the centre")
+
+
+def _lo_peak(d: float) -> float:
+    """Peak |x| of the LO alone after the unit shock x'(0) = 1."""
+    from .shock_tmd import peak_response
+    A, P, _, _ = lo_system(d)
+    return peak_response(A, P, np.array([1.0, 0.0]), np.array([0.0, 1.0]))[0]
+
+
+def _shock_tunings(eta, d, tmd, max_travel) -> dict:
+    """(f, zeta, binding) of the band-tuned TMD, the fastest and the fastest within
+    ``max_travel`` (units of L per unit initial velocity; None when none meets it), with
+    their peaks after the unit shock (``shock_tmd.shock_peaks``)."""
+    from ..core.params import ParameterError
+    from . import shock_tmd as st
+    out = {"tmd": dict(f=tmd.frequency_ratio, zeta=tmd.damping_ratio)}
+    f, z, _ = st.tmd_fastest(eta, d)
+    out["tmd_fastest"] = dict(f=f, zeta=z)
+    try:
+        f, z, _ = st.tmd_equal_travel(eta, d, max_travel)
+        out["tmd_equal_travel"] = dict(f=f, zeta=z, binding=(f, z) != (
+            out["tmd_fastest"]["f"], out["tmd_fastest"]["zeta"]))
+    except ParameterError:
+        out["tmd_equal_travel"] = None
+    for t in out.values():
+        if t is not None:
+            t.update(st.shock_peaks(d, eta, t["f"], t["zeta"]))
+    return out
+
+
+def _stroke(t: dict, velocities, w0: float) -> dict:
+    """Stroke, LO peak and decay rate of a tuning (``_shock_tunings``) in SI units, at the
+    largest initial velocity."""
+    v = float(velocities.max())
+    return {"stroke_m": t["travel"] * v / w0, "x_max_m": t["x_max"] * v / w0,
+            "stroke_per_velocity_s": t["travel"] / w0,
+            "slowest_decay_rate_per_s": t["rate"] * w0}
 
 
 def _curve(decays, energies, velocities, lin, time_unit) -> dict:
