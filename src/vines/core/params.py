@@ -270,12 +270,14 @@ def check_conditioning(eta: float, omega: float, F: float, d: float) -> None:
 class ModelParams:
     """Dimensionless VINES parameters (validated on construction).
 
-    eta   ball-to-LO mass ratio m/M (0 < eta <= ETA_MAX = 1e3)
-    omega forcing frequency ratio omega = w/w0 (0 < omega <= OMEGA_MAX = 1e3)
-    F     forcing amplitude A/L (0 <= F <= F_MAX = 1e4)
-    r     coefficient of restitution (0 <= r <= 1)
-    d     LO damping c/(M w0) (0 <= d <= D_MAX = 1e3), fixed for every eta by default
-    phi   forcing phase at t = 0 [rad] (|phi| <= PHI_MAX = 1e3)
+    ::
+
+        eta   ball-to-LO mass ratio m/M (0 < eta <= ETA_MAX = 1e3)
+        omega forcing frequency ratio omega = w/w0 (0 < omega <= OMEGA_MAX = 1e3)
+        F     forcing amplitude A/L (0 <= F <= F_MAX = 1e4)
+        r     coefficient of restitution (0 <= r <= 1)
+        d     LO damping c/(M w0) (0 <= d <= D_MAX = 1e3), fixed for every eta by default
+        phi   forcing phase at t = 0 [rad] (|phi| <= PHI_MAX = 1e3)
     """
 
     eta: float
@@ -330,17 +332,22 @@ class ModelParams:
 class SolverSettings:
     """Settings of one simulation run (validated on construction).
 
-    t_end        end of the run (dimensionless time, 0 < t_end <= T_END_MAX = 1e9)
-    t_transient  start of the measurement window [t_transient, t_end] (0 <= t_transient < t_end)
-    v_stick      chatter threshold (0 <= v_stick <= V_STICK_MAX = 1): after an impact with |w'+| <= v_stick while the
-                 relative acceleration presses the ball on the wall, ball and LO stick
-                 (the exact solver also sticks below the speed of a bounce only a few
-                 round-off units high, see ``vines._engine``)
-    max_impacts  guard: the run stops with status "max_impacts" after this many impacts
-                 (1 <= max_impacts <= MAX_IMPACTS_MAX = 1e8)
-    root_tol     distance to the wall (in units of L) at which contact is declared (or
-                 the round-off level of w when larger)
-    state0       initial (z_m, z_m', z_b, z_b') at t = 0, |z_m - z_b| <= 1, each |.| <= 1e12
+    ::
+
+        t_end        end of the run (dimensionless time, 0 < t_end <= T_END_MAX = 1e9)
+        t_transient  start of the measurement window [t_transient, t_end]
+                     (0 <= t_transient < t_end)
+        v_stick      chatter threshold (0 <= v_stick <= V_STICK_MAX = 1): after an impact
+                     with |w'+| <= v_stick while the relative acceleration presses the
+                     ball on the wall, ball and LO stick
+                     (the exact solver also sticks below the speed of a bounce only a few
+                     round-off units high, see ``vines._engine``)
+        max_impacts  guard: the run stops with status "max_impacts" after this many impacts
+                     (1 <= max_impacts <= MAX_IMPACTS_MAX = 1e8)
+        root_tol     distance to the wall (in units of L) at which contact is declared (or
+                     the round-off level of w when larger)
+        state0       initial (z_m, z_m', z_b, z_b') at t = 0, |z_m - z_b| <= 1,
+                     each |.| <= 1e12
     """
 
     t_end: float = T_END_DEFAULT

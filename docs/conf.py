@@ -1,0 +1,112 @@
+"""Sphinx configuration of the vines site (docs/building.md says how to build it).
+
+The pages are the Markdown files of docs/ (MyST), the API reference is generated from the
+docstrings (autosummary + napoleon), the gallery from examples/ (sphinx-gallery, executed at
+build time). intersphinx to numpy, scipy and xarray needs the network, so it is on only with
+VINES_DOCS_INTERSPHINX=1: the default build (and CI's, warnings as errors) reads nothing from
+outside.
+"""
+import os
+import re
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "src"))   # the vines of this checkout, installed or not
+sys.path.insert(0, str(ROOT / "docs"))   # the local extension _vines_links
+
+import vines  # noqa: E402
+
+project = "vines"
+author = "vines developers"
+copyright = "vines developers, BSD-3-Clause"
+release = vines.__version__
+version = release
+
+extensions = [
+    "myst_parser",
+    "sphinx.ext.autodoc",
+    "sphinx.ext.autosummary",
+    "sphinx.ext.napoleon",
+    "sphinx.ext.mathjax",
+    "sphinx_gallery.gen_gallery",
+    "_vines_links",
+]
+if os.environ.get("VINES_DOCS_INTERSPHINX") == "1":
+    extensions.append("sphinx.ext.intersphinx")
+    intersphinx_mapping = {
+        "python": ("https://docs.python.org/3", None),
+        "numpy": ("https://numpy.org/doc/stable", None),
+        "scipy": ("https://docs.scipy.org/doc/scipy", None),
+        "xarray": ("https://docs.xarray.dev/en/stable", None),
+    }
+
+source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
+root_doc = "index"
+# the two scripts of docs/ are tools, not pages; _build and the generated folders likewise
+exclude_patterns = ["_build", "figure_numbers.py", "make_cli_reference.py",
+                    "auto_examples/*.ipynb", "auto_examples/*.py", "auto_examples/*.zip"]
+
+# MyST: the existing pages as they are (GitHub-flavoured Markdown, $...$ maths)
+myst_enable_extensions = ["dollarmath", "colon_fence"]
+myst_heading_anchors = 4          # [text](page.md#a-heading) links as on GitHub
+suppress_warnings = ["myst.header"]   # pages that start at ## (sections of the README's kind)
+
+# API reference: autosummary writes one page per public name (docs/api.rst lists them)
+autosummary_generate = True
+templates_path = ["_templates"]
+autosummary_imported_members = True
+autodoc_default_options = {"members": True, "show-inheritance": True}
+autodoc_typehints = "none"        # the signature shows the annotations; docstrings the units
+autodoc_member_order = "bysource"
+napoleon_numpy_docstring = True
+napoleon_google_docstring = False
+
+# gallery: every examples/*.py run at build time, its figures drawn into the page
+sphinx_gallery_conf = {
+    "examples_dirs": str(ROOT / "examples"),
+    "gallery_dirs": "auto_examples",
+    "filename_pattern": r"/plot_",
+    "download_all_examples": False,
+    "remove_config_comments": True,
+    "matplotlib_animations": False,
+    "image_scrapers": ("matplotlib",),
+    "abort_on_example_error": True,
+    "within_subsection_order": "FileNameSortKey",
+}
+
+html_theme = "pydata_sphinx_theme"
+html_title = f"vines {release}"
+html_theme_options = {
+    "navigation_with_keys": False,
+    "show_toc_level": 2,
+    "secondary_sidebar_items": ["page-toc"],
+    "footer_start": ["copyright"],
+    "footer_end": [],
+}
+html_show_sourcelink = False
+html_last_updated_fmt = None
+
+
+# The docstrings are plain text in which |x| is an absolute value, never a reStructuredText
+# substitution: bars are escaped outside inline literals and literal blocks.
+_INLINE_LITERAL = re.compile(r"(``.*?``)")
+
+
+def _escape_bars(app, what, name, obj, options, lines) -> None:
+    literal_indent = None                # indentation of the line that opened a literal block
+    for i, line in enumerate(lines):
+        text = line.lstrip()
+        indent = len(line) - len(text)
+        if literal_indent is not None:
+            if not text or indent > literal_indent:
+                continue
+            literal_indent = None
+        parts = _INLINE_LITERAL.split(line)
+        lines[i] = "".join(p if p.startswith("``") else p.replace("|", r"\|") for p in parts)
+        if text.endswith("::"):
+            literal_indent = indent
+
+
+def setup(app):
+    app.connect("autodoc-process-docstring", _escape_bars)
