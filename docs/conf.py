@@ -6,6 +6,9 @@ build time). intersphinx to numpy, scipy and xarray needs the network, so it is 
 VINES_DOCS_INTERSPHINX=1: the default build (and CI's, warnings as errors) reads nothing from
 outside.
 """
+import ast
+import importlib.util
+import inspect
 import os
 import re
 import sys
@@ -108,5 +111,40 @@ def _escape_bars(app, what, name, obj, options, lines) -> None:
             literal_indent = indent
 
 
+def _doc_comment(module: str, attr: str, depth: int = 0) -> list[str]:
+    """The ``#:`` comment of ``attr`` in ``module``, or in the module it imports it from."""
+    from sphinx.pycode import ModuleAnalyzer
+    try:
+        analyzer = ModuleAnalyzer.for_module(module)
+    except Exception:                     # no source (a compiled or built-in module)
+        return []
+    doc = analyzer.find_attr_docs().get(("", attr))
+    if doc or depth > 3:
+        return list(doc or [])
+    loaded = importlib.import_module(module)
+    package = module if hasattr(loaded, "__path__") else module.rpartition(".")[0]
+    lazy = getattr(loaded, "_LAZY", {})       # names a package loads on first access
+    if attr in lazy:
+        return _doc_comment(importlib.util.resolve_name(lazy[attr], package), attr, depth + 1)
+    for node in ast.walk(ast.parse(analyzer.code)):
+        if isinstance(node, ast.ImportFrom) and any(a.name == attr for a in node.names):
+            source = importlib.util.resolve_name("." * node.level + (node.module or ""),
+                                                 package) if node.level else node.module
+            return _doc_comment(source, attr, depth + 1)
+    return []
+
+
+def _constant_doc(app, what, name, obj, options, lines) -> None:
+    """A constant is described by its ``#:`` comment, not by the docstring of its type
+    (``float``, ``tuple``): found where the package imports it from."""
+    if what not in ("data", "attribute"):
+        return
+    inherited = {(inspect.getdoc(t) or "").strip() for t in type(obj).__mro__}
+    if "\n".join(lines).strip() in inherited:
+        module, _, attr = name.rpartition(".")
+        lines[:] = _doc_comment(module, attr)
+
+
 def setup(app):
+    app.connect("autodoc-process-docstring", _constant_doc, priority=400)
     app.connect("autodoc-process-docstring", _escape_bars)

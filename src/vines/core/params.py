@@ -21,13 +21,13 @@ PARAM_NAMES = ("eta", "omega", "F")
 
 # Table 1 of the paper (SI units).
 M_LO_KG = 3.807          # mass of the linear oscillator M [kg]
-L_HALF_M = 0.015         # half cavity length L [m] (2L = 0.03 m)
+L_HALF_M = 0.015         #: half cavity length L [m] (2L = 0.03 m), Table 1
 R_DEFAULT = 0.65         # coefficient of restitution r [-]
 K_SPRING_N_PER_M = 11680.0   # spring stiffness k [N/m]
 C_DAMP_NS_PER_M = 2.53       # damping coefficient c [N s/m]
 
 W0_RAD_S = math.sqrt(K_SPRING_N_PER_M / M_LO_KG)                 # 55.390 rad/s
-D_DEFAULT = C_DAMP_NS_PER_M / (M_LO_KG * W0_RAD_S)                # 0.011998
+D_DEFAULT = C_DAMP_NS_PER_M / (M_LO_KG * W0_RAD_S)                #: d = c/(M w0) of Table 1, 0.011998
 
 T_END_DEFAULT = 7000.0
 T_TRANSIENT_DEFAULT = 4000.0

@@ -16,7 +16,7 @@ from .params import L_HALF_M, ModelParams, SolverSettings
 from .tally import ImpactTally
 from .walls import WALL_L, WALL_R  # noqa: F401  (re-exported)
 
-#: one impact of ``SimulationResult.impacts``: time and pre-impact state, the wall hit
+#: dtype of ``SimulationResult.impacts``, one impact a row (time, pre-impact state, wall hit)
 IMPACT_DTYPE = np.dtype([("t", "f8"), ("z_m", "f8"), ("v_m", "f8"),
                          ("z_b", "f8"), ("v_b", "f8"), ("wall", "i1")])
 
