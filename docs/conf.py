@@ -53,14 +53,13 @@ exclude_patterns = ["_build", "figure_numbers.py", "make_cli_reference.py",
 # MyST: the existing pages as they are (GitHub-flavoured Markdown, $...$ maths)
 myst_enable_extensions = ["dollarmath", "colon_fence"]
 myst_heading_anchors = 4          # [text](page.md#a-heading) links as on GitHub
-suppress_warnings = ["myst.header"]   # pages that start at ## (sections of the README's kind)
 
 # API reference: autosummary writes one page per public name (docs/api.rst lists them)
 autosummary_generate = True
 templates_path = ["_templates"]
 autosummary_imported_members = True
 autodoc_default_options = {"members": True, "show-inheritance": True}
-autodoc_typehints = "none"        # the signature shows the annotations; docstrings the units
+autodoc_typehints = "signature"   # the annotations in the signature; docstrings give units
 autodoc_member_order = "bysource"
 napoleon_numpy_docstring = True
 napoleon_google_docstring = False

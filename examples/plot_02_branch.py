@@ -3,9 +3,10 @@ A periodic orbit and its branch
 ===============================
 
 ``find_1to1`` solves the 1:1 orbits (one impact on each wall per forcing period) from the
-impact maps; ``continue_branch`` follows one in F by pseudo-arclength continuation, through
-its fold, and locates the events where its stability changes (docs:
-:doc:`/bifurcation`). A coarse step keeps this example short.
+impact maps; ``continue_branch`` follows the symmetric one in F by pseudo-arclength
+continuation (folds are passed) and locates the events where its stability changes, here
+symmetry breaking and Neimark-Sacker (:doc:`/bifurcation`). A coarse step keeps this
+example short.
 """
 import matplotlib.pyplot as plt
 import numpy as np
