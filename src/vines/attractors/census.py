@@ -64,7 +64,7 @@ CI_METHOD = "wilson"
 @dataclass
 class Attractor:
     """One attractor of a census. ke_ratio, xmax_m: exact over one period (periodic) or
-    the members' mean; *_range: [min, max] over the members (a point for periodic ones);
+    the members' mean; ``*_range``: [min, max] over the members (a point for periodic ones);
     ci: Wilson score interval of basin_fraction; example_state: an initial state
     (z_m, z_m', z_b, z_b') that reaches it; section_state: a state of the orbit at
     t = k T (periodic only); orbit: extra facts of a 1:1 orbit (lambda_max, dw_L, ...);

@@ -55,12 +55,14 @@ CI_LEVEL = 0.95
 class LyapunovResult:
     """Lyapunov spectrum over the window [t_transient, t_end].
 
-    exponents   the four exponents, descending, per unit dimensionless time (-inf: a
-                direction removed by sticking)
-    ci          (4, 2) 95 % batch-means intervals
-    regime      regime label of the window (``core.regime``, as ``simulate`` reports it)
-    n_impacts   impacts in the window; n_sticks: stick starts in the window
-    status      "ok" or why the run stopped early (then the window is incomplete)
+    ::
+
+        exponents   the four exponents, descending, per unit dimensionless time (-inf: a
+                    direction removed by sticking)
+        ci          (4, 2) 95 % batch-means intervals
+        regime      regime label of the window (``core.regime``, as ``simulate`` reports it)
+        n_impacts   impacts in the window; n_sticks: stick starts in the window
+        status      "ok" or why the run stopped early (then the window is incomplete)
     """
 
     exponents: np.ndarray

@@ -18,7 +18,7 @@ from ..core.params import STATE_MAX, ParameterError, check_int, check_real
 
 #: box coordinates, in this order
 BOX_NAMES = ("z_m", "v_m", "w", "v_b")
-#: default box: z_m, z_m' in [-1.5, 1.5], w in [-1, 1], z_b' in [-1.5, 1.5]
+#: the default box, z_m, z_m' in [-1.5, 1.5], w in [-1, 1], z_b' in [-1.5, 1.5]
 DEFAULT_BOX = ((-1.5, 1.5), (-1.5, 1.5), (-1.0, 1.0), (-1.5, 1.5))
 N_MAX = 1_000_000          # initial states of one census
 SEED_MAX = 2**63 - 1

@@ -21,13 +21,13 @@ PARAM_NAMES = ("eta", "omega", "F")
 
 # Table 1 of the paper (SI units).
 M_LO_KG = 3.807          # mass of the linear oscillator M [kg]
-L_HALF_M = 0.015         # half cavity length L [m] (2L = 0.03 m)
+L_HALF_M = 0.015         #: half cavity length L [m] (2L = 0.03 m), Table 1
 R_DEFAULT = 0.65         # coefficient of restitution r [-]
 K_SPRING_N_PER_M = 11680.0   # spring stiffness k [N/m]
 C_DAMP_NS_PER_M = 2.53       # damping coefficient c [N s/m]
 
 W0_RAD_S = math.sqrt(K_SPRING_N_PER_M / M_LO_KG)                 # 55.390 rad/s
-D_DEFAULT = C_DAMP_NS_PER_M / (M_LO_KG * W0_RAD_S)                # 0.011998
+D_DEFAULT = C_DAMP_NS_PER_M / (M_LO_KG * W0_RAD_S)                #: d = c/(M w0) of Table 1, 0.011998
 
 T_END_DEFAULT = 7000.0
 T_TRANSIENT_DEFAULT = 4000.0
@@ -270,12 +270,14 @@ def check_conditioning(eta: float, omega: float, F: float, d: float) -> None:
 class ModelParams:
     """Dimensionless VINES parameters (validated on construction).
 
-    eta   ball-to-LO mass ratio m/M (0 < eta <= ETA_MAX = 1e3)
-    omega forcing frequency ratio omega = w/w0 (0 < omega <= OMEGA_MAX = 1e3)
-    F     forcing amplitude A/L (0 <= F <= F_MAX = 1e4)
-    r     coefficient of restitution (0 <= r <= 1)
-    d     LO damping c/(M w0) (0 <= d <= D_MAX = 1e3), fixed for every eta by default
-    phi   forcing phase at t = 0 [rad] (|phi| <= PHI_MAX = 1e3)
+    ::
+
+        eta   ball-to-LO mass ratio m/M (0 < eta <= ETA_MAX = 1e3)
+        omega forcing frequency ratio omega = w/w0 (0 < omega <= OMEGA_MAX = 1e3)
+        F     forcing amplitude A/L (0 <= F <= F_MAX = 1e4)
+        r     coefficient of restitution (0 <= r <= 1)
+        d     LO damping c/(M w0) (0 <= d <= D_MAX = 1e3), fixed for every eta by default
+        phi   forcing phase at t = 0 [rad] (|phi| <= PHI_MAX = 1e3)
     """
 
     eta: float
@@ -330,17 +332,22 @@ class ModelParams:
 class SolverSettings:
     """Settings of one simulation run (validated on construction).
 
-    t_end        end of the run (dimensionless time, 0 < t_end <= T_END_MAX = 1e9)
-    t_transient  start of the measurement window [t_transient, t_end] (0 <= t_transient < t_end)
-    v_stick      chatter threshold (0 <= v_stick <= V_STICK_MAX = 1): after an impact with |w'+| <= v_stick while the
-                 relative acceleration presses the ball on the wall, ball and LO stick
-                 (the exact solver also sticks below the speed of a bounce only a few
-                 round-off units high, see ``vines._engine``)
-    max_impacts  guard: the run stops with status "max_impacts" after this many impacts
-                 (1 <= max_impacts <= MAX_IMPACTS_MAX = 1e8)
-    root_tol     distance to the wall (in units of L) at which contact is declared (or
-                 the round-off level of w when larger)
-    state0       initial (z_m, z_m', z_b, z_b') at t = 0, |z_m - z_b| <= 1, each |.| <= 1e12
+    ::
+
+        t_end        end of the run (dimensionless time, 0 < t_end <= T_END_MAX = 1e9)
+        t_transient  start of the measurement window [t_transient, t_end]
+                     (0 <= t_transient < t_end)
+        v_stick      chatter threshold (0 <= v_stick <= V_STICK_MAX = 1): after an impact
+                     with |w'+| <= v_stick while the relative acceleration presses the
+                     ball on the wall, ball and LO stick
+                     (the exact solver also sticks below the speed of a bounce only a few
+                     round-off units high, see ``vines._engine``)
+        max_impacts  guard: the run stops with status "max_impacts" after this many impacts
+                     (1 <= max_impacts <= MAX_IMPACTS_MAX = 1e8)
+        root_tol     distance to the wall (in units of L) at which contact is declared (or
+                     the round-off level of w when larger)
+        state0       initial (z_m, z_m', z_b, z_b') at t = 0, |z_m - z_b| <= 1,
+                     each |.| <= 1e12
     """
 
     t_end: float = T_END_DEFAULT

@@ -16,6 +16,7 @@ from .params import L_HALF_M, ModelParams, SolverSettings
 from .tally import ImpactTally
 from .walls import WALL_L, WALL_R  # noqa: F401  (re-exported)
 
+#: dtype of ``SimulationResult.impacts``, one impact a row (time, pre-impact state, wall hit)
 IMPACT_DTYPE = np.dtype([("t", "f8"), ("z_m", "f8"), ("v_m", "f8"),
                          ("z_b", "f8"), ("v_b", "f8"), ("wall", "i1")])
 
@@ -60,20 +61,22 @@ class RawRun:
 class SimulationResult:
     """Outcome of ``vines.simulate``: energy-transfer measures and the trajectory.
 
-    ke_ratio        K_b/(K_m + K_b) with K_m = <z_m'^2>/2, K_b = eta <z_b'^2>/2, exact
-                    time averages over [t_transient, t_end] (0 when there is no motion)
-    xmax, xmax_m    max |z_m| over the window, dimensionless and in metres (x L)
-    xmax_whole_run(_m)  the same over the whole run [0, t_end]
-    n_impacts       impacts in the whole run; impacts_per_period: in the window per T
-    regime          "1:1", "2:2", "2:1", "period-p", "chatter", "irregular", "no-impact";
-                    "unfinished" (stopped at max_impacts), "failed" (solver stalled)
-    t_stuck         time spent stuck (ball and LO moving as one body) in the window
-    impacts         structured array (t, z_m, v_m, z_b, v_b, wall), pre-impact values
-    status          "ok", or why the run stopped early ("max_impacts", ...)
-    shortcut_time   time from which the run was completed from one period of a settled
-                    periodic orbit (``vines.core.shortcut``; NaN: integrated to t_end);
-                    shortcut_period: that period in forcing periods (0 when not taken).
-                    Impacts and ``state_at`` after shortcut_time repeat that period.
+    ::
+
+        ke_ratio        K_b/(K_m + K_b) with K_m = <z_m'^2>/2, K_b = eta <z_b'^2>/2, exact
+                        time averages over [t_transient, t_end] (0 when there is no motion)
+        xmax, xmax_m    max |z_m| over the window, dimensionless and in metres (x L)
+        xmax_whole_run(_m)  the same over the whole run [0, t_end]
+        n_impacts       impacts in the whole run; impacts_per_period: in the window per T
+        regime          "1:1", "2:2", "2:1", "period-p", "chatter", "irregular", "no-impact";
+                        "unfinished" (stopped at max_impacts), "failed" (solver stalled)
+        t_stuck         time spent stuck (ball and LO moving as one body) in the window
+        impacts         structured array (t, z_m, v_m, z_b, v_b, wall), pre-impact values
+        status          "ok", or why the run stopped early ("max_impacts", ...)
+        shortcut_time   time from which the run was completed from one period of a settled
+                        periodic orbit (``vines.core.shortcut``; NaN: integrated to t_end);
+                        shortcut_period: that period in forcing periods (0 when not taken).
+                        Impacts and ``state_at`` after shortcut_time repeat that period.
     """
 
     params: ModelParams

@@ -66,6 +66,7 @@ from scipy.optimize import brentq
 from ..core.params import ModelParams, SolverSettings
 from ..core.result import IMPACT_DTYPE, RawRun
 
+#: the scipy.integrate.solve_ivp methods the RK oracle runs
 METHODS = ("DOP853", "RK45", "LSODA", "Radau")
 
 __all__ = ["run_rk", "METHODS"]

@@ -28,22 +28,24 @@ EVENT_TYPES = ("fold", "flip", "neimark-sacker", "admissibility-loss", "symmetry
 class Branch:
     """A continued branch of one family (keyword fields).
 
-    param       the continued parameter (eta, omega or F)
-    orbits      the ``PeriodicOrbit`` of every point, in continuation order (``points``)
-    values      the continued parameter at each point
-    walls, periods  the family of the orbits
-    family      the 1:1 continuation: "symmetric" or "asymmetric" (the orbits followed);
-                None for any other
-    events      dicts {type (``EVENT_TYPES``), at (parameter value), eta, omega, F, index
-                (the branch point where it was located), ...}; the 1:1 ones also connects
-                (the family met there, symmetry-breaking)
-    stopped     why the continuation ended
-    switched    branches started at this branch's switching points (flip,
-                symmetry-breaking)
-    born_at     the event of the parent branch where this one was switched onto, or None
-    arclength   pseudo-arclength of each point from the start (natural mode: |param -
-                start|), where the continuation gives it
-    keys        the key set of ``to_dict`` (module docstring)
+    ::
+
+        param       the continued parameter (eta, omega or F)
+        orbits      the ``PeriodicOrbit`` of every point, in continuation order (``points``)
+        values      the continued parameter at each point
+        walls, periods  the family of the orbits
+        family      the 1:1 continuation: "symmetric" or "asymmetric" (the orbits followed);
+                    None for any other
+        events      dicts {type (``EVENT_TYPES``), at (parameter value), eta, omega, F, index
+                    (the branch point where it was located), ...}; the 1:1 ones also connects
+                    (the family met there, symmetry-breaking)
+        stopped     why the continuation ended
+        switched    branches started at this branch's switching points (flip,
+                    symmetry-breaking)
+        born_at     the event of the parent branch where this one was switched onto, or None
+        arclength   pseudo-arclength of each point from the start (natural mode: |param -
+                    start|), where the continuation gives it
+        keys        the key set of ``to_dict`` (module docstring)
     """
 
     param: str

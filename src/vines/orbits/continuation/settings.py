@@ -36,22 +36,24 @@ from .arclength import Tracer
 class ContinuationSettings:
     """How one branch is continued, validated once on construction.
 
-    param, start, stop  the continued parameter and its interval (None: unbound, see
-                        ``bound``)
-    step              the parameter step (natural) or largest arclength step, |step| (None:
-                      |stop - start|/100, ``step_size``); a step given that needs more than
-                      ``max_points`` points to cover |stop - start| is refused
-    fixed             the two parameters not continued
-    max_points        most points of an arclength branch (None: the continuation's
-                      default, ``MAX_POINTS_DEFAULT`` for 1:1,
-                      ``sequence.MAX_BRANCH_POINTS_DEFAULT`` for a wall sequence)
-    max_inadmissible  end after this many consecutive non-admissible points
-    switch            also continue the branches born at symmetry-breaking (and, for a
-                      wall sequence, flip) points
-    method            arclength or natural (``natural``), for every family
-    min_step, event_tol: the natural mode and the 1:1 arclength continuation (a wall
-                      sequence's arclength: smallest step step * 1e-6)
-    branch            the 1:1 continuation only
+    ::
+
+        param, start, stop  the continued parameter and its interval (None: unbound, see
+                            ``bound``)
+        step              the parameter step (natural) or largest arclength step, |step| (None:
+                          |stop - start|/100, ``step_size``); a step given that needs more than
+                          ``max_points`` points to cover |stop - start| is refused
+        fixed             the two parameters not continued
+        max_points        most points of an arclength branch (None: the continuation's
+                          default, ``MAX_POINTS_DEFAULT`` for 1:1,
+                          ``sequence.MAX_BRANCH_POINTS_DEFAULT`` for a wall sequence)
+        max_inadmissible  end after this many consecutive non-admissible points
+        switch            also continue the branches born at symmetry-breaking (and, for a
+                          wall sequence, flip) points
+        method            arclength or natural (``natural``), for every family
+        min_step, event_tol: the natural mode and the 1:1 arclength continuation (a wall
+                          sequence's arclength: smallest step step * 1e-6)
+        branch            the 1:1 continuation only
     """
 
     param: str | None = None

@@ -26,23 +26,25 @@ FAMILY_KEYS, KEYS_1TO1 = "family", "1:1"
 class PeriodicOrbit:
     """One periodic orbit and its stability (keyword fields).
 
-    walls         the wall sequence ("LLRR"), impact k at wall walls[k]
-    periods       forcing periods of the orbit (its period is periods * T)
-    states        (n, 4) pre-impact states x_k = (z_m', z_b', z_b, t), t_0 in [0, T)
-    flight_times  n flight times, flight k from impact k to impact k+1 (cyclically; a list
-                  of floats from the 1:1 solver, as it always was)
-    dw            relative velocity w' = z_m' - z_b' just before each impact
-    phases        impact phases mod(omega t + phi, 2 pi)
-    symmetric     invariant under the mirror z -> -z with t -> t + periods T / 2 (flight k
-                  as long as flight k + n/2, walls opposite; only for odd periods)
-    admissible    every flight is a genuine impact-to-impact flight (``maps``)
-    eigenvalues   of the monodromy matrix J_{n-1} ... J_0 (the Jacobians of the maps along
-                  the orbit), sorted by decreasing modulus; lambda_max = max |eigenvalue|
-    stable        admissible and lambda_max < 1
-    residual      the Newton residual at the solution
-    jacobians     (n, 4, 4) the map Jacobians J_k along the orbit
-    params        the model point of the orbit
-    keys          the key set of ``to_dict`` (module docstring)
+    ::
+
+        walls         the wall sequence ("LLRR"), impact k at wall walls[k]
+        periods       forcing periods of the orbit (its period is periods * T)
+        states        (n, 4) pre-impact states x_k = (z_m', z_b', z_b, t), t_0 in [0, T)
+        flight_times  n flight times, flight k from impact k to impact k+1 (cyclically; a list
+                      of floats from the 1:1 solver, as it always was)
+        dw            relative velocity w' = z_m' - z_b' just before each impact
+        phases        impact phases mod(omega t + phi, 2 pi)
+        symmetric     invariant under the mirror z -> -z with t -> t + periods T / 2 (flight k
+                      as long as flight k + n/2, walls opposite; only for odd periods)
+        admissible    every flight is a genuine impact-to-impact flight (``maps``)
+        eigenvalues   of the monodromy matrix J_{n-1} ... J_0 (the Jacobians of the maps along
+                      the orbit), sorted by decreasing modulus; lambda_max = max |eigenvalue|
+        stable        admissible and lambda_max < 1
+        residual      the Newton residual at the solution
+        jacobians     (n, 4, 4) the map Jacobians J_k along the orbit
+        params        the model point of the orbit
+        keys          the key set of ``to_dict`` (module docstring)
     """
 
     walls: str
