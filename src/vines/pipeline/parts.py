@@ -1,7 +1,7 @@
 """Chunk jobs of the chunked stages: which items each job computes, and its part file.
 
 A chunked stage (``robust_map``, ``orbit_atlas``, ``basin_slice``, ``lyapunov``,
-``design``, ``convergence``) lists the independent items of one config entry (points,
+``design``, ``convergence``, ``design_map``) lists the independent items of one config entry (points,
 eta rows, sweep lines, search designs) in dataset order; ``item_ranges`` cuts them into
 runs of whole items of about ``points`` points each (the config's ``chunks`` section),
 one job per run. A job writes its results as a part file (``write_part``: a pickle,
@@ -19,7 +19,8 @@ from pathlib import Path
 #: the config section of their entries
 CHUNKED_STAGES = {"robust_map": "robust_maps", "orbit_atlas": "orbit_atlases",
                   "basin_slice": "basin_slices", "lyapunov": "lyapunov_sweeps",
-                  "design": "designs", "convergence": "convergence"}
+                  "design": "designs", "convergence": "convergence",
+                  "design_map": "design_maps"}
 
 
 def item_ranges(n_items: int, points_per_item: int, points: int) -> list[tuple[int, int]]:
@@ -36,7 +37,7 @@ def stage_items(stage: str, name: str, config: dict) -> tuple[int, int]:
     """(items, points per item) of the entry ``name`` of a chunked stage in a validated
     ``config``: robust_map and basin_slice points (states), orbit_atlas eta rows,
     lyapunov sweep lines, design search-grid designs (runs from rest each: omega values x
-    amplitudes), convergence finest-grid eta rows of the ``grid`` study (the other studies
+    amplitudes), design_map cells, convergence finest-grid eta rows of the ``grid`` study (the other studies
     and a design that is evaluated, not searched: no items, one job)."""
     from .axes import axis_values
     from .config_checks import atlas_grid
@@ -55,6 +56,8 @@ def stage_items(stage: str, name: str, config: dict) -> tuple[int, int]:
         return lines, axis_values(sw["values"]).size
     if stage == "design":
         return _design_items(config["designs"][name])
+    if stage == "design_map":
+        return _design_map_cells(config, name), 1
     if stage == "convergence":
         if name != "grid":
             return 0, 1
@@ -72,6 +75,18 @@ def _design_items(entry: dict) -> tuple[int, int]:
     amps = entry.get("amplitudes_m", dc.DEFAULT_AMPLITUDES_M)
     amps = [amps] if isinstance(amps, (int, float)) else amps
     return n, entry.get("n_omega", dc.DEFAULT_N_OMEGA) * len(amps)
+
+
+def _design_map_cells(config: dict, name: str) -> int:
+    """Cells (eta x half_width x span) of a ``design_maps`` entry."""
+    e = config["design_maps"][name]
+    eta = e["eta"]
+    n_eta = int(eta["num"]) if isinstance(eta, dict) else axis_size(eta)
+    return n_eta * axis_size(e["half_width"]) * axis_size(e["span"])
+
+
+def axis_size(values) -> int:
+    return 1 if isinstance(values, (int, float)) else len(values)
 
 
 def chunk_plan(stage: str, name: str, config: dict) -> list[tuple[int, int]]:

@@ -80,7 +80,7 @@ class MapSpec:
     the axes (tuples); n_amplitudes per cell with S > 1; amplitude_max_m [m]; d: the LO's
     damping c/(M w0); n_omega, n_clearance: the slow flow's band grid and clearance grid;
     the exact check: n_omega_exact, frontier_factor, exact_sample (fraction of the other
-    cells), seed, exact_refine, and the runs' t_end, t_transient, v_stick, max_impacts,
+    cells), seed, exact_check (False: the slow flow alone), exact_refine, and the runs' t_end, t_transient, v_stick, max_impacts,
     root_tol."""
 
     eta: tuple
@@ -96,6 +96,7 @@ class MapSpec:
     frontier_factor: float = FRONTIER_FACTOR_DEFAULT
     exact_sample: float = EXACT_SAMPLE_DEFAULT
     seed: int = 0
+    exact_check: bool = True
     exact_refine: bool = True
     t_end: float = T_END_DEFAULT
     t_transient: float = T_TRANSIENT_DEFAULT
@@ -151,7 +152,7 @@ def check_map(*, eta, half_width, span, restitution=RESTITUTION_DEFAULT,
               n_amplitudes=N_AMPLITUDES_DEFAULT, amplitude_max_m=AMPLITUDE_MAX_M_DEFAULT,
               d=D_DEFAULT, n_omega=N_OMEGA_DEFAULT, n_clearance=N_CLEARANCE_DEFAULT,
               n_omega_exact=N_OMEGA_EXACT_DEFAULT, frontier_factor=FRONTIER_FACTOR_DEFAULT,
-              exact_sample=EXACT_SAMPLE_DEFAULT, seed=0, exact_refine=True,
+              exact_sample=EXACT_SAMPLE_DEFAULT, seed=0, exact_check=True, exact_refine=True,
               t_end=T_END_DEFAULT, t_transient=T_TRANSIENT_DEFAULT, v_stick=V_STICK_DEFAULT,
               max_impacts=MAX_IMPACTS_DEFAULT, root_tol=ROOT_TOL_DEFAULT) -> MapSpec:
     """A MapSpec from plain values; ParameterError naming the bad one. eta in (0, 0.5]
@@ -176,9 +177,21 @@ def check_map(*, eta, half_width, span, restitution=RESTITUTION_DEFAULT,
         frontier_factor=check_real("frontier_factor", frontier_factor, lo=1.0, hi=1e3),
         exact_sample=check_real("exact_sample", exact_sample, lo=0.0, hi=1.0),
         seed=check_int("seed", seed, lo=0, hi=2**63 - 1),
+        exact_check=check_bool("exact_check", exact_check),
         exact_refine=check_bool("exact_refine", exact_refine),
         t_end=t_end, t_transient=float(t_transient), v_stick=float(v_stick),
         max_impacts=int(max_impacts), root_tol=float(root_tol))
+
+
+def from_entry(entry: dict, **fixed) -> MapSpec:
+    """The MapSpec of a config entry (``design_maps.<name>``): its keys but description
+    (eta a list or {start, stop, num} log-spaced) and ``fixed`` (d and the solver's
+    v_stick, max_impacts, root_tol); ParameterError naming the bad key."""
+    kw = {k: v for k, v in entry.items() if k != "description" and v is not None}
+    eta = kw.pop("eta")
+    if isinstance(eta, dict):
+        eta = log_axis("eta", eta.get("start"), eta.get("stop"), eta.get("num"))
+    return check_map(eta=eta, **kw, **fixed)
 
 
 # --------------------------------------------------------------------------- one cell
@@ -256,17 +269,17 @@ def exact_check(spec: MapSpec, eta: float, h: float, span: float, vines: dict) -
     """The exact worst x_max/A (from rest, ``design.Evaluator``) at the slow flow's design,
     and with exact_refine at the best clearance of a compass search in log10 L around it
     (r and eta fixed; never worse than the slow flow's design)."""
-    from .design import Evaluator, _clearance, compass
+    from .design import Evaluator, compass
     ev = Evaluator(_problem(spec, h, span, vines["restitution"]), n_threads=1)
     u = math.log10(vines["clearance_m"])
-    L = _clearance(u)                       # the compass search's float for this design
+    L = 10.0 ** float(u)           # as design.compass maps log10 L to L: one float a design
     at_slow = ev.worst([(eta, L)])[0]
     L_best, best = L, at_slow
     if spec.exact_refine:
         lo_u = max(u - REFINE_RANGE, math.log10(spec.amplitude_max_m / 2.0))
         x, best = compass(ev, (eta, u), at_slow, (0.0, REFINE_STEP), (eta, lo_u),
                           (eta, u + REFINE_RANGE))
-        L_best = _clearance(x[1])
+        L_best = 10.0 ** float(x[1])
     return dict(worst_ratio=at_slow, worst_ratio_refined=best, clearance_m_refined=L_best,
                 n_runs=ev.n_runs)
 
@@ -279,7 +292,7 @@ def map_cell(spec: MapSpec, index: int) -> dict:
     free, equal = t["free"], t["equal_travel"]
     ratios = [vines["worst_ratio"] / free.worst_ratio, vines["worst_ratio"] / equal.worst_ratio]
     frontier = near_frontier(spec, ratios)
-    reason = (CONFIRM_FRONTIER if frontier else
+    reason = (CONFIRM_NONE if not spec.exact_check else CONFIRM_FRONTIER if frontier else
               CONFIRM_SAMPLE if is_sampled(spec, index) else CONFIRM_NONE)
     exact = exact_check(spec, eta, h, span, vines) if reason != CONFIRM_NONE else None
     return dict(index=int(index), eta=eta, half_width=h, span=span, vines=vines,
@@ -294,11 +307,27 @@ def _tmd_dict(t) -> dict:
                 worst_travel=t.worst_travel)
 
 
-def map_cells(spec: MapSpec, start: int = 0, stop: int | None = None) -> list[dict]:
-    """``map_cell`` of the cells [start, stop) in order (a chunk of the map)."""
+def map_cells(spec: MapSpec, start: int = 0, stop: int | None = None,
+              n_workers: int = 1) -> list[dict]:
+    """``map_cell`` of the cells [start, stop) in order (a chunk of the map), in
+    ``n_workers`` processes (spawned; the numbers do not depend on them)."""
     stop = spec.n_cells if stop is None else stop
-    return [map_cell(spec, i)
-            for i in progress.track(range(start, stop), stop - start, "design map", "cells")]
+    cells = range(start, stop)
+    n_workers = check_int("n_workers", n_workers, lo=1, hi=4096)
+    if n_workers == 1 or len(cells) < 2:
+        return [map_cell(spec, i)
+                for i in progress.track(cells, len(cells), "design map", "cells")]
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor
+    from functools import partial
+    ctx = multiprocessing.get_context("spawn")
+    with ProcessPoolExecutor(min(n_workers, len(cells)), mp_context=ctx) as pool:
+        try:
+            return list(progress.track(pool.map(partial(map_cell, spec), cells),
+                                       len(cells), "design map", "cells"))
+        except BaseException:
+            pool.shutdown(wait=False, cancel_futures=True)
+            raise
 
 
 # --------------------------------------------------------------------------- the map
