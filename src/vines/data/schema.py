@@ -514,7 +514,7 @@ DESIGN_MAP_ATTRS = {
     "vines_restitution": ("restitution r of the slow flow's best VI NES", "1"),
     "vines_in_domain": ("1 where the slow flow's best design is inside its stated domain "
                         "(eta, d, F_max <= the warning limits, |omega - 1| <= 0.2: no "
-                        "warning; docs/slowflow.md, section 8)", "1"),
+                        "warning; r > 0: no sticking; docs/slowflow.md, section 8)", "1"),
     "vines_worst_ratio_by_restitution": ("slow flow's worst x_max/A at the best clearance "
                                          "for each restitution", "1"),
     "tmd_frequency_ratio": ("frequency ratio f = w_a/w0 of the band-optimal TMD (free)", "1"),
@@ -537,8 +537,14 @@ DESIGN_MAP_ATTRS = {
     "confirm": ("why the exact solver checked the cell", "1"),
     "vines_worst_ratio_exact": ("exact worst x_max/A from rest at the slow flow's design "
                                 "(NaN: not checked)", "1"),
-    "vines_worst_ratio_exact_refined": ("exact worst x_max/A from rest after a local search "
-                                        "of the clearance (NaN: not checked)", "1"),
+    "vines_worst_ratio_exact_by_restitution": ("exact worst x_max/A from rest at the slow "
+                                               "flow's best clearance for each restitution "
+                                               "(NaN: not checked)", "1"),
+    "vines_restitution_exact": ("restitution of the exact check's best design (NaN: not "
+                                "checked)", "1"),
+    "vines_worst_ratio_exact_refined": ("exact worst x_max/A from rest of the exact check's "
+                                        "best design: the best restitution, then a local "
+                                        "search of the clearance (NaN: not checked)", "1"),
     "vines_clearance_m_exact_refined": ("clearance of the exact local search's best design "
                                         "(NaN: not checked)", "m"),
     "exact_runs": ("exact runs from rest of the cell's check", "1"),

@@ -52,13 +52,14 @@ def ratio_panel(ax, ds: xr.Dataset, k: int, column: int, norm) -> object:
     conf, differs = p["confirm"].values, p["verdict_differs"].values.astype(bool)
     for code, (marker, _) in MARK.items():
         i, j = np.nonzero(conf == code)
-        ax.plot(eta[i], h[j], marker, ms=9, mfc="none", mec="0.15", mew=0.8)
+        ax.plot(eta[i], h[j], marker, ms=6, mfc="none", mec="0.15", mew=0.8)
     i, j = np.nonzero(differs)
-    ax.plot(eta[i], h[j], "x", ms=9, color="black", mew=1.2)
+    ax.plot(eta[i], h[j], "x", ms=7, color="black", mew=1.2)
     ratio = p[verdict].values
     for i in range(eta.size):
         for j in range(h.size):
-            ax.text(eta[i], h[j], f"{ratio[i, j]:.2g}", ha="center", va="center", fontsize=6)
+            ax.annotate(f"{ratio[i, j]:.2g}", (eta[i], h[j]), xytext=(0, -8),
+                        textcoords="offset points", ha="center", va="top", fontsize=7)
     ax.set_xscale("log")
     ax.set_xlabel(r"mass ratio $\eta$ (VI NES and TMD)")
     ax.set_ylabel("band half width h")

@@ -21,8 +21,9 @@ Per cell:
   peaks refined) at the slow flow's design (eta, L, r), on every cell near the frontier
   (a slow-flow ratio within a factor ``frontier_factor`` of 1 against either TMD) and on a
   seeded sample of the others (a cell is drawn when ``rng(seed, cell index) <
-  exact_sample``); with ``exact_refine`` also a local compass search of L in the exact
-  model (r fixed), whose result gives the confirmed verdict.
+  exact_sample``), and at the slow flow's best clearance for every other r of the grid:
+  the best of them is the exact choice of r; with ``exact_refine`` also a local compass
+  search of L in the exact model at that r, whose result gives the confirmed verdict.
 
 Each cell depends on its own inputs alone (the exact sample's draw too), so a map cut into
 chunks of cells gives the same numbers for any chunk size (``map_cells``). numpy and scipy
@@ -126,12 +127,13 @@ class MapSpec:
         return {k: (list(v) if isinstance(v, tuple) else v) for k, v in asdict(self).items()}
 
 
-def _axis(name: str, values, lo: float, hi: float, *, lo_open: bool, min_size: int = 1):
-    """A sorted tuple of distinct numbers in [lo, hi] (or (lo, hi]); ParameterError."""
+def _axis(name: str, values, lo: float, hi: float, *, lo_open: bool, hi_open: bool = False):
+    """A sorted tuple of distinct numbers between lo and hi; ParameterError."""
     if isinstance(values, (int, float, str)):
         values = [values]
-    arr = check_reals(name, values, lo=lo, lo_open=lo_open, hi=hi, min_size=min_size,
-                      max_size=1000)
+    arr = check_reals(name, values, lo=lo, lo_open=lo_open, hi=hi, min_size=1, max_size=1000)
+    if hi_open and (arr >= hi).any():
+        raise ParameterError(name, float(arr.max()), f"must be < {hi:g}")
     if np.unique(arr).size != arr.size:
         raise ParameterError(name, list(values), "must be distinct numbers")
     return tuple(float(x) for x in np.sort(arr))
@@ -164,7 +166,8 @@ def check_map(*, eta, half_width, span, restitution=RESTITUTION_DEFAULT,
                    max_impacts=max_impacts, root_tol=root_tol)
     return MapSpec(
         eta=_axis("eta", eta, 0.0, 0.5, lo_open=True),
-        half_width=_axis("half_width", half_width, 0.0, HALF_WIDTH_MAX, lo_open=True),
+        half_width=_axis("half_width", half_width, 0.0, HALF_WIDTH_MAX, lo_open=True,
+                         hi_open=True),
         span=_axis("span", span, 1.0, 1e3, lo_open=False),
         restitution=_axis("restitution", restitution, 0.0, 0.99, lo_open=False),
         n_amplitudes=check_int("n_amplitudes", n_amplitudes, lo=2, hi=20),
@@ -202,7 +205,9 @@ def band_of(h: float) -> tuple[float, float]:
 
 def best_vines(spec: MapSpec, eta: float, h: float, span: float) -> dict:
     """The slow flow's best VI NES of a cell: per r of the grid the best clearance, then
-    the best r (the first of equal ones)."""
+    the best r (the first of equal ones). in_domain: the slow flow's stated domain
+    (docs/slowflow.md, section 8): no warning, and r > 0 (a plastic ball sticks to the
+    wall, which the slow flow does not describe)."""
     from ..slowflow.optimal import optimal_clearance
     amps = spec.amplitudes(span)
     per_r = [optimal_clearance(eta, amps, band_of(h), r=r, d=spec.d, n_omega=spec.n_omega,
@@ -213,7 +218,8 @@ def best_vines(spec: MapSpec, eta: float, h: float, span: float) -> dict:
                 clearance_m=best.clearance_m, restitution=spec.restitution[k],
                 worst_ratio_by_restitution=[o.worst_ratio for o in per_r],
                 clearance_m_by_restitution=[o.clearance_m for o in per_r],
-                warnings=list(best.warnings), in_domain=not best.warnings,
+                warnings=list(best.warnings),
+                in_domain=not best.warnings and spec.restitution[k] > 0.0,
                 n_designs=len(per_r) * (spec.n_clearance + _EXTRA_DESIGNS))
 
 
@@ -266,22 +272,42 @@ def _problem(spec: MapSpec, h: float, span: float, r: float):
 
 
 def exact_check(spec: MapSpec, eta: float, h: float, span: float, vines: dict) -> dict:
-    """The exact worst x_max/A (from rest, ``design.Evaluator``) at the slow flow's design,
-    and with exact_refine at the best clearance of a compass search in log10 L around it
-    (r and eta fixed; never worse than the slow flow's design)."""
-    from .design import Evaluator, compass
-    ev = Evaluator(_problem(spec, h, span, vines["restitution"]), n_threads=1)
-    u = math.log10(vines["clearance_m"])
-    L = 10.0 ** float(u)           # as design.compass maps log10 L to L: one float a design
-    at_slow = ev.worst([(eta, L)])[0]
-    L_best, best = L, at_slow
+    """The exact worst x_max/A (from rest, ``design.Evaluator``) at the slow flow's best
+    design of every restitution of the grid (the one at its overall best: the models'
+    comparison), the best of them (the exact choice of r), and with exact_refine a compass
+    search in log10 L around that one (r and eta fixed; never worse than its start)."""
+    by_r = [_exact_worst(spec, eta, h, span, r, L) for r, L in
+            zip(spec.restitution, vines["clearance_m_by_restitution"], strict=True)]
+    k_slow = spec.restitution.index(vines["restitution"])
+    k = int(np.argmin([w for w, _, _ in by_r]))
+    best, L_best, n_runs = by_r[k][0], by_r[k][1], sum(n for _, _, n in by_r)
     if spec.exact_refine:
-        lo_u = max(u - REFINE_RANGE, math.log10(spec.amplitude_max_m / 2.0))
-        x, best = compass(ev, (eta, u), at_slow, (0.0, REFINE_STEP), (eta, lo_u),
-                          (eta, u + REFINE_RANGE))
-        L_best = 10.0 ** float(x[1])
-    return dict(worst_ratio=at_slow, worst_ratio_refined=best, clearance_m_refined=L_best,
-                n_runs=ev.n_runs)
+        best, L_best, n = _refine(spec, eta, h, span, spec.restitution[k], L_best, best)
+        n_runs += n
+    return dict(worst_ratio=by_r[k_slow][0], worst_ratio_by_restitution=[w for w, _, _ in by_r],
+                worst_ratio_refined=best, restitution=spec.restitution[k],
+                clearance_m_refined=L_best, n_runs=n_runs)
+
+
+def _exact_worst(spec: MapSpec, eta, h, span, r, clearance_m) -> tuple[float, float, int]:
+    """(exact worst x_max/A, its clearance as the compass search spells it, runs) of the
+    design (eta, clearance_m, r)."""
+    from .design import Evaluator
+    L = 10.0 ** float(math.log10(clearance_m))   # as design.compass maps log10 L to L
+    ev = Evaluator(_problem(spec, h, span, r), n_threads=1)
+    return ev.worst([(eta, L)])[0], L, ev.n_runs
+
+
+def _refine(spec: MapSpec, eta, h, span, r, L, value) -> tuple[float, float, int]:
+    """Compass search in log10 L (+- REFINE_RANGE decades, first step REFINE_STEP) from the
+    design (eta, L, r) of exact worst ``value``: (best value, its L, runs)."""
+    from .design import Evaluator, compass
+    ev = Evaluator(_problem(spec, h, span, r), n_threads=1)
+    u = math.log10(L)
+    lo_u = max(u - REFINE_RANGE, math.log10(spec.amplitude_max_m / 2.0))
+    x, best = compass(ev, (eta, u), value, (0.0, REFINE_STEP), (eta, lo_u),
+                      (eta, u + REFINE_RANGE))
+    return best, 10.0 ** float(x[1]), ev.n_runs
 
 
 def map_cell(spec: MapSpec, index: int) -> dict:
@@ -359,6 +385,11 @@ def assemble(spec: MapSpec, cells: list) -> dict:
     for c in cells:
         by_r[np.unravel_index(c["index"], s)] = c["vines"]["worst_ratio_by_restitution"]
     g["vines_worst_ratio_by_restitution"] = by_r
+    ex_r = np.full(s + (n_r,), np.nan)
+    for c in cells:
+        if c["exact"]:
+            ex_r[np.unravel_index(c["index"], s)] = c["exact"]["worst_ratio_by_restitution"]
+    g["vines_worst_ratio_exact_by_restitution"] = ex_r
     for prefix in ("tmd", "tmd_equal_travel"):
         for key in ("frequency_ratio", "damping_ratio", "worst_ratio", "worst_omega",
                     "worst_travel"):
@@ -370,6 +401,7 @@ def assemble(spec: MapSpec, cells: list) -> dict:
     g["vines_worst_ratio_exact"] = ex("worst_ratio")
     g["vines_worst_ratio_exact_refined"] = ex("worst_ratio_refined")
     g["vines_clearance_m_exact_refined"] = ex("clearance_m_refined")
+    g["vines_restitution_exact"] = ex("restitution")
     g["exact_runs"] = _grid(cells, s, lambda c: c["exact"] and c["exact"]["n_runs"], 0,
                             "i8")
     g.update(derived(g, spec.amplitude_max_m))
