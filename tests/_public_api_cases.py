@@ -96,7 +96,7 @@ def cases() -> dict:
                             dict(amplitudes_m=(0.003,), eta=0.05, clearance_m=0.015),
                             {"n_eta": (1, 2)}),
         "optimal_tmd": (_fn("vines.studies.tmd", "optimal_tmd"),
-                        dict(mu=0.05, d=0.012, band=(0.8, 1.2)), set()),
+                        dict(mu=0.05, d=0.012, band=(0.8, 1.2), max_travel=100.0), set()),
         "work_precision": (_fn("vines.studies.workprecision", "work_precision"),
                            {**P, "t_end": 2.0, "t_transient": 1.0, "rk_methods": ("RK45",),
                             "rtols": (1e-4,), "dps": 20, "max_impacts": 1000, "min_time": 1e-3},

@@ -95,7 +95,7 @@ def test_tmd_on_undamped_lo_is_the_classical_optimum(mu):
     assert t.worst_ratio == pytest.approx(p.max(), rel=1e-6)
     # ... no lower than the fixed points' common height sqrt(1 + 2/mu) (any tuning has one
     # fixed point at least that high), and lower than Den Hartog's own tuning's peak
-    dh_design = tmd.TunedMassDamper(mu, f_dh, z_dh, math.nan, math.nan)
+    dh_design = tmd.TunedMassDamper(mu, f_dh, z_dh, math.nan, math.nan, math.nan)
     assert peak_dh * (1 - 1e-9) <= t.worst_ratio < _peaks(dh_design, 0.0, band).max()
     # measured differences from Den Hartog's formulas (docs/design.md), mu 0.02 / 0.1:
     # frequency ratio -0.0002 % / -0.004 %, peak +0.03 % / +0.14 %, damping ratio

@@ -212,6 +212,31 @@ def _fmt(x) -> str:
     return "n/a" if x is None else f"{x:.3g}"
 
 
+def _mm(x) -> str:
+    return "n/a" if x is None else f"{1e3 * x:.3g} mm"
+
+
+def _stroke(t: dict) -> str:
+    """', stroke ... (LO x_max ...)' of a TMD object at the largest amplitude."""
+    if "stroke_m" not in t:
+        return ""
+    return (f", stroke |u - x| {_mm(t['stroke_m'])} and LO x_max {_mm(t['x_max_m'])} at "
+            "the largest amplitude")
+
+
+def tmd_equal_travel_text(t: dict | None, v: dict) -> list:
+    """The line of the TMD at equal travel (none for an object without it)."""
+    if t is None:
+        return ["  TMD at equal travel: no tuning keeps the stroke within the clearance"] \
+            if v.get("stroke_m") is not None else []
+    if not t["binding"]:
+        return [f"  TMD at equal travel (stroke <= L = {_mm(t['max_stroke_m'])}): the TMD "
+                "above (its stroke is within L)"]
+    return [f"  TMD at equal travel (stroke <= L = {_mm(t['max_stroke_m'])}): f = "
+            f"{t['frequency_ratio']:.4f}, zeta = {t['damping_ratio']:.4f}: worst "
+            f"{_fmt(t['worst_ratio'])}{_stroke(t)}"]
+
+
 def text(d: dict) -> str:
     """A reader's summary of ``run``'s object."""
     if d.get("model") == "slowflow":
@@ -225,28 +250,49 @@ def text(d: dict) -> str:
     v, t, lo = d["vines"], d["tmd"], d["lo_alone"]
     lines = [f"band omega {d['inputs']['omega_band'][0]:g}-{d['inputs']['omega_band'][1]:g}"
              f" ({d['inputs']['n_omega']} points), {d['inputs']['mode']}",
-             f"  LO alone: worst x_max/A {_fmt(lo['worst_ratio'])}",
+             f"  LO alone: worst x_max/A {_fmt(lo['worst_ratio'])}"
+             + (f", x_max {_mm(lo['x_max_m'])} at the largest amplitude"
+                if lo.get("x_max_m") is not None else ""),
              f"  TMD  eta {t['eta']:g}: f = {t['frequency_ratio']:.4f}, zeta = "
-             f"{t['damping_ratio']:.4f}: worst {_fmt(t['worst_ratio'])}",
+             f"{t['damping_ratio']:.4f}: worst {_fmt(t['worst_ratio'])}{_stroke(t)}",
+             *tmd_equal_travel_text(d.get("tmd_equal_travel"), v),
              f"  VI NES eta {v['eta']:.4g}, clearance {1e3 * v['clearance_m']:.4g} mm: worst "
              f"{_fmt(v['worst_ratio'])} from rest, {_fmt(v['worst_ratio_any_attractor'])} over "
-             f"attractors ({v['view'] or 'not evaluated'})"]
+             f"attractors ({v['view'] or 'not evaluated'}); ball travel +-L = "
+             f"{_mm(v.get('stroke_m'))} relative to the LO, LO x_max {_mm(v.get('x_max_m'))} "
+             "from rest"]
     any_ = v["worst_ratio_any_attractor_per_amplitude"] or [None] * len(v["F"])
     for A, F, w, a in zip(d["curves"]["amplitude_m"], v["F"], v["worst_ratio_per_amplitude"],
                           any_, strict=True):
         lines.append(f"    A = {1e3 * A:.4g} mm (F = {F:.4g}): {_fmt(w)} from rest, "
                      f"{_fmt(a)} over attractors")
-    lines.append(f"  cost {d['cost']['wall_s']:.1f} s, {d['cost']['n_runs_from_rest']} runs "
-                 f"from rest, {d['cost']['n_runs_census']} census runs")
+    lines.append(_cost_text(d))
     lines += design_uncertainty.text(d.get("uncertainty"))
     return "\n".join(lines + mistuning_text(d.get("mistuning")))
+
+
+def _cost_text(d: dict) -> str:
+    """The cost line: the design's runs, and the parts added by --uncertainty and
+    --mistuning with the total."""
+    c = d["cost"]
+    text = (f"  cost {c['wall_s']:.1f} s for the design ({c['n_runs_from_rest']} runs from "
+            f"rest, {c['n_runs_census']} census runs)")
+    extra = [(name, blk["cost"]["wall_s"]) for name in ("uncertainty", "mistuning")
+             if isinstance(blk := d.get(name), dict) and "wall_s" in blk.get("cost", {})]
+    if not extra:
+        return text
+    parts = ", ".join(f"{name} {s:.1f} s" for name, s in extra)
+    return f"{text}, {parts}: {c['wall_s'] + sum(s for _, s in extra):.1f} s in all"
 
 
 def mistuning_text(m: dict | None) -> list:
     """Lines of the worst cases over the host's drift (none when not asked)."""
     if m is None:
         return []
-    lines = [f"  mistuning |delta| <= {m['D']:g} ({len(m['delta'])} host frequencies):"]
+    n_grid = m.get("n_delta", len(m["delta"]))
+    lines = [f"  mistuning |delta| <= {m['D']:g} ({len(m['delta'])} host frequencies: a grid "
+             f"of {n_grid} and {len(m['delta']) - n_grid} added where the VI NES's worst "
+             "case was refined):"]
     for name, blk in (("nominal designs", m), ("robust designs", m["robust"])):
         if blk is None:
             continue
@@ -256,4 +302,12 @@ def mistuning_text(m: dict | None) -> list:
                      f"VI NES (eta {v['eta']:.4g}, {1e3 * v['clearance_m']:.4g} mm) "
                      f"{_fmt(w['vines'])} from rest, {_fmt(w['vines_any_attractor'])} over "
                      "attractors")
+    if m.get("tmd_stroke_m") is not None:
+        lines.append(f"    TMD stroke over the drift {_mm(m['tmd_stroke_m'])}")
+    eq = m.get("tmd_equal_travel")
+    if eq is not None:
+        lines.append(f"    TMD at equal travel (f = {eq['design']['frequency_ratio']:.4f}, "
+                     f"zeta = {eq['design']['damping_ratio']:.4f}): worst "
+                     f"{_fmt(eq['worst'])} over the drift, stroke {_mm(eq['stroke_m'])} "
+                     f"(L = {_mm(eq['max_stroke_m'])} at delta = 0)")
     return lines

@@ -315,6 +315,20 @@ def optimise(ev: Evaluator, eta_max: float, clearance_range_m: tuple[float, floa
 
 # --------------------------------------------------------------------------- result
 
+#: what ``stroke_m`` and ``x_max_m`` are (the JSON key ``stroke``)
+STROKE_DESCRIPTION = dict(
+    tmd="largest displacement of the TMD's mass relative to the LO, |u - x|, over the "
+        "continuous band at the largest base amplitude (closed form, linear in A)",
+    vines="the ball's travel relative to the LO: +-L, the clearance (half the cavity "
+          "length), whatever the response",
+    x_max_m="the LO's own largest displacement relative to the base: worst x_max/A times "
+            "A (LO alone, TMD: at the largest amplitude; VI NES: the largest over the "
+            "amplitudes, from rest)",
+    tmd_equal_travel="the TMD of the same mass minimising the same worst case with its "
+                     "stroke at most the VI NES's clearance (binding: whether the limit "
+                     "changes the tuning; null when no tuning meets it)")
+
+
 def _finite(x):
     """A float for JSON: None where not finite."""
     x = float(x)
@@ -342,6 +356,7 @@ class DesignResult:
     unsettled_fraction: float | None
     search: dict | None
     cost: dict = field(default_factory=dict)
+    tmd_equal_travel: _tmd.TunedMassDamper | None = None
 
     @property
     def worst_ratio(self) -> float:
@@ -358,16 +373,32 @@ class DesignResult:
         a = self.worst_any_per_amplitude
         return None if a is None else float(a.max())
 
-    def _tmd_dict(self) -> dict:
-        pb, t = self.problem, self.tmd
+    def _tmd_dict(self, t: _tmd.TunedMassDamper | None = None) -> dict:
+        """A TMD's JSON object (default: the free optimum ``tmd``); its stroke and LO
+        amplitude in metres at the largest base amplitude (the system is linear)."""
+        pb, t = self.problem, self.tmd if t is None else t
         m = t.eta * pb.M_kg
         w_a = t.frequency_ratio * pb.w0_rad_s
+        a_max = max(pb.amplitudes_m)
+        curve = np.asarray(t.ratio(np.asarray(pb.omega), pb.model.d), dtype=float)
         return dict(eta=t.eta, frequency_ratio=t.frequency_ratio,
                     damping_ratio=t.damping_ratio, worst_ratio=_finite(t.worst_ratio),
                     worst_omega=t.worst_omega,
-                    worst_ratio_grid=_finite(self.tmd_curve.max()), mass_kg=m,
+                    worst_ratio_grid=_finite(curve.max()), mass_kg=m,
                     stiffness_N_per_m=m * w_a ** 2,
-                    damping_Ns_per_m=2.0 * t.damping_ratio * m * w_a)
+                    damping_Ns_per_m=2.0 * t.damping_ratio * m * w_a,
+                    worst_travel=_finite(t.worst_travel),
+                    stroke_m=_finite(t.worst_travel * a_max),
+                    x_max_m=_finite(t.worst_ratio * a_max))
+
+    def _tmd_equal_travel_dict(self) -> dict | None:
+        """The TMD of the same mass whose band travel at the largest amplitude stays
+        within the VI NES's clearance (None when no tuning keeps it there)."""
+        t = self.tmd_equal_travel
+        if t is None:
+            return None
+        return self._tmd_dict(t) | dict(max_stroke_m=self.clearance_m,
+                                        binding=t != self.tmd)
 
     def _vines_dict(self) -> dict:
         pb, any_ = self.problem, self.vines_any_attractor
@@ -382,7 +413,9 @@ class DesignResult:
                     worst_omega_per_amplitude=self.rest.peak_omega.tolist(),
                     worst_ratio_any_attractor_per_amplitude=(
                         None if any_ is None else self.worst_any_per_amplitude.tolist()),
-                    unsettled_fraction_max=self.unsettled_fraction)
+                    unsettled_fraction_max=self.unsettled_fraction,
+                    stroke_m=self.clearance_m,
+                    x_max_m=float(np.max(self.rest.peak * np.asarray(pb.amplitudes_m))))
 
     def to_dict(self) -> dict:
         pb = self.problem
@@ -400,8 +433,10 @@ class DesignResult:
         worst_lo, w_lo = self.lo_alone_worst
         return dict(inputs=self.inputs, curves=curves,
                     lo_alone=dict(worst_ratio=_finite(worst_lo), worst_omega=w_lo,
-                                  worst_ratio_grid=_finite(np.max(self.lo_alone))),
-                    tmd=self._tmd_dict(), vines=self._vines_dict(), search=search,
+                                  worst_ratio_grid=_finite(np.max(self.lo_alone)),
+                                  x_max_m=_finite(worst_lo * max(pb.amplitudes_m))),
+                    tmd=self._tmd_dict(), tmd_equal_travel=self._tmd_equal_travel_dict(),
+                    vines=self._vines_dict(), search=search,
                     worst_case=dict(
                         lo_alone="exact maximum over the continuous band (closed form)",
                         tmd="maximum over the continuous band (closed form, refined grid)",
@@ -410,6 +445,7 @@ class DesignResult:
                               f"climbing in omega ({N_REFINE} rounds); x_max over the "
                               "window [t_transient, t_end]: a lower bound of the band "
                               "maximum"),
+                    stroke=STROKE_DESCRIPTION,
                     cost=self.cost)
 
 
@@ -461,8 +497,10 @@ def solve(problem: DesignProblem, search: DesignSearch, *, n_threads: int | None
             any_, unsettled = attractor_curves(problem, eta, clearance_m, rest.curves,
                                                n_threads)
     t3, c3 = time.perf_counter(), time.process_time()
-    cost = dict(wall_s=t3 - t0, tmd_s=t1 - t0, search_s=t2 - t1, census_s=t3 - t2,
-                cpu_s=c3 - c0, search_cpu_s=c2 - c1, census_cpu_s=c3 - c2,
+    equal_travel = equal_travel_tmd(tuned, d, problem, clearance_m)
+    t4, c4 = time.perf_counter(), time.process_time()
+    cost = dict(wall_s=t4 - t0, tmd_s=t1 - t0 + t4 - t3, search_s=t2 - t1, census_s=t3 - t2,
+                cpu_s=c4 - c0, search_cpu_s=c2 - c1, census_cpu_s=c3 - c2,
                 n_designs=len(ev.cache), n_runs_from_rest=ev.n_runs,
                 n_runs_census=(problem.census_n + 1) * n_points if any_ is not None else 0,
                 n_threads=n_threads)
@@ -471,7 +509,19 @@ def solve(problem: DesignProblem, search: DesignSearch, *, n_threads: int | None
                         tmd_curve=np.asarray(tuned.ratio(omega, d), dtype=float),
                         eta=float(eta), clearance_m=float(clearance_m), rest=rest,
                         vines_any_attractor=any_, unsettled_fraction=unsettled,
-                        search=grid, cost=cost)
+                        search=grid, cost=cost, tmd_equal_travel=equal_travel)
+
+
+def equal_travel_tmd(tuned: _tmd.TunedMassDamper, d: float, problem: DesignProblem,
+                     clearance_m: float) -> _tmd.TunedMassDamper | None:
+    """The TMD of ``tuned``'s mass minimising the band worst case with its travel at the
+    largest base amplitude at most ``clearance_m`` (``tuned`` itself when it already is);
+    None when no tuning keeps it there."""
+    try:
+        return _tmd.limit_travel(tuned, d, problem.band,
+                                 clearance_m / max(problem.amplitudes_m))
+    except ParameterError:
+        return None
 
 
 def design(*, omega_band: Sequence[float] = DEFAULT_BAND, n_omega: int = DEFAULT_N_OMEGA,

@@ -98,6 +98,27 @@ def tmd_worst(band, d, mu, f, zeta, delta) -> float:
     return band_max(lambda w: tmd_ratio(w, d, mu, f, zeta, delta), band)[0]
 
 
+def tmd_travel_worst(band, d, mu, f, zeta, delta) -> float:
+    """Largest travel |U - X|/|Y| of the TMD over the band on the detuned host (a ratio of
+    lengths: the same in either scale)."""
+    from .tmd import band_max, tmd_travel
+    s = 1.0 + delta
+    return band_max(lambda w: tmd_travel(np.asarray(w) / s, d / s, mu, f / s, zeta), band)[0]
+
+
+def tmd_over_delta(problem, tuned, delta, D: float, n_delta: int) -> dict:
+    """A TMD (``tmd.TunedMassDamper``) over the host's drift: its worst |X/Y| at each
+    delta, the largest over [-D, D] and where, and its stroke [m]: the largest band travel
+    over the drift at the largest base amplitude."""
+    band, d, grid = problem.band, problem.model.d, delta_grid(D, n_delta)
+    mu, f, z = tuned.eta, tuned.frequency_ratio, tuned.damping_ratio
+    worst, where = _sup(lambda x: tmd_worst(band, d, mu, f, z, x), grid, D)
+    travel = _sup(lambda x: tmd_travel_worst(band, d, mu, f, z, x), grid, D)[0]
+    return dict(design=dict(eta=mu, frequency_ratio=f, damping_ratio=z),
+                tmd=[tmd_worst(band, d, mu, f, z, x) for x in delta], worst=worst,
+                worst_delta=where, stroke_m=travel * max(problem.amplitudes_m))
+
+
 def _sup(fun, grid: np.ndarray, D: float) -> tuple[float, float]:
     """(max, argmax) of a cheap fun(delta) over [-D, D]: the grid's best, then a bounded
     search between its neighbours."""
@@ -308,6 +329,12 @@ def mistuning(result, D, *, n_delta: int = N_DELTA_DEFAULT, robust: bool = False
     t0, c0 = time.perf_counter(), time.process_time()
     out = curves(pb, t.eta, t.frequency_ratio, t.damping_ratio, result.eta,
                  result.clearance_m, D, n_delta, n_threads).to_dict()
+    out["n_delta"] = n_delta
+    out["tmd_stroke_m"] = tmd_over_delta(pb, t, out["delta"], D, n_delta)["stroke_m"]
+    eq = result.tmd_equal_travel
+    out["tmd_equal_travel"] = (None if eq is None else
+                               tmd_over_delta(pb, eq, out["delta"], D, n_delta)
+                               | dict(max_stroke_m=result.clearance_m))
     out["robust"] = None
     if robust:
         from .design import DesignSearch
