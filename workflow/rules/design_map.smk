@@ -2,7 +2,8 @@
 # optimised) against the TMD of the same mass, free and at equal travel, over mass ratio,
 # band and amplitude span; the exact solver checks the cells near the frontier and a seeded
 # sample (vines.studies.design_map, docs/design.md). The cells run in chunk jobs of about
-# `chunks.design_map` cells (rule design_map_chunk); the gather writes the dataset.
+# `chunks.design_map` cells (rule design_map_chunk, one process each); the gather writes
+# the dataset.
 
 
 rule design_map_chunk:
@@ -14,7 +15,6 @@ rule design_map_chunk:
         job_benchmark("design_map_chunk", "{name}/{k}")
     conda:
         "../../environment.yml"
-    threads: job_threads
     resources:
         mem_mb=per_attempt(500),
         runtime=per_attempt(10),

@@ -164,7 +164,8 @@ def text(d: dict) -> str:
                      f"{'-' if ex is None else format(ex['worst_ratio_refined'], '8.4g'):>8}")
     s = d["summary"]
     lines.append(f"{s['n_cells']} cells; exact checks: {s['n_frontier']} near the frontier, "
-                 f"{s['n_sample']} sampled; VI NES wins {s['vines_wins']} against the free "
-                 f"TMD, {s['vines_wins_equal_travel']} at equal travel; verdicts differ at "
-                 f"{s['verdict_differs']}")
+                 f"{s['n_sample']} sampled; VI NES wins (by > 5 %) {s['vines_wins']} against "
+                 f"the free TMD, {s['vines_wins_equal_travel']} at equal travel; the models "
+                 f"name opposite winners at {s['verdict_differs']} and "
+                 f"{s['verdict_differs_equal_travel']}")
     return "\n".join(lines)

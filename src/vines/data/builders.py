@@ -941,7 +941,7 @@ def _ladder_curves(panels: list) -> dict:
 # ------------------------------------------------------------------ design map
 
 #: the design map's 0/1 variables (flag attributes)
-_DESIGN_MAP_FLAGS = ("vines_in_domain", "verdict_differs")
+_DESIGN_MAP_FLAGS = ("vines_in_domain", "verdict_differs", "verdict_differs_equal_travel")
 
 
 def design_map_dataset(spec: dict, arrays: dict, summary: dict, attrs: dict) -> xr.Dataset:

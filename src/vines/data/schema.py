@@ -547,15 +547,22 @@ DESIGN_MAP_ATTRS = {
                                         "search of the clearance (NaN: not checked)", "1"),
     "vines_clearance_m_exact_refined": ("clearance of the exact local search's best design "
                                         "(NaN: not checked)", "m"),
+    "tmd_equal_travel_exact_worst_ratio": ("worst |X/Y| of the TMD with travel <= the exact "
+                                           "check's clearance at A_max (NaN: not checked)",
+                                           "1"),
     "exact_runs": ("exact runs from rest of the cell's check", "1"),
     "slowflow_relative_error": ("(slow flow - exact)/exact worst x_max/A at the slow flow's "
                                 "design (NaN: not checked)", "1"),
     "verdict_ratio": ("VI NES worst ratio over the free TMD's: exact refined where checked, "
                       "else the slow flow's", "1"),
-    "verdict_ratio_equal_travel": ("VI NES worst ratio over the equal-travel TMD's: exact "
-                                   "refined where checked, else the slow flow's", "1"),
-    "verdict_differs": ("1 where the exact check and the slow flow name different winners "
-                        "against either TMD", "1"),
+    "verdict_ratio_equal_travel": ("VI NES worst ratio over the equal-travel TMD's: where "
+                                   "checked the exact refined design's over the TMD limited "
+                                   "to its clearance, else the slow flow's", "1"),
+    "verdict_differs": ("1 where the exact check and the slow flow name opposite winners "
+                        "against the free TMD (a ratio within 5 % of 1: a tie)", "1"),
+    "verdict_differs_equal_travel": ("1 where the exact check and the slow flow name "
+                                     "opposite winners against the equal-travel TMD (a "
+                                     "ratio within 5 % of 1: a tie)", "1"),
     "tmd_travel_over_clearance": ("travel the free TMD needs at A_max over the VI NES's "
                                   "clearance L", "1"),
 }

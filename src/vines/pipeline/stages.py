@@ -739,10 +739,11 @@ def design_map_spec(spec: dict, model: dict, simulation: dict):
 def design_map_part(spec: dict, *, model: dict, simulation: dict, start: int, stop: int,
                     n_workers: int = 1) -> list:
     """The cells [start, stop) of a ``design_maps`` entry (``studies.design_map.map_cells``;
-    each cell's numbers depend on the cell alone)."""
+    each cell's numbers depend on the cell alone). One process: a job's script cannot be
+    the main module of spawned workers, and the chunk jobs run side by side anyway
+    (n_workers is accepted and does not change a number)."""
     from ..studies.design_map import map_cells
-    return map_cells(design_map_spec(spec, model, simulation), start, stop,
-                     n_workers=max(1, int(n_workers)))
+    return map_cells(design_map_spec(spec, model, simulation), start, stop)
 
 
 def design_map(spec: dict, *, model: dict, simulation: dict, code: str, title: str,
@@ -756,14 +757,16 @@ def design_map(spec: dict, *, model: dict, simulation: dict, code: str, title: s
     m = design_map_spec(spec, model, simulation)
     cells = ([c for p in parts for c in p] if parts is not None else
              design_map_part(spec, model=model, simulation=simulation, start=0,
-                             stop=m.n_cells, n_workers=n_workers))
+                             stop=m.n_cells))
     arrays = assemble(m, cells)
     counts = summary(m, arrays)
     print(f"design_map: {counts['n_cells']} cells, {counts['n_frontier']} near the frontier "
           f"and {counts['n_sample']} sampled checked exactly ({counts['n_exact_runs']} runs); "
           f"VI NES wins {counts['vines_wins']} against the free TMD, "
-          f"{counts['vines_wins_equal_travel']} at equal travel; the models' verdicts differ "
-          f"at {counts['verdict_differs']}; CPU {time.process_time() - t0:.1f} s")
+          f"{counts['vines_wins_equal_travel']} at equal travel (by more than 5 %); the models "
+          f"name opposite winners at {counts['verdict_differs']} and "
+          f"{counts['verdict_differs_equal_travel']}; gather CPU "
+          f"{time.process_time() - t0:.1f} s")
     attrs = provenance_attrs(title=title, config_subset={"spec": spec, "model": model},
                              settings={"d": model["d"]}, code_version=code)
     return builders.design_map_dataset(m.to_dict(), arrays, counts, attrs)

@@ -16,8 +16,9 @@ from .draw import figure, panel_label
 CMAP = "RdBu_r"
 #: markers of the exact check (``confirm``: 1 frontier, 2 sample) and of a changed verdict
 MARK = {1: ("o", "near the frontier, checked exactly"), 2: ("s", "sampled, checked exactly")}
-COLUMNS = (("verdict_ratio", "ratio", "TMD free"),
-           ("verdict_ratio_equal_travel", "ratio_equal_travel", "TMD at equal travel"))
+COLUMNS = (("verdict_ratio", "ratio", "TMD free", "verdict_differs"),
+           ("verdict_ratio_equal_travel", "ratio_equal_travel", "TMD at equal travel",
+            "verdict_differs_equal_travel"))
 
 
 def design_map(path) -> xr.Dataset:
@@ -25,14 +26,15 @@ def design_map(path) -> xr.Dataset:
     ds = load(path)
     return require(ds, coords=("eta", "half_width", "span"), min_size=1,
                    variables=("verdict_ratio", "verdict_ratio_equal_travel", "ratio",
-                              "ratio_equal_travel", "confirm", "verdict_differs"),
+                              "ratio_equal_travel", "confirm", "verdict_differs",
+                              "verdict_differs_equal_travel"),
                    finite=("ratio", "ratio_equal_travel"))
 
 
 def _norm(maps: list) -> mcolors.Normalize:
     """One colour scale of log2(ratio) for every panel, symmetric about 0 (ratio 1)."""
     top = max(float(np.nanmax(np.abs(np.log2(m[c].values)))) for m in maps
-              for c, _, _ in COLUMNS)
+              for c, *_ in COLUMNS)
     top = max(1.0, np.ceil(top))
     return mcolors.Normalize(-top, top)
 
@@ -41,7 +43,7 @@ def ratio_panel(ax, ds: xr.Dataset, k: int, column: int, norm) -> object:
     """log2 of the verdict ratio over (eta, half width) at span[k] (colour; the number in
     each cell), the slow flow's frontier (ratio 1, black line), the cells checked exactly
     (markers) and those whose verdict changed (crossed)."""
-    verdict, slow, _ = COLUMNS[column]
+    verdict, slow, _, flag = COLUMNS[column]
     p = ds.isel(span=k)
     eta, h = ds["eta"].values, ds["half_width"].values
     z = np.log2(p[verdict].values.T)
@@ -49,7 +51,7 @@ def ratio_panel(ax, ds: xr.Dataset, k: int, column: int, norm) -> object:
     if eta.size > 1 and h.size > 1:
         ax.contour(eta, h, np.log2(p[slow].values.T), levels=[0.0], colors="black",
                    linewidths=1.2)
-    conf, differs = p["confirm"].values, p["verdict_differs"].values.astype(bool)
+    conf, differs = p["confirm"].values, p[flag].values.astype(bool)
     for code, (marker, _) in MARK.items():
         i, j = np.nonzero(conf == code)
         ax.plot(eta[i], h[j], marker, ms=6, mfc="none", mec="0.15", mew=0.8)
@@ -87,7 +89,7 @@ def design_map_figure(maps: list):
     handles += [Line2D([], [], marker=m, ls="none", mfc="none", mec="0.15", label=t)
                 for m, t in MARK.values()]
     handles.append(Line2D([], [], marker="x", ls="none", color="black",
-                          label="exact and slow flow name different winners"))
+                          label="exact and slow flow name opposite winners (beyond 5 %)"))
     fig.legend(handles=handles, loc="outside lower center", ncol=2, fontsize=8,
                frameon=False)
     return fig

@@ -71,6 +71,8 @@ REFINE_STEP = 0.05
 REFINE_RANGE = 0.3
 #: why a cell was checked by the exact solver (dataset flag values)
 CONFIRM_NONE, CONFIRM_FRONTIER, CONFIRM_SAMPLE = 0, 1, 2
+#: a ratio VI NES/TMD within this relative margin of 1 is a tie (no winner)
+TIE = 0.05
 #: the slow flow's stated domain (docs/slowflow.md, section 8: no warning)
 HALF_WIDTH_MAX = 0.95
 
@@ -320,7 +322,12 @@ def map_cell(spec: MapSpec, index: int) -> dict:
     frontier = near_frontier(spec, ratios)
     reason = (CONFIRM_NONE if not spec.exact_check else CONFIRM_FRONTIER if frontier else
               CONFIRM_SAMPLE if is_sampled(spec, index) else CONFIRM_NONE)
-    exact = exact_check(spec, eta, h, span, vines) if reason != CONFIRM_NONE else None
+    exact = None
+    if reason != CONFIRM_NONE:
+        exact = exact_check(spec, eta, h, span, vines)
+        # the exact design's clearance is the TMD's travel limit of its verdict
+        exact["tmd_equal_travel"] = _tmd_dict(
+            tmds(spec, eta, h, exact["clearance_m_refined"])["equal_travel"])
     return dict(index=int(index), eta=eta, half_width=h, span=span, vines=vines,
                 tmd=_tmd_dict(free), tmd_equal_travel=_tmd_dict(equal),
                 max_travel=t["max_travel"], ratio=ratios[0], ratio_equal_travel=ratios[1],
@@ -402,27 +409,37 @@ def assemble(spec: MapSpec, cells: list) -> dict:
     g["vines_worst_ratio_exact_refined"] = ex("worst_ratio_refined")
     g["vines_clearance_m_exact_refined"] = ex("clearance_m_refined")
     g["vines_restitution_exact"] = ex("restitution")
+    g["tmd_equal_travel_exact_worst_ratio"] = _grid(
+        cells, s, lambda c: c["exact"] and c["exact"]["tmd_equal_travel"]["worst_ratio"])
     g["exact_runs"] = _grid(cells, s, lambda c: c["exact"] and c["exact"]["n_runs"], 0,
                             "i8")
     g.update(derived(g, spec.amplitude_max_m))
     return g
 
 
+def winner(ratio):
+    """-1 where the VI NES wins (ratio VI NES/TMD below 1/(1 + TIE)), +1 where the TMD
+    wins (above 1 + TIE), 0 for a tie (within TIE of each other)."""
+    r = np.asarray(ratio, dtype=float)
+    return np.where(r < 1.0 / (1.0 + TIE), -1, np.where(r > 1.0 + TIE, 1, 0))
+
+
 def derived(g: dict, amplitude_max_m: float) -> dict:
     """The map's comparisons from its arrays ``g``: the slow flow's relative error at its
-    design, the verdict ratios (exact refined where checked), whether the two models name
-    different winners, and the free TMD's travel against the VI NES's clearance."""
+    design, the verdict ratios (where checked: the exact refined VI NES over the TMD free
+    and limited to the exact design's clearance), whether the two models name different
+    winners, and the free TMD's travel against the VI NES's clearance."""
     slow, exact = g["vines_worst_ratio"], g["vines_worst_ratio_exact"]
     refined = g["vines_worst_ratio_exact_refined"]
     checked = np.isfinite(exact)
     out = {"slowflow_relative_error": (slow - exact) / exact}
-    differs = np.zeros(slow.shape, dtype=bool)
-    for key in ("", "_equal_travel"):
+    for key, exact_tmd in (("", g["tmd_worst_ratio"]),
+                           ("_equal_travel", g["tmd_equal_travel_exact_worst_ratio"])):
         tmd = g[f"tmd{key}_worst_ratio"]
-        verdict = np.where(checked, refined / tmd, slow / tmd)
+        verdict = np.where(checked, refined / exact_tmd, slow / tmd)
         out[f"verdict_ratio{key}"] = verdict
-        differs |= checked & ((slow / tmd > 1.0) != (refined / tmd > 1.0))
-    out["verdict_differs"] = differs.astype("i1")
+        differs = checked & (winner(slow / tmd) * winner(verdict) < 0)
+        out[f"verdict_differs{key}"] = differs.astype("i1")
     out["tmd_travel_over_clearance"] = (g["tmd_worst_travel"] * amplitude_max_m
                                         / g["vines_clearance_m"])
     return out
@@ -443,8 +460,11 @@ def summary(spec: MapSpec, g: dict) -> dict:
                 n_frontier=int((conf == CONFIRM_FRONTIER).sum()),
                 n_sample=int((conf == CONFIRM_SAMPLE).sum()),
                 n_exact_runs=int(g["exact_runs"].sum()),
-                vines_wins=int((g["verdict_ratio"] < 1.0).sum()),
-                vines_wins_equal_travel=int((g["verdict_ratio_equal_travel"] < 1.0).sum()),
+                vines_wins=int((winner(g["verdict_ratio"]) < 0).sum()),
+                vines_wins_equal_travel=int((winner(g["verdict_ratio_equal_travel"]) < 0)
+                                            .sum()),
                 verdict_differs=int(g["verdict_differs"].sum()),
+                verdict_differs_equal_travel=int(g["verdict_differs_equal_travel"].sum()),
+                ties_equal_travel=int((winner(g["verdict_ratio_equal_travel"]) == 0).sum()),
                 slowflow_error_max_in_domain=worst(dom),
                 slowflow_error_max_outside_domain=worst(~dom))
