@@ -10,18 +10,14 @@ the console log).
 #: where the numbers come from
 SOURCE = ("measured on 2 cores: the full study (config/config.yaml, paper and all, the "
           "chunked stages split into chunk jobs; 2 threads a job; nothing else running) and "
-          "the smoke run (config/smoke.yaml, all; 1 thread); the full study's design_map "
-          "and design_map_chunk estimated from a measured subset of its cells "
-          "(docs/performance.md, \"The design map\")")
+          "the smoke run (config/smoke.yaml, all; 1 thread); design_map and "
+          "design_map_chunk measured on their own, two jobs side by side on the 2 cores "
+          "at load 3-4 from other work (docs/performance.md, \"The design map\")")
 #: run -> the chunked stages its costs measured as one job per entry (before they were split
 #: into chunk jobs): ``cost`` spreads an entry's time over its chunk jobs
 WHOLE = {}
 #: what no estimate counts
 NOT_COUNTED = "Snakemake's own work, the numba compilation when its cache is cold"
-
-#: the full study's design-map chunk jobs (mean, longest wall seconds on 2 threads):
-#: estimated from a measured subset of its cells, not from a run of the stage
-DESIGN_MAP_CHUNK_S, DESIGN_MAP_CHUNK_MAX_S = 30.0, 60.0
 
 MEASURED = {
     'paper': {
@@ -33,8 +29,8 @@ MEASURED = {
         'convergence_chunk': (7, 4.84, 5.67),
         'design': (1, 8.79, 8.79),
         'design_chunk': (5, 3.31, 3.59),
-        'design_map': (1, 2.0, 2.0),
-        'design_map_chunk': (12, DESIGN_MAP_CHUNK_S, DESIGN_MAP_CHUNK_MAX_S),
+        'design_map': (1, 1.8, 1.8),
+        'design_map_chunk': (12, 42.3, 50.77),
         'design_robust': (1, 81.46, 81.46),
         'extract_measures': (9, 1.34, 2.25),
         'lyapunov': (4, 0.99, 1.07),
