@@ -60,8 +60,8 @@ def ratio_panel(ax, ds: xr.Dataset, k: int, column: int, norm) -> object:
     ratio = p[verdict].values
     for i in range(eta.size):
         for j in range(h.size):
-            ax.annotate(f"{ratio[i, j]:.2g}", (eta[i], h[j]), xytext=(0, -8),
-                        textcoords="offset points", ha="center", va="top", fontsize=7)
+            ax.annotate(f"{ratio[i, j]:.2g}", (eta[i], h[j]), xytext=(0, 6),
+                        textcoords="offset points", ha="center", va="bottom", fontsize=7)
     ax.set_xscale("log")
     ax.set_xlabel(r"mass ratio $\eta$ (VI NES and TMD)")
     ax.set_ylabel("band half width h")
