@@ -33,6 +33,7 @@ include: "workflow/rules/uncertainty.smk"
 include: "workflow/rules/orbit_atlas.smk"
 include: "workflow/rules/shock.smk"
 include: "workflow/rules/model_ladder.smk"
+include: "workflow/rules/design_map.smk"
 include: "workflow/rules/figures.smk"
 
 

@@ -47,6 +47,12 @@ CASES = {
                                  "t_transient": 100.0, "mistuning": 0.1, "n_delta": 3,
                                  "n_search": 3},
                            model=MODEL, simulation=SIM), 6, 3),
+    # cells of a design map, each checked by the exact solver (its sampled draw)
+    "design_map": (dict(spec={"eta": [0.05], "half_width": [0.2], "span": [1.0, 4.0],
+                              "restitution": [0.65], "n_amplitudes": 2, "n_omega": 21,
+                              "n_clearance": 5, "n_omega_exact": 3, "exact_sample": 1.0,
+                              "exact_refine": False, "t_end": 300.0, "t_transient": 150.0},
+                        model=MODEL, simulation=SIM), 2, 1),
     "convergence": (dict(study="grid", spec={"F": 0.4, "resolutions": [2, 3]}, model=MODEL,
                          simulation=SIM), 3, 3),
 }

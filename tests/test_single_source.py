@@ -133,3 +133,13 @@ def test_api_defaults_are_not_copied_into_the_schema_file():
     raw["properties"]["model"]["properties"]["r"]["default"] = 0.5
     with pytest.raises(ValueError, match="model.r"):
         _fill_defaults(raw)
+
+
+def test_design_map_defaults_equal_the_api():
+    from vines.studies.design_map import check_map
+    dm = PROPS["design_maps"]["additionalProperties"]["properties"]
+    api = _defaults(check_map)
+    for key, prop in dm.items():
+        if "default" in prop:
+            want = api[key]
+            assert prop["default"] == (list(want) if isinstance(want, tuple) else want), key

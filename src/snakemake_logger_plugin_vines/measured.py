@@ -10,7 +10,9 @@ the console log).
 #: where the numbers come from
 SOURCE = ("measured on 2 cores: the full study (config/config.yaml, paper and all, the "
           "chunked stages split into chunk jobs; 2 threads a job; nothing else running) and "
-          "the smoke run (config/smoke.yaml, all; 1 thread)")
+          "the smoke run (config/smoke.yaml, all; 1 thread); design_map and "
+          "design_map_chunk measured on their own, two jobs side by side on the 2 cores "
+          "at load 3-4 from other work (docs/performance.md, \"The design map\")")
 #: run -> the chunked stages its costs measured as one job per entry (before they were split
 #: into chunk jobs): ``cost`` spreads an entry's time over its chunk jobs
 WHOLE = {"paper": ("uncertainty", "design_robust"), "smoke": ("uncertainty", "design_robust")}
@@ -27,6 +29,8 @@ MEASURED = {
         'convergence_chunk': (7, 4.84, 5.67),
         'design': (1, 8.79, 8.79),
         'design_chunk': (5, 3.31, 3.59),
+        'design_map': (1, 1.8, 1.8),
+        'design_map_chunk': (12, 42.3, 50.77),
         'design_robust': (1, 81.46, 81.46),
         'extract_measures': (9, 1.34, 2.25),
         'lyapunov': (4, 0.99, 1.07),
@@ -53,6 +57,8 @@ MEASURED = {
         'convergence_chunk': (2, 1.42, 1.71),
         'design': (1, 4.49, 4.49),
         'design_chunk': (2, 2.34, 2.46),
+        'design_map': (1, 1.89, 1.89),
+        'design_map_chunk': (2, 6.72, 7.03),
         'design_robust': (1, 5.84, 5.84),
         'extract_measures': (9, 1.67, 2.41),
         'lyapunov': (4, 1.84, 2.2),

@@ -104,6 +104,7 @@ UNCERTAINTY = config["uncertainty"]
 ORBIT_ATLASES = config["orbit_atlases"]
 SHOCKS = config["shocks"]
 MODEL_LADDERS = config["model_ladders"]
+DESIGN_MAPS = config["design_maps"]
 
 # A results folder that cannot be written (permissions, a read-only disk, a file in the
 # way) would fail every job: stop before any job, in one line.
@@ -196,6 +197,7 @@ STAGE_ENTRIES = {
     "orbit_atlas": ORBIT_ATLASES,
     "shock": SHOCKS,
     "model_ladder": MODEL_LADDERS,
+    "design_map": DESIGN_MAPS,
 }
 
 

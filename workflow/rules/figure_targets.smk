@@ -114,6 +114,8 @@ FIG_INPUTS = {
     "shock": {"shocks": _shocks("shock")},
     # beyond the paper: the slow flow against the exact model, amplitudes and costs
     "model_ladder": {"ladders": _named("model_ladder", "model_ladder")},
+    # beyond the paper: who wins where, VI NES against TMD over the design space
+    "design_map": {"maps": _named("design_map", "design_map")},
     # beyond the paper: the solver studies
     "workprecision": {
         "cases": [dataset("work_precision", c) for c in WORK_PRECISION["cases"]]

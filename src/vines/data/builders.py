@@ -37,6 +37,8 @@ from .schema import (
     COUNT_DTYPE,
     DERIVED_ATTRS,
     DESIGN_ATTRS,
+    DESIGN_MAP_ATTRS,
+    DESIGN_MAP_CONFIRM_FLAGS,
     DESIGN_ROBUST_ATTRS,
     DESIGN_ROBUST_UNITS,
     DESIGN_UNITS,
@@ -989,3 +991,34 @@ def _ladder_curves(panels: list) -> dict:
     return {"continuation_omega": _mv("continuation_omega", D, out["omega"]),
             "continuation_amplitude": _mv("continuation_amplitude", D, out["amplitude"]),
             "continuation_stable": _mv("continuation_stable", D, out["stable"], "i1")}
+
+
+# ------------------------------------------------------------------ design map
+
+#: the design map's 0/1 variables (flag attributes)
+_DESIGN_MAP_FLAGS = ("vines_in_domain", "verdict_differs", "verdict_differs_equal_travel")
+
+
+def design_map_dataset(spec: dict, arrays: dict, summary: dict, attrs: dict) -> xr.Dataset:
+    """A design map: ``arrays`` (``studies.design_map.assemble``) over (eta, half_width,
+    span), the per-restitution worst ratios over (..., restitution); ``spec`` the map's
+    inputs (``MapSpec.to_dict``) and ``summary`` its counts, as attributes."""
+    dims = ("eta", "half_width", "span")
+    data = {}
+    for name, values in arrays.items():
+        v = np.asarray(values)
+        extra = (DESIGN_MAP_CONFIRM_FLAGS if name == "confirm" else
+                 ATLAS_FLAGS if name in _DESIGN_MAP_FLAGS else {})
+        d = dims + ("restitution",) if v.ndim == 4 else dims
+        data[name] = xr.Variable(d, v, cf(DESIGN_MAP_ATTRS, name, **extra))
+    coords = {k: xr.Variable((k,), np.asarray(spec[k], dtype="f8"), cf(DESIGN_MAP_ATTRS, k))
+              for k in (*dims, "restitution")}
+    own = {"Conventions": CONVENTIONS, "title": "who wins where: VI NES against TMD"}
+    for k, v in spec.items():
+        if k not in coords:
+            own[k] = int(v) if isinstance(v, bool) else v
+    own.update({(k if k.startswith("n_") else f"n_{k}"): v for k, v in summary.items()
+                if isinstance(v, int)})
+    own.update({k: (np.nan if v is None else v) for k, v in summary.items()
+                if not isinstance(v, int)})
+    return xr.Dataset(data, coords=coords, attrs={**own, **attrs})

@@ -542,3 +542,77 @@ MODEL_LADDER_ATTRS = {
     "seconds": ("wall-clock time of the model over the panel's grid (time.perf_counter; "
                 "the slow flow: mean of repeated calls)", "s"),
 }
+
+# ------------------------------------------------------------------ design map
+
+#: design-map datasets (``vines.studies.design_map``): per cell (eta, half_width, span) the
+#: slow flow's best VI NES, the TMD free and at equal travel, their ratios and the exact check
+DESIGN_MAP_ATTRS = {
+    "eta": ("ball-to-LO mass ratio eta = m/M (the TMD's mass ratio too)", "1"),
+    "half_width": ("half width h of the band omega in [1 - h, 1 + h] around the host's "
+                   "natural frequency (drift modelled as the band)", "1"),
+    "span": ("amplitude span A_max/A_min of the base amplitudes", "1"),
+    "restitution": ("coefficient of restitution r of the grid searched", "1"),
+    "vines_worst_ratio": ("worst x_max/A over the band and amplitudes of the slow flow's best "
+                          "VI NES (clearance and restitution optimised)", "1"),
+    "vines_worst_omega": ("omega of the slow flow's worst case", "1"),
+    "vines_clearance_m": ("clearance L (half the cavity) of the slow flow's best VI NES; the "
+                          "ball's travel relative to the LO is +-L", "m"),
+    "vines_restitution": ("restitution r of the slow flow's best VI NES", "1"),
+    "vines_in_domain": ("1 where the slow flow's best design is inside its stated domain "
+                        "(eta, d, F_max <= the warning limits, |omega - 1| <= 0.2: no "
+                        "warning; r > 0: no sticking; docs/slowflow.md, section 8)", "1"),
+    "vines_worst_ratio_by_restitution": ("slow flow's worst x_max/A at the best clearance "
+                                         "for each restitution", "1"),
+    "tmd_frequency_ratio": ("frequency ratio f = w_a/w0 of the band-optimal TMD (free)", "1"),
+    "tmd_damping_ratio": ("damping ratio of the band-optimal TMD (free)", "1"),
+    "tmd_worst_ratio": ("worst |X/Y| over the band of the band-optimal TMD (free)", "1"),
+    "tmd_worst_omega": ("omega of the free TMD's worst case", "1"),
+    "tmd_worst_travel": ("largest travel |U - X|/|Y| over the band of the free TMD, per unit "
+                         "base amplitude", "1"),
+    "tmd_equal_travel_frequency_ratio": ("frequency ratio of the band-optimal TMD with travel "
+                                         "<= the VI NES's clearance at A_max", "1"),
+    "tmd_equal_travel_damping_ratio": ("damping ratio of the TMD at equal travel", "1"),
+    "tmd_equal_travel_worst_ratio": ("worst |X/Y| over the band of the TMD at equal travel",
+                                     "1"),
+    "tmd_equal_travel_worst_omega": ("omega of the equal-travel TMD's worst case", "1"),
+    "tmd_equal_travel_worst_travel": ("largest travel per unit base amplitude of the TMD at "
+                                      "equal travel", "1"),
+    "ratio": ("slow flow's VI NES worst ratio over the free TMD's (> 1: the TMD wins)", "1"),
+    "ratio_equal_travel": ("slow flow's VI NES worst ratio over the equal-travel TMD's (> 1: "
+                           "the TMD wins)", "1"),
+    "confirm": ("why the exact solver checked the cell", "1"),
+    "vines_worst_ratio_exact": ("exact worst x_max/A from rest at the slow flow's design "
+                                "(NaN: not checked)", "1"),
+    "vines_worst_ratio_exact_by_restitution": ("exact worst x_max/A from rest at the slow "
+                                               "flow's best clearance for each restitution "
+                                               "(NaN: not checked)", "1"),
+    "vines_restitution_exact": ("restitution of the exact check's best design (NaN: not "
+                                "checked)", "1"),
+    "vines_worst_ratio_exact_refined": ("exact worst x_max/A from rest of the exact check's "
+                                        "best design: the best restitution, then a local "
+                                        "search of the clearance (NaN: not checked)", "1"),
+    "vines_clearance_m_exact_refined": ("clearance of the exact local search's best design "
+                                        "(NaN: not checked)", "m"),
+    "tmd_equal_travel_exact_worst_ratio": ("worst |X/Y| of the TMD with travel <= the exact "
+                                           "check's clearance at A_max (NaN: not checked)",
+                                           "1"),
+    "exact_runs": ("exact runs from rest of the cell's check", "1"),
+    "slowflow_relative_error": ("(slow flow - exact)/exact worst x_max/A at the slow flow's "
+                                "design (NaN: not checked)", "1"),
+    "verdict_ratio": ("VI NES worst ratio over the free TMD's: exact refined where checked, "
+                      "else the slow flow's", "1"),
+    "verdict_ratio_equal_travel": ("VI NES worst ratio over the equal-travel TMD's: where "
+                                   "checked the exact refined design's over the TMD limited "
+                                   "to its clearance, else the slow flow's", "1"),
+    "verdict_differs": ("1 where the exact check and the slow flow name opposite winners "
+                        "against the free TMD (a ratio within 5 % of 1: a tie)", "1"),
+    "verdict_differs_equal_travel": ("1 where the exact check and the slow flow name "
+                                     "opposite winners against the equal-travel TMD (a "
+                                     "ratio within 5 % of 1: a tie)", "1"),
+    "tmd_travel_over_clearance": ("travel the free TMD needs at A_max over the VI NES's "
+                                  "clearance L", "1"),
+}
+#: flag attributes of the design map's ``confirm``
+DESIGN_MAP_CONFIRM_FLAGS = {"flag_values": np.array([0, 1, 2], dtype="i1"),
+                            "flag_meanings": "not_checked frontier sample"}

@@ -416,6 +416,22 @@ def check_model_ladders(config: dict, model: dict, limits: dict) -> None:
         _check_model_ladder(f"model_ladders.{name}", ml, model, limits)
 
 
+def check_design_maps(config: dict, model: dict, limits: dict) -> None:
+    """Each ``design_maps`` entry through ``studies.design_map.check_map`` (as the stage
+    builds it, without running), its run length within the limits."""
+    from ..studies.design_map import from_entry
+    sim = {k: config["simulation"][k] for k in ("v_stick", "max_impacts", "root_tol")}
+    for name, e in config["design_maps"].items():
+        key = f"design_maps.{name}"
+        try:
+            from_entry(e, d=model["d"], **sim)
+        except ParameterError as err:
+            sub = err.name if err.name in e else ""
+            raise ConfigError(f"{key}.{sub}" if sub else key,
+                              f"{err.value!r}: {err.allowed}") from None
+        _check_t_end(f"{key}.t_end", e["t_end"], limits)
+
+
 def check_design_robust(config: dict, model: dict, limits: dict) -> None:
     """A ``design_robust`` entry: its design keys as a ``designs`` entry's (an
     optimisation), its mistuning keys through ``studies.mistuning.check_mistuning``, and
@@ -512,5 +528,6 @@ def check_physical(config: dict) -> None:
     for check in (check_grids, check_sweeps, check_lyapunov_sweeps, check_branches,
                   check_maps_and_points, check_attractor_maps, check_boundaries, check_studies,
                   check_designs, check_orbit_atlases, check_shocks,
-                  check_model_ladders, check_design_robust, check_uncertainty):
+                  check_model_ladders, check_design_robust, check_uncertainty,
+                  check_design_maps):
         check(config, model, limits)

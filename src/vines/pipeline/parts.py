@@ -1,9 +1,9 @@
 """Chunk jobs of the chunked stages: which items each job computes, and its part file.
 
 A chunked stage (``robust_map``, ``orbit_atlas``, ``basin_slice``, ``lyapunov``,
-``design``, ``convergence``, ``uncertainty``, ``design_robust``) lists the independent
-items of one config entry (points, eta rows, sweep lines, search designs, sample points,
-search designs on each host) in dataset order; ``item_ranges`` cuts them into
+``design``, ``convergence``, ``uncertainty``, ``design_robust``, ``design_map``) lists the
+independent items of one config entry (points, eta rows, sweep lines, search designs, sample
+points, search designs on each host, map cells) in dataset order; ``item_ranges`` cuts them into
 runs of whole items of about ``points`` points each (the config's ``chunks`` section),
 one job per run. A job writes its results as a part file (``write_part``: a pickle,
 written atomically beside its path); the gather job reads the parts in order
@@ -21,7 +21,8 @@ from pathlib import Path
 CHUNKED_STAGES = {"robust_map": "robust_maps", "orbit_atlas": "orbit_atlases",
                   "basin_slice": "basin_slices", "lyapunov": "lyapunov_sweeps",
                   "design": "designs", "convergence": "convergence",
-                  "uncertainty": "uncertainty", "design_robust": "design_robust"}
+                  "uncertainty": "uncertainty", "design_robust": "design_robust",
+                  "design_map": "design_maps"}
 
 
 def item_ranges(n_items: int, points_per_item: int, points: int) -> list[tuple[int, int]]:
@@ -38,7 +39,7 @@ def stage_items(stage: str, name: str, config: dict) -> tuple[int, int]:
     """(items, points per item) of the entry ``name`` of a chunked stage in a validated
     ``config``: robust_map and basin_slice points (states), orbit_atlas eta rows,
     lyapunov sweep lines, design search-grid designs (runs from rest each: omega values x
-    amplitudes), uncertainty sample points, design_robust search-grid designs per host,
+    amplitudes), uncertainty sample points, design_robust search-grid designs per host, design_map cells,
     convergence finest-grid eta rows of the ``grid`` study (the other studies
     and a design that is evaluated, not searched: no items, one job)."""
     from .axes import axis_values
@@ -62,6 +63,8 @@ def stage_items(stage: str, name: str, config: dict) -> tuple[int, int]:
         return _uncertainty_items(config["uncertainty"][name])
     if stage == "design_robust":
         return _design_robust_items(config["design_robust"][name])
+    if stage == "design_map":
+        return _design_map_cells(config, name), 1
     if stage == "convergence":
         if name != "grid":
             return 0, 1
@@ -95,6 +98,18 @@ def _design_robust_items(entry: dict) -> tuple[int, int]:
     from ..studies.mistuning import search_hosts
     n, per = _design_items(entry)
     return n * len(search_hosts(entry["mistuning"], entry["n_search"])), per
+
+
+def _design_map_cells(config: dict, name: str) -> int:
+    """Cells (eta x half_width x span) of a ``design_maps`` entry."""
+    e = config["design_maps"][name]
+    eta = e["eta"]
+    n_eta = int(eta["num"]) if isinstance(eta, dict) else axis_size(eta)
+    return n_eta * axis_size(e["half_width"]) * axis_size(e["span"])
+
+
+def axis_size(values) -> int:
+    return 1 if isinstance(values, (int, float)) else len(values)
 
 
 def chunk_plan(stage: str, name: str, config: dict) -> list[tuple[int, int]]:

@@ -767,3 +767,49 @@ def model_ladder(spec: dict, *, model: dict, code: str, title: str):
                  continuation_step=float(spec["continuation_step"]))
     return builders.model_ladder_dataset(panels, sigma, sigma_dense, ml.TOLERANCES, bands,
                                          attrs)
+
+
+# ------------------------------------------------------------------ design map
+
+def design_map_spec(spec: dict, model: dict, simulation: dict):
+    """The ``MapSpec`` of a ``design_maps`` entry (``studies.design_map.from_entry``): its
+    own keys, the model's d, the simulation's v_stick, max_impacts, root_tol (restitution
+    is the entry's grid, not the model's r)."""
+    from ..studies.design_map import from_entry
+    return from_entry(spec, d=model["d"], **{k: simulation[k] for k in DESIGN_SETTINGS})
+
+
+def design_map_part(spec: dict, *, model: dict, simulation: dict, start: int, stop: int,
+                    n_workers: int = 1) -> list:
+    """The cells [start, stop) of a ``design_maps`` entry (``studies.design_map.map_cells``;
+    each cell's numbers depend on the cell alone). One process: a job's script cannot be
+    the main module of spawned workers, and the chunk jobs run side by side anyway
+    (n_workers is accepted and does not change a number)."""
+    from ..studies.design_map import map_cells
+    return map_cells(design_map_spec(spec, model, simulation), start, stop)
+
+
+def design_map(spec: dict, *, model: dict, simulation: dict, code: str, title: str,
+               n_workers: int = 1, parts: list | None = None):
+    """Dataset of one ``design_maps`` entry: every cell (``design_map_part``, here or from
+    ``parts`` in cell order), assembled (``studies.design_map.assemble``) with its counts."""
+    import time
+
+    from ..studies.design_map import assemble, summary
+    t0 = time.process_time()
+    m = design_map_spec(spec, model, simulation)
+    cells = ([c for p in parts for c in p] if parts is not None else
+             design_map_part(spec, model=model, simulation=simulation, start=0,
+                             stop=m.n_cells))
+    arrays = assemble(m, cells)
+    counts = summary(m, arrays)
+    print(f"design_map: {counts['n_cells']} cells, {counts['n_frontier']} near the frontier "
+          f"and {counts['n_sample']} sampled checked exactly ({counts['n_exact_runs']} runs); "
+          f"VI NES wins {counts['vines_wins']} against the free TMD, "
+          f"{counts['vines_wins_equal_travel']} at equal travel (by more than 5 %); the models "
+          f"name opposite winners at {counts['verdict_differs']} and "
+          f"{counts['verdict_differs_equal_travel']}; gather CPU "
+          f"{time.process_time() - t0:.1f} s")
+    attrs = provenance_attrs(title=title, config_subset={"spec": spec, "model": model},
+                             settings={"d": model["d"]}, code_version=code)
+    return builders.design_map_dataset(m.to_dict(), arrays, counts, attrs)
