@@ -86,13 +86,13 @@ class Host:
     """The linear host: mass, damping and stiffness matrices (N x N) and influence vector.
 
     Validated when built: M and K symmetric positive definite, C symmetric positive
-    semi-definite, all finite. ``Host.from_modes`` builds one from modal data.
+    semi-definite, all finite; influence default ones. ``Host.from_modes`` builds one from modal data.
     """
 
     mass: np.ndarray
     stiffness: np.ndarray
     damping: np.ndarray
-    influence: np.ndarray
+    influence: np.ndarray = None
 
     def __post_init__(self):
         M = _matrix("host.mass", self.mass)
@@ -104,7 +104,8 @@ class Host:
                            _symmetric("host.stiffness", _matrix("host.stiffness", self.stiffness, n), True))
         object.__setattr__(self, "damping",
                            _symmetric("host.damping", _matrix("host.damping", self.damping, n), False))
-        object.__setattr__(self, "influence", _vector("host.influence", self.influence, n))
+        infl = np.ones(n) if self.influence is None else self.influence
+        object.__setattr__(self, "influence", _vector("host.influence", infl, n))
 
     @property
     def n_dof(self) -> int:
