@@ -46,6 +46,7 @@ from .._jit import njit
 ROUNDOFF = 8.0 * 2.220446049250313e-16
 MAX_STEPS_PER_SEGMENT = 2_000_000
 MAX_RESOLVE = 1000
+MAX_ZERO_SEGMENTS = 1000
 MAX_BISECT = 40
 
 # status codes
@@ -390,7 +391,7 @@ def _find_event(D, Bd, ab, N, walls, root_tol):
                 ds = max(gap, 0.0) / c
                 if ds < bds:
                     best, bi, bw, bds = 1, i, wall, ds
-            elif gap <= floor and abs(c) <= vfl and wall * upp > 0.0:
+            elif gap <= floor and abs(c) <= vfl and wall * upp > ROUNDOFF * (1.0 + Bd[2, g]):
                 if 0.0 < bds:
                     best, bi, bw, bds = 2, i, wall, 0.0
     return best, bi, bw, bds
@@ -425,10 +426,19 @@ def _step(D, Bd, ab, N, walls, h_cap):
             gap = L - wall * u
             c = wall * up
             hs = _safe_step(gap, c, Bd[2, g])
-            if gap <= floor and hs < 1e-300 + 0.0 * h:
-                a_away = -wall * upp           # leaving the wall with ~zero speed
-                if a_away > 0.0:
-                    hs = a_away / (Bd[3, g] + 1e-300)
+            vfl = ROUNDOFF * (1.0 + abs(D[1, j]) + abs(D[1, N + i]) + Bd[1, g])
+            if gap <= floor and c <= vfl:
+                # leaving the wall with ~zero speed: the first derivative that moves away
+                # and a bound on the next one; at round-off level a step whose overshoot
+                # is at most the floor
+                a_away = -wall * upp
+                j_away = -wall * D[3, g]
+                if a_away > ROUNDOFF * (1.0 + Bd[2, g]):
+                    hs = max(hs, a_away / (Bd[3, g] + 1e-300))
+                elif a_away >= 0.0 and j_away > 0.0:
+                    hs = max(hs, j_away / (Bd[4, g] + 1e-300))
+                else:
+                    hs = max(hs, math.sqrt(2.0 * floor / (Bd[2, g] + 1e-300)))
             h = min(h, hs)
     return h
 
@@ -558,6 +568,7 @@ last rec.shape[0] impacts at t >= record_from (cnt[C_NREC] counts them all)."""
     V = V0.copy()
     walls = walls0.copy()
     t = t_start
+    n_zero = 0
     cnt[C_STATUS] = RC_DONE
     while True:
         c = _mask(walls)
@@ -621,6 +632,13 @@ last rec.shape[0] impacts at t >= record_from (cnt[C_NREC] counts them all)."""
             V[p] = Da[1, p]
         if cnt[C_STATUS] != RC_DONE:
             break
+        if s == 0.0 and kind != 0:
+            n_zero += 1
+            if n_zero > MAX_ZERO_SEGMENTS:     # events without motion: cannot resolve
+                cnt[C_STATUS] = RC_STALLED
+                break
+        else:
+            n_zero = 0
         if kind == 1 or kind == 2:
             if kind == 2:       # pressed on the wall at zero speed: sticks (plastic)
                 _resolve(t, P, V, walls, ab, N, M, minv, ev_i, ev_w, math.inf, root_tol,
