@@ -235,3 +235,31 @@ def test_undamped_resonance_is_refused():
         model_from_dict(_with(("host", "damping"), [[0, 0], [0, 0]]) | {
             "absorbers": [], "forcing": {"amplitude": 0.1, "frequency": 1.0}})
     assert err.value.name == "forcing.frequency"
+
+
+# --------------------------------------------------------------------------- command line
+def test_model_check_and_simulate_model_on_the_command_line(tmp_path, capsys):
+    import json
+
+    import yaml
+
+    from vines.cli import main
+    good = tmp_path / "m.yaml"
+    good.write_text(yaml.safe_dump(BASE))
+    assert main(["model", "check", str(good), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["valid"] and np.allclose(out["natural_frequencies"], [1.0, math.sqrt(3.0)])
+    assert main(["simulate", "--model", str(good), "--t-end", "60", "--t-transient", "30",
+                 "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["status"] == "ok" and len(out["absorbers"]) == 1 and len(out["host"]["x_max"]) == 2
+    bad = tmp_path / "bad.yaml"
+    bad.write_text(yaml.safe_dump(_with(("absorbers",), [{"dof": 0, "mass": 0.05, "gap": 0}])))
+    with pytest.raises(SystemExit) as ex:
+        main(["model", "check", str(bad)])
+    assert ex.value.code == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert err == ["vines model: error: invalid absorbers[0].gap = 0: must be a finite number > 0"]
+    with pytest.raises(SystemExit) as ex:
+        main(["simulate", "--model", str(good), "--eta", "0.1"])
+    assert ex.value.code == 2

@@ -27,7 +27,7 @@ EPS_PERT = 1e-9
 TRUST = 1e-5
 GRAZE = 1e-3
 T_END = 40.0
-N_DRAWS = 60
+N_DRAWS = 80
 
 
 def _log(lo, hi):

@@ -27,6 +27,7 @@ from ..core.params import (
     check_int,
     check_real,
 )
+from ..core.regime import CHATTER_RUN, longest_same_wall_run
 from .model import HostModel
 from .system import pack
 
@@ -180,7 +181,7 @@ def _ordered_records(rec, n_total):
 
 def _regime(times, walls, t_stuck, period, t0, t_end, complete) -> str:
     """Regime of one absorber from its impacts in [t0, t_end] (times, walls)."""
-    if t_stuck > 0.0:
+    if t_stuck > 0.0 or longest_same_wall_run(walls) >= CHATTER_RUN:
         return "chatter"
     if times.size == 0:
         return "no-impact" if complete else "unresolved"
