@@ -142,7 +142,7 @@ def _run_model(args: argparse.Namespace) -> int:
 def _model_table(d: dict) -> str:
     h = d["host"]
     lines = [f"window [{d['window'][0]:g}, {d['window'][1]:g}], status {d['status']}"]
-    for j, (x, a) in enumerate(zip(h["x_max"], h["accel_max"])):
+    for j, (x, a) in enumerate(zip(h["x_max"], h["accel_max"], strict=True)):
         lines.append(f"  host dof {j}: x_max {x:.6g}, acceleration max {a:.6g}")
     lines.append(f"  host damping dissipated {h['dissipated_damping']:.6g}, forcing work "
                  f"{h['forcing_work']:.6g}")

@@ -362,16 +362,16 @@ def _find_event(D, Bd, ab, N, walls, root_tol):
         g = nP + i
         if walls[i] != 0:
             wall = walls[i]
-            F = _contact_force(ab, i, D, j, wall)
-            Fp = wall * ab[i, 1] * D[3, j]
+            force = _contact_force(ab, i, D, j, wall)
+            dforce = wall * ab[i, 1] * D[3, j]
             scale = ab[i, 1] * (abs(D[2, j]) + Bd[2, j]) + ab[i, 2] * L
             floor = ROUNDOFF * (1.0 + scale)
             B = ab[i, 1] * Bd[4, j]
-            if F < -floor:
+            if force < -floor:
                 ds = 0.0
-            elif F <= max(root_tol * scale, floor) and Fp < 0.0 and (
-                    Fp * Fp >= 2.0 * B * max(F, 0.0) or F <= floor):
-                ds = max(F, 0.0) / -Fp
+            elif force <= max(root_tol * scale, floor) and dforce < 0.0 and (
+                    dforce * dforce >= 2.0 * B * max(force, 0.0) or force <= floor):
+                ds = max(force, 0.0) / -dforce
             else:
                 continue
             if ds < bds:
@@ -391,9 +391,9 @@ def _find_event(D, Bd, ab, N, walls, root_tol):
                 ds = max(gap, 0.0) / c
                 if ds < bds:
                     best, bi, bw, bds = 1, i, wall, ds
-            elif gap <= floor and abs(c) <= vfl and wall * upp > ROUNDOFF * (1.0 + Bd[2, g]):
-                if 0.0 < bds:
-                    best, bi, bw, bds = 2, i, wall, 0.0
+            elif (gap <= floor and abs(c) <= vfl and bds > 0.0
+                  and wall * upp > ROUNDOFF * (1.0 + Bd[2, g])):
+                best, bi, bw, bds = 2, i, wall, 0.0
     return best, bi, bw, bds
 
 
@@ -409,13 +409,13 @@ def _step(D, Bd, ab, N, walls, h_cap):
         g = nP + i
         if walls[i] != 0:
             wall = walls[i]
-            F = max(_contact_force(ab, i, D, j, wall), 0.0)
-            Fp = wall * ab[i, 1] * D[3, j]
+            force = max(_contact_force(ab, i, D, j, wall), 0.0)
+            dforce = wall * ab[i, 1] * D[3, j]
             B = ab[i, 1] * Bd[4, j]
-            hs = _safe_step(F, -Fp, B)
+            hs = _safe_step(force, -dforce, B)
             if hs <= 0.0:               # touching zero with zero slope: the next term
-                F2 = wall * ab[i, 1] * D[4, j]
-                hs = F2 / (ab[i, 1] * Bd[4, j] + 1e-300) if F2 > 0.0 else 0.0
+                d2force = wall * ab[i, 1] * D[4, j]
+                hs = d2force / (ab[i, 1] * Bd[4, j] + 1e-300) if d2force > 0.0 else 0.0
             h = min(h, hs)
             continue
         if math.isinf(L):
@@ -454,9 +454,9 @@ def _apply_pair(i, wall, r, ab, N, minv_c, walls, V, target):
     for a in range(N):
         V[a] += minv_c[a, j] * P
     V[N + i] -= P / ab[i, 1]
-    for l in range(ab.shape[0]):
-        if walls[l] != 0:
-            V[N + l] = V[int(ab[l, 0])]
+    for other in range(ab.shape[0]):
+        if walls[other] != 0:
+            V[N + other] = V[int(ab[other, 0])]
 
 
 @njit(cache=True, nogil=True)
@@ -467,11 +467,11 @@ def _pair_impulse(i, wall, r, ab, N, minv, walls, V, Vtmp):
         Vtmp[:] = V
         _apply_pair(i, wall, r, ab, N, minv[_mask(walls)], walls, Vtmp, 0.0)
         freed = False
-        for l in range(ab.shape[0]):
-            if walls[l] != 0 and l != i:
-                jl = int(ab[l, 0])
-                if walls[l] * (Vtmp[jl] - V[jl]) < 0.0:
-                    walls[l] = 0
+        for other in range(ab.shape[0]):
+            if walls[other] != 0 and other != i:
+                jl = int(ab[other, 0])
+                if walls[other] * (Vtmp[jl] - V[jl]) < 0.0:
+                    walls[other] = 0
                     freed = True
         if not freed:
             V[:] = Vtmp
@@ -489,18 +489,18 @@ def _resolve(t, P, V, walls, ab, N, M, minv, first, first_wall, v_stick, root_to
     for _ in range(MAX_RESOLVE):
         if i < 0:
             best = 0.0
-            for l in range(na):
-                L = ab[l, 4]
-                if walls[l] != 0 or math.isinf(L):
+            for other in range(na):
+                L = ab[other, 4]
+                if walls[other] != 0 or math.isinf(L):
                     continue
-                jl = int(ab[l, 0])
-                u = P[jl] - P[N + l]
-                floor = ROUNDOFF * (1.0 + abs(P[jl]) + abs(P[N + l]) + L)
+                jl = int(ab[other, 0])
+                u = P[jl] - P[N + other]
+                floor = ROUNDOFF * (1.0 + abs(P[jl]) + abs(P[N + other]) + L)
                 for w in (1, -1):
-                    c = w * (V[jl] - V[N + l])
-                    vfl = ROUNDOFF * (1.0 + abs(V[jl]) + abs(V[N + l]))
+                    c = w * (V[jl] - V[N + other])
+                    vfl = ROUNDOFF * (1.0 + abs(V[jl]) + abs(V[N + other]))
                     if L - w * u <= max(root_tol * L, floor) and c > vfl and c > best:
-                        best, i, wall = c, l, w
+                        best, i, wall = c, other, w
             if i < 0:
                 return
         j = int(ab[i, 0])

@@ -95,7 +95,7 @@ def model_from_dict(d) -> HostModel:
         raise ParameterError("absorbers", ab, "must be a list of absorbers")
     absorbers = tuple(absorber_from(i, a) for i, a in enumerate(ab))
     model = HostModel(host, absorbers, forcing_from(d["forcing"]))
-    from .system import check_system   # the engine's own conditions (defective, resonant)
+    from .system import check_system  # the engine's own conditions (defective, resonant)
     check_system(model)
     return model
 

@@ -18,12 +18,12 @@ import numpy as np
 from ..core.params import (
     MAX_IMPACTS_DEFAULT,
     MAX_IMPACTS_MAX,
-    ParameterError,
     T_END_DEFAULT,
     T_END_MAX,
     T_TRANSIENT_DEFAULT,
     V_STICK_DEFAULT,
     V_STICK_MAX,
+    ParameterError,
     check_int,
     check_real,
 )

@@ -160,11 +160,11 @@ def run_rk_model(model: HostModel, t_end: float, *, t_transient: float = 0.0, st
             tgt = np.zeros(len(rows))
             tgt[0] = -(1.0 + r) * wd
             dv = impulse(rows, tgt)
-            pulled = [l for l in stuck if l != i and stuck[l] * dv[S.ab[l].dof] < 0.0]
+            pulled = [other for other in stuck if other != i and stuck[other] * dv[S.ab[other].dof] < 0.0]
             if not pulled:
                 break
-            for l in pulled:
-                del stuck[l]
+            for other in pulled:
+                del stuck[other]
         v = v + dv
         after = v[j] - v[N + i]
         if abs(after) <= v_stick:
