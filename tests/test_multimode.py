@@ -93,7 +93,7 @@ def test_pair_impulse_conserves_momentum_and_sets_restitution():
             V[4] = V[1]
         before = V.copy()
         wd = V[0] - V[2]
-        K._pair_impulse(0, 1, 0.6, pk.ab, N, pk.minv, walls, V, np.zeros(5))
+        K._pair_impulse(0, 1, 0.6, pk.ab, N, pk.minv, walls, V, np.zeros(5), 0.0)
         assert np.isclose((Mf @ V).sum(), (Mf @ before).sum(), rtol=0, atol=1e-13)
         assert np.isclose(V[0] - V[2], -0.6 * wd, rtol=1e-13)
         if walls[2] != 0:

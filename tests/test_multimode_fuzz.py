@@ -2,7 +2,7 @@
 (``vines.reference.rk_multimode``), over hosts of 1 to 3 degrees of freedom carrying 1 to 3
 absorbers of every kind, within the bounds of the 1-DOF fuzz (tests/_differential.py:
 mass ratios 1e-3..1 of the host dof's mass, forcing frequency 0.05..8 of the first mode,
-amplitude 0..10 gaps, r 0..1, damping ratios 0..0.3, any phase).
+amplitude 0 or 0.03..10 gaps, r 0..1, damping ratios 0..0.3, any phase).
 
 Impacts are compared while the oracle can be trusted: up to the first sticking (the
 oracle's threshold differs), grazing contact (|w'| < GRAZE) or an amplification of a start
@@ -64,7 +64,7 @@ def models(draw):
             ca = 2.0 * draw(st.floats(0.0, 0.2)) * math.sqrt(ka * ma)
             absorbers.append(Absorber(dof, ma, ka, ca, math.inf if kind == "tmd" else gap, r))
     W = w1 * draw(_log(0.05, 8.0))
-    A = draw(st.one_of(st.just(0.0), _log(1e-3, 10.0))) * min(a.gap if math.isfinite(a.gap)
+    A = draw(st.one_of(st.just(0.0), _log(0.03, 10.0))) * min(a.gap if math.isfinite(a.gap)
                                                             else 1.0 for a in absorbers)
     state = draw(st.floats(-1.0, 1.0))
     return HostModel(Host(np.diag(m), K, C), tuple(absorbers),
@@ -91,7 +91,8 @@ def _compare(model, v0):
     compared = 0
     amp = 1.0
     for k in range(n):
-        if a["stuck"][k] or abs(a["dw_before"][k]) < GRAZE or abs(b["dw_before"][k]) < GRAZE:
+        if (a["stuck"][k] or b["stuck"][k] or abs(a["dw_before"][k]) < GRAZE
+                or abs(b["dw_before"][k]) < GRAZE):
             return "stick_or_graze", compared
         if k < c["t"].size:
             amp = max(amp, abs(c["t"][k] - a["t"][k]) / EPS_PERT)

@@ -460,9 +460,10 @@ def _apply_pair(i, wall, r, ab, N, minv_c, walls, V, target):
 
 
 @njit(cache=True, nogil=True)
-def _pair_impulse(i, wall, r, ab, N, minv, walls, V, Vtmp):
+def _pair_impulse(i, wall, r, ab, N, minv, walls, V, Vtmp, v_stick):
     """The pair impulse, freeing first each stuck absorber that it would pull off its stop
-    (its host dof's velocity change pointing away from the stop's push)."""
+    (its host dof's velocity change pointing away from the stop's push by more than
+    v_stick: below, it stays stuck, as a bounce below v_stick would)."""
     for _ in range(ab.shape[0] + 1):
         Vtmp[:] = V
         _apply_pair(i, wall, r, ab, N, minv[_mask(walls)], walls, Vtmp, 0.0)
@@ -470,7 +471,7 @@ def _pair_impulse(i, wall, r, ab, N, minv, walls, V, Vtmp):
         for other in range(ab.shape[0]):
             if walls[other] != 0 and other != i:
                 jl = int(ab[other, 0])
-                if walls[other] * (Vtmp[jl] - V[jl]) < 0.0:
+                if walls[other] * (Vtmp[jl] - V[jl]) < -v_stick:
                     walls[other] = 0
                     freed = True
         if not freed:
@@ -479,10 +480,11 @@ def _pair_impulse(i, wall, r, ab, N, minv, walls, V, Vtmp):
 
 
 @njit(cache=True, nogil=True)
-def _resolve(t, P, V, walls, ab, N, M, minv, first, first_wall, v_stick, root_tol, t_tr,
-             record_from, acc, rec, cnt, Vtmp, D2):
+def _resolve(t, P, V, walls, ab, N, M, minv, first, first_wall, v_stick, v_keep, root_tol,
+             t_tr, record_from, acc, rec, cnt, Vtmp, D2):
     """Impacts at time t: the pair law for the absorber ``first`` and every pair found in
-    contact and closing, until none closes; sticking after slow impacts."""
+    contact and closing, until none closes; sticking after impacts slower than v_stick; a
+    stuck absorber stays stuck through an impulse that pulls it off by less than v_keep."""
     na = ab.shape[0]
     i, wall = first, first_wall
     in_win = t >= t_tr
@@ -506,7 +508,7 @@ def _resolve(t, P, V, walls, ab, N, M, minv, first, first_wall, v_stick, root_to
         j = int(ab[i, 0])
         before = V[j] - V[N + i]
         e0 = _kinetic(M, ab, V, N)
-        _pair_impulse(i, wall, ab[i, 5], ab, N, minv, walls, V, Vtmp)
+        _pair_impulse(i, wall, ab[i, 5], ab, N, minv, walls, V, Vtmp, v_keep)
         after = V[j] - V[N + i]
         # sticking: slow rebound (at or below the round-off floor of a bounce) -> plastic
         apex = 16.0 * ROUNDOFF * (1.0 + abs(P[j]) + abs(P[N + i]))
@@ -514,7 +516,7 @@ def _resolve(t, P, V, walls, ab, N, M, minv, first, first_wall, v_stick, root_to
         v_floor = math.sqrt(2.0 * acc_rel * apex)
         stuck = 0
         if abs(after) <= max(v_stick, v_floor):
-            _pair_impulse(i, wall, -1.0, ab, N, minv, walls, V, Vtmp)
+            _pair_impulse(i, wall, -1.0, ab, N, minv, walls, V, Vtmp, v_keep)
             walls[i] = wall
             V[N + i] = V[j]
             P[N + i] = P[j] - wall * ab[i, 4]
@@ -641,10 +643,10 @@ last rec.shape[0] impacts at t >= record_from (cnt[C_NREC] counts them all)."""
             n_zero = 0
         if kind == 1 or kind == 2:
             if kind == 2:       # pressed on the wall at zero speed: sticks (plastic)
-                _resolve(t, P, V, walls, ab, N, M, minv, ev_i, ev_w, math.inf, root_tol,
+                _resolve(t, P, V, walls, ab, N, M, minv, ev_i, ev_w, math.inf, v_stick, root_tol,
                          t_tr, record_from, acc, rec, cnt, Vtmp, Da[2])
             else:
-                _resolve(t, P, V, walls, ab, N, M, minv, ev_i, ev_w, v_stick, root_tol,
+                _resolve(t, P, V, walls, ab, N, M, minv, ev_i, ev_w, v_stick, v_stick, root_tol,
                          t_tr, record_from, acc, rec, cnt, Vtmp, Da[2])
             if cnt[C_NIMP] >= max_impacts:
                 cnt[C_STATUS] = RC_MAX_IMPACTS

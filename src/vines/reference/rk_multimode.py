@@ -75,7 +75,8 @@ class _RKModel:
 def run_rk_model(model: HostModel, t_end: float, *, t_transient: float = 0.0, state0=None,
                  rtol: float = 1e-12, atol: float = 1e-14, v_stick: float = 1e-6,
                  max_events: int = 10000) -> dict:
-    """Impacts (t, absorber, wall, w' before), final state and dissipation of an RK run."""
+    """Impacts (t, absorber, wall, w' before, stuck after), final state and dissipation of
+    an RK run."""
     S = _RKModel(model)
     N, na, nP = S.N, S.na, S.nP
     q = np.zeros(nP) if state0 is None else np.array(state0[0], float)
@@ -167,16 +168,17 @@ def run_rk_model(model: HostModel, t_end: float, *, t_transient: float = 0.0, st
                 del stuck[other]
         v = v + dv
         after = v[j] - v[N + i]
-        if abs(after) <= v_stick:
+        sticks = abs(after) <= v_stick
+        if sticks:
             rows = [i] + sorted(stuck)
             tgt = np.zeros(len(rows))
             tgt[0] = -after
             v = v + impulse(rows, tgt)
             stuck[i] = wall
         losses[i] += e0 - kinetic(v)
-        impacts.append((t, i, wall, wd))
-    imp = np.array(impacts, float).reshape(-1, 4)
+        impacts.append((t, i, wall, wd, float(sticks)))
+    imp = np.array(impacts, float).reshape(-1, 5)
     return {"t": imp[:, 0], "absorber": imp[:, 1].astype(int), "wall": imp[:, 2].astype(int),
-            "dw_before": imp[:, 3], "P": q, "V": v, "t_final": t,
+            "dw_before": imp[:, 3], "stuck": imp[:, 4].astype(int), "P": q, "V": v, "t_final": t,
             "dissipated_host": acc[0], "forcing_work": acc[1], "dissipated_dampers": acc[2:],
-            "dissipated_impacts": losses, "stuck": dict(stuck)}
+            "dissipated_impacts": losses, "stuck_at_end": dict(stuck)}
