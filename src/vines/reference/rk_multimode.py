@@ -4,7 +4,8 @@ scipy's DOP853 on the second-order equations written out with the full mass matr
 modes, no closed form): accelerations from the saddle-point system
 [[M_f, G^T], [G, 0]] [a, -lambda] = [f, 0] (M_f = diag(M, m), G the rows x_j - y_i of the
 stuck absorbers); a terminal event on every gap (x_j - y_i = +-L_i) and on every stuck
-absorber's stop force; impacts by the impulse of the same saddle-point system with the
+absorber's stop force (steps of at most a tenth of the fastest rate, so that no crossing
+and return of a gap fits in one step); impacts by the impulse of the same saddle-point system with the
 target w'+ = -r w'- for the impacting pair and w' = 0 for the stuck ones. The dissipation of
 the host damping and of each damper and the forcing's work are integrated as extra states.
 Shares only the model container with the engine, so that comparing them can fail.
@@ -32,6 +33,11 @@ class _RKModel:
             self.Mf[self.N + i, self.N + i] = a.mass
         f = model.forcing
         self.A, self.W, self.ph = f.amplitude, f.frequency, f.phase
+        # the fastest rate of the motion: steps of a tenth of it cannot hold a gap's
+        # crossing and return (solve_ivp sees an event only as a sign change over a step)
+        rates = [self.W] + [math.sqrt(a.stiffness / a.mass) for a in self.ab]
+        rates += list(np.sqrt(np.abs(np.linalg.eigvals(np.linalg.solve(self.M, self.K)))))
+        self.max_step = 0.1 / max(rates)
 
     def base(self, t):
         th = self.W * t + self.ph
@@ -129,7 +135,7 @@ def run_rk_model(model: HostModel, t_end: float, *, t_transient: float = 0.0, st
         t_stop = t_transient if t < t_transient else t_end
         y0 = np.concatenate((q, v, acc))
         sol = solve_ivp(rhs, (t, t_stop), y0, method="DOP853", rtol=rtol, atol=atol,
-                        events=evs or None)
+                        events=evs or None, max_step=S.max_step)
         hit = None
         if sol.status == 1:
             tt = [(te[0], k) for k, te in enumerate(sol.t_events) if te.size
