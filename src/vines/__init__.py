@@ -7,8 +7,9 @@ Subpackages: core (simulation), orbits (periodic orbits), reference (independent
 studies (work-precision, convergence), data (datasets), pipeline, plotting; see
 docs/architecture.md.
 
-``simulate``, ``simulate_batch``, ``design``, ``lyapunov``, ``SimulationResult`` and
-``IMPACT_DTYPE`` are imported on first use, so that code which only reads datasets or draws
+``simulate``, ``simulate_batch``, ``design``, ``lyapunov``, ``SimulationResult``,
+``IMPACT_DTYPE`` and the general host's ``HostModel``, ``read_model`` and ``simulate_model``
+(``vines.multimode``) are imported on first use, so that code which only reads datasets or draws
 figures does not load numba and the compiled kernels; ``open_run`` (a finished run's
 datasets as one ``xarray.DataTree``) likewise, so that ``import vines`` does not load xarray.
 """
@@ -23,9 +24,11 @@ from .core.params import D_DEFAULT, L_HALF_M, ModelParams, ParameterError, Solve
 _LAZY = {"simulate": ".solvers", "simulate_batch": ".core.simulation",
          "SimulationResult": ".core.result", "IMPACT_DTYPE": ".core.result",
          "design": ".studies.design", "lyapunov": ".attractors.lyapunov",
-         "open_run": ".data.run"}
+         "open_run": ".data.run", "HostModel": ".multimode.model",
+         "simulate_model": ".multimode.simulate", "read_model": ".multimode.modelfile"}
 
-__all__ = ["simulate", "simulate_batch", "design", "lyapunov", "open_run", "ModelParams",
+__all__ = ["simulate", "simulate_batch", "design", "lyapunov", "open_run", "HostModel",
+           "simulate_model", "read_model", "ModelParams",
            "SolverSettings", "ParameterError", "SimulationResult", "IMPACT_DTYPE", "D_DEFAULT",
            "L_HALF_M", "__version__"]
 

@@ -15,7 +15,7 @@ Contract (see docs/cli.md and the project specification, section 7):
 * Unexpected internal errors are not caught: they keep their traceback.
 
 One module per command (``simulate``, ``periodic``, ``continue_``, ``boundaries``,
-``attractors``, ``lyapunov``, ``design``, ``design_map``, ``shock``, ``slowflow``); what they share (the argument parser, the model
+``attractors``, ``lyapunov``, ``design``, ``design_map``, ``shock``, ``slowflow``, ``model``); what they share (the argument parser, the model
 arguments, the error messages, the JSON-or-text output) is in ``common``, the messages and
 progress on stderr in ``reporting``.
 
@@ -42,7 +42,7 @@ from .common import PROG, VinesArgumentParser, flag_for
 
 #: the commands' modules, in the order of ``vines --help``
 COMMANDS = ("simulate", "periodic", "continue_", "boundaries", "attractors", "lyapunov",
-            "design", "design_map", "shock", "slowflow")
+            "design", "design_map", "shock", "slowflow", "model")
 
 __all__ = ["main", "build_parser", "COMMANDS", "VinesArgumentParser"]
 

@@ -31,7 +31,12 @@ def add_parser(subparsers) -> VinesArgumentParser:
         description="Simulate the VI NES from rest and report the energy-transfer measures "
                     "over the window [t_transient, t_end] (exact time averages).",
     )
-    add_model_args(p, phi=True)
+    add_model_args(p, phi=True, optional_group="model parameters (required unless --model)")
+    p.add_argument("--model", metavar="FILE", default=None,
+                   help="simulate the host with several degrees of freedom and absorbers of "
+                        "this model file instead (YAML; docs/usage.md, 'A host with several "
+                        "modes'; exact solver; --eta, --omega, --F, --r, --d, --phi do not "
+                        "apply)")
     run = p.add_argument_group("run and solver settings")
     run.add_argument("--t-end", metavar="T", default=T_END_DEFAULT,
                      help=f"end of the run, dimensionless time [> 0 and <= {T_END_MAX:g}; "
@@ -57,6 +62,7 @@ def add_parser(subparsers) -> VinesArgumentParser:
                           "orbit (default: complete the run from one period of the orbit, "
                           "exact to ~1e-10; JSON key shortcut_time says when; exact solver "
                           "only)")
+    p.set_defaults(parser=p)
     p.allowed_values.update({
         "--t-end": f"a number > 0 and <= {T_END_MAX:g}",
         "--t-transient": "a number >= 0 and < t-end",
@@ -71,6 +77,11 @@ def add_parser(subparsers) -> VinesArgumentParser:
 
 
 def run(args: argparse.Namespace) -> int:
+    if args.model is not None:
+        return _run_model(args)
+    missing = [f for f in ("--eta", "--omega", "--F") if getattr(args, f[2:]) is None]
+    if missing:   # argparse's own message, as when these flags were required
+        args.parser.error("the following arguments are required: " + ", ".join(missing))
     params = model_params(args)
     settings = SolverSettings(t_end=args.t_end, t_transient=args.t_transient,
                               v_stick=args.v_stick, max_impacts=args.max_impacts)
@@ -106,3 +117,38 @@ def _table(d: dict) -> str:
     ]
     width = max(len(k) for k, _ in rows)
     return head + "\n" + "".join(f"  {k:<{width}}  {v}\n" for k, v in rows)
+
+
+def _run_model(args: argparse.Namespace) -> int:
+    """``--model FILE``: the general engine (``vines.simulate_model``)."""
+    from ..multimode import ModelSettings, read_model, simulate_model
+
+    given = [f for f in ("eta", "omega", "F") if getattr(args, f, None) is not None]
+    if given:
+        args.parser.error(f"argument --{given[0]}: not allowed with --model (the model file "
+                          "holds the model)")
+    if args.solver != "exact":
+        args.parser.error("argument --solver: --model runs the exact solver only")
+    model = read_model(args.model)
+    settings = ModelSettings(t_end=args.t_end, t_transient=args.t_transient,
+                             v_stick=args.v_stick, max_impacts=args.max_impacts, n_record=4096)
+    with quiet_stdout():
+        result = simulate_model(model, settings)
+    out = result.summary()
+    out["model"] = model.to_dict()
+    return emit(args.json, out, lambda d: _model_table(d).rstrip("\n"))
+
+
+def _model_table(d: dict) -> str:
+    h = d["host"]
+    lines = [f"window [{d['window'][0]:g}, {d['window'][1]:g}], status {d['status']}"]
+    for j, (x, a) in enumerate(zip(h["x_max"], h["accel_max"], strict=True)):
+        lines.append(f"  host dof {j}: x_max {x:.6g}, acceleration max {a:.6g}")
+    lines.append(f"  host damping dissipated {h['dissipated_damping']:.6g}, forcing work "
+                 f"{h['forcing_work']:.6g}")
+    for i, a in enumerate(d["absorbers"]):
+        lines.append(f"  absorber {i} ({a['kind']} on dof {a['dof']}): travel {a['travel']:.6g}, "
+                     f"ke_ratio {a['ke_ratio']:.6g}, dissipated damper {a['dissipated_damper']:.6g} "
+                     f"impacts {a['dissipated_impacts']:.6g}, {a['n_impacts']} impacts, "
+                     f"regime {a['regime']}")
+    return "\n".join(lines) + "\n"

@@ -20,7 +20,8 @@ NOT_TRACKED = ("cli", "__main__.py")
 
 #: subpackages each kind of rule depends on
 COMPUTE = ("core", "orbits", "data", "pipeline")           # every dataset stage
-STUDIES = COMPUTE + ("reference", "studies")               # work-precision, convergence
+STUDIES = COMPUTE + ("reference", "studies", "multimode")  # work-precision, convergence;
+#                                                            multimode: the reference imports it
 ATTRACTORS = COMPUTE + ("attractors",)                     # robust-TET maps, basin slices
 DESIGN = STUDIES + ("attractors",)                         # designs (census of the attractors)
 FIGURES = ("plotting",)                                    # figure rules (+ their script)
