@@ -1,8 +1,12 @@
 """Named constants and small helpers of the event-driven kernel (vines.core.kernel)."""
 import math
+import os
+import subprocess
+import sys
 
 import numpy as np
 import pytest
+from conftest import ROOT, SRC
 
 from vines.core import kernel as k
 from vines.core.exact import kernel_params, oscillators, run_exact
@@ -160,3 +164,21 @@ def test_a_flight_longer_than_the_step_limit_is_no_stall(t_transient):
     assert raw.xmax_window == pytest.approx(X, rel=1e-9)
     mean_v2 = raw.int_vm2 / (st.t_end - st.t_transient)     # (omega X)^2 / 2, to 1/(omega T)
     assert mean_v2 == pytest.approx(0.5 * (p.omega * X) ** 2, rel=1e-5)
+
+
+def test_a_kernel_test_runs_in_pure_python_with_numba_disabled():
+    """``NUMBA_DISABLE_JIT=1`` (how a user steps through a kernel in a debugger): vines'
+    ``njit`` gives back the plain functions and a kernel test passes in pure Python (a
+    grazing contact found by the exact stepping, ~2 s)."""
+    env = {**os.environ, "NUMBA_DISABLE_JIT": "1",
+           "PYTHONPATH": os.pathsep.join([str(SRC), os.environ.get("PYTHONPATH", "")])}
+    test = "tests/test_exact.py::test_grazing_impact_is_not_missed"
+    r = subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider",
+                        test, "-c", str(ROOT / "pyproject.toml")],
+                       capture_output=True, text=True, env=env, cwd=ROOT, timeout=300)
+    assert r.returncode == 0 and "1 passed" in r.stdout, r.stdout + r.stderr
+    probe = ("import vines.core.kernel as k; import numba; "
+             "print(numba.config.DISABLE_JIT, type(k.first_contact).__name__)")
+    r = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
+                       env=env, cwd=ROOT, timeout=120)
+    assert r.stdout.split() == ["1", "function"], r.stdout + r.stderr
