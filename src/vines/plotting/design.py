@@ -132,7 +132,7 @@ def _drift_panel(ax, ds, k):
             label=r"VI NES designed at $\delta$ = 0, from rest")
     if "vines_any_attractor" in ds:
         ax.plot(x, ds["vines_any_attractor"].values, ":", color=C_VINES, lw=1.4,
-                label="same, over attractors")
+                label=r"VI NES designed at $\delta$ = 0, worst of its attractors (census)")
     ax.plot(xr, ds["robust_vines"].values, "s--", color=C_VINES, ms=3, lw=1.4,
             label="VI NES optimised for the drift, from rest")
     ax.set_yscale("log")
@@ -140,15 +140,23 @@ def _drift_panel(ax, ds, k):
     ax.set_xlabel(r"host frequency drift $\delta$ (natural frequency $(1+\delta)\,\omega_0$)")
     ax.set_ylabel(r"worst $x_{\max}/A$ over band and amplitudes")
     ax.grid(True, which="both", lw=0.3, alpha=0.5)
-    panel_label(ax, k, _drift_designs(ds))
+    title = _drift_designs(ds)
+    if k is None:                 # the only panel: no letter
+        ax.set_title(title, loc="left", fontsize=9)
+    else:
+        panel_label(ax, k, title)
 
 
 def _drift_designs(ds) -> str:
+    """The designs at delta = 0 and those optimised for the drift, in the axes' symbols."""
     def v(name):
         return float(ds[name])
-    return (f"TMD f {v('tmd_frequency_ratio'):.3f} -> {v('robust_tmd_frequency_ratio'):.3f}; "
-            f"VI NES eta {v('vines_eta'):.3g}, L {1e3 * v('vines_clearance'):.3g} mm -> "
-            f"eta {v('robust_vines_eta'):.3g}, L {1e3 * v('robust_vines_clearance'):.3g} mm")
+    arrow = r"$\rightarrow$"
+    return (rf"at $\delta$ = 0 {arrow} for the drift: TMD "
+            rf"$f$ {v('tmd_frequency_ratio'):.3f} {arrow} {v('robust_tmd_frequency_ratio'):.3f}; "
+            rf"VI NES $\eta$ {v('vines_eta'):.3g}, $L$ {1e3 * v('vines_clearance'):.3g} mm "
+            rf"{arrow} $\eta$ {v('robust_vines_eta'):.3g}, "
+            rf"$L$ {1e3 * v('robust_vines_clearance'):.3g} mm")
 
 
 def robust_summary(ds) -> str:
@@ -165,7 +173,7 @@ def robust_figure(entries):
     chosen at delta = 0 (solid) and those optimised for the drift (dashed)."""
     fig, axes = figure(len(entries), 1, width=8.0, height=4.6 * len(entries))
     for i, ds in enumerate(entries):
-        _drift_panel(axes[i, 0], ds, i)
+        _drift_panel(axes[i, 0], ds, i if len(entries) > 1 else None)
     summary_and_legend(fig, [robust_summary(ds) for ds in entries], axes[0, 0], ncol=3)
     return fig
 
