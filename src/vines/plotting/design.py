@@ -258,21 +258,70 @@ def _regime_panel(ax, ds, k):
 
 
 def uncertainty_summary(ds) -> str:
-    return (f"VI NES eta {float(ds['vines_eta']):.3g}, L "
-            f"{float(ds['vines_clearance']) * 1e3:.3g} mm: worst x_max/A mean "
+    """Two lines: the designs' mean worst ratio (exact parts), then how often the VI NES
+    wins and is in its efficient regime."""
+    return (rf"VI NES ($\eta$ {float(ds['vines_eta']):.3g}, $L$ "
+            f"{float(ds['vines_clearance']) * 1e3:.3g} mm): mean worst $x_{{\max}}/A$ "
             f"{float(ds['vines_mean']):.3g} (exact parts {float(ds['vines_nominal']):.3g}); "
-            f"TMD {float(ds['tmd_mean']):.3g} ({float(ds['tmd_nominal']):.3g}); VI NES "
-            f"better at {float(ds['vines_better_probability']):.0%} of the points; "
-            f"1:1 at the worst point {float(ds['efficient_probability']):.0%}")
+            f"TMD {float(ds['tmd_mean']):.3g} ({float(ds['tmd_nominal']):.3g})\n"
+            f"VI NES better at {float(ds['vines_better_probability']):.0%} of the points, "
+            f"in 1:1 at its worst point at {float(ds['efficient_probability']):.0%}")
+
+
+def _distribution_spec(ds, name: str) -> tuple[str, float, float] | None:
+    """(kind, a, b) of the attribute ``distribution_<name>`` ("uniform:a:b (...)",
+    "normal:mean:sd (...)"); None when absent or of another form."""
+    spec = str(ds.attrs.get(f"distribution_{name}", "")).split(" ")[0].split(":")
+    try:
+        return spec[0], float(spec[1]), float(spec[2])
+    except (IndexError, ValueError):
+        return None
+
+
+def _inputs_panel(ax, ds, k):
+    """The uncertain parts: for each, its distribution's density (line, from the dataset's
+    ``distribution_<name>`` attribute) over the histogram of the Sobol points' values, one
+    inset a part (each on its own scale)."""
+    names = [str(n) for n in ds["parameter"].values]
+    ax.set_axis_off()
+    panel_label(ax, k, "uncertain parts: density and sampled points")
+    ax.set_title(ax.get_title(loc="left"), loc="left", fontsize=9)
+    n = len(names)
+    for i, name in enumerate(names):
+        sub = ax.inset_axes([0.08, 1.0 - (i + 1) / n + 0.16 / n, 0.88, 0.62 / n])
+        vals = ds["value"].sel(parameter=name).values
+        spec = _distribution_spec(ds, name)
+        lo, hi = float(vals.min()), float(vals.max())
+        if spec is not None and spec[0] == "uniform":
+            lo, hi = spec[1], spec[2]
+        elif spec is not None and spec[0] == "normal":
+            lo, hi = spec[1] - 3 * spec[2], spec[1] + 3 * spec[2]
+        sub.hist(vals, bins=np.linspace(lo, hi, 11), density=True, color="0.8",
+                 edgecolor="0.4", lw=0.5, label="Sobol points")
+        if spec is not None and spec[0] == "uniform":
+            sub.plot([lo, lo, hi, hi], [0, 1 / (hi - lo), 1 / (hi - lo), 0], color="black",
+                     lw=1.2, label="density")
+        elif spec is not None and spec[0] == "normal":
+            x = np.linspace(lo, hi, 200)
+            sub.plot(x, np.exp(-0.5 * ((x - spec[1]) / spec[2]) ** 2)
+                     / (spec[2] * np.sqrt(2 * np.pi)), color="black", lw=1.2, label="density")
+        what = str(ds.attrs.get(f"distribution_{name}", "")).partition(" ")[2].strip("()")
+        sub.set_xlabel(f"{name}" + (f" ({what})" if what else ""), fontsize=8, labelpad=1)
+        sub.tick_params(labelsize=7)
+        sub.set_yticks([])
+        if i == 0:
+            sub.legend(fontsize=7, frameon=False, loc="upper right")
 
 
 def uncertainty_figure(studies):
-    """Per study a row: the distribution of the worst ratio over the Sobol points, the
-    Sobol indices with their intervals, the VI NES's regime at its worst point."""
-    fig, axes = figure(len(studies), 3, width=15.0, height=4.4 * len(studies))
+    """Per study a row: the uncertain parts' distributions, the distribution of the worst
+    ratio over the Sobol points, the Sobol indices with their intervals, the VI NES's
+    regime at its worst point."""
+    fig, axes = figure(len(studies), 4, width=19.0, height=4.6 * len(studies))
     for i, ds in enumerate(studies):
-        _distribution_panel(axes[i, 0], ds, 3 * i)
-        _indices_panel(axes[i, 1], ds, 3 * i + 1)
-        _regime_panel(axes[i, 2], ds, 3 * i + 2)
+        _inputs_panel(axes[i, 0], ds, 4 * i)
+        _distribution_panel(axes[i, 1], ds, 4 * i + 1)
+        _indices_panel(axes[i, 2], ds, 4 * i + 2)
+        _regime_panel(axes[i, 3], ds, 4 * i + 3)
     summary_and_legend(fig, [uncertainty_summary(ds) for ds in studies])
     return fig
