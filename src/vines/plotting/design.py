@@ -296,6 +296,10 @@ def _inputs_panel(ax, ds, k):
             lo, hi = spec[1], spec[2]
         elif spec is not None and spec[0] == "normal":
             lo, hi = spec[1] - 3 * spec[2], spec[1] + 3 * spec[2]
+        if not hi > lo:                   # a part held at one value: a line there
+            sub.axvline(lo, color="black", lw=1.2, label="density (one value)")
+            sub.set_xlim(lo - 0.5 * abs(lo) - 1e-3, lo + 0.5 * abs(lo) + 1e-3)
+            spec, lo, hi = None, lo - 1e-9 * (1 + abs(lo)), hi + 1e-9 * (1 + abs(hi))
         sub.hist(vals, bins=np.linspace(lo, hi, 11), density=True, color="0.8",
                  edgecolor="0.4", lw=0.5, label="Sobol points")
         if spec is not None and spec[0] == "uniform":
