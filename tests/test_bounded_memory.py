@@ -30,6 +30,21 @@ def test_tally_in_blocks_equals_whole_list():
         assert tally.n_span_R == np.count_nonzero(walls[in_span] < 0)
 
 
+def test_tally_refuses_impacts_out_of_time_order():
+    """The run lengths and the slices by binary search need time order: a block before the
+    last one added, or unordered inside, is refused and leaves the counts as they were."""
+    tally = ImpactTally(0.0, (-math.inf, math.inf))
+    tally.add(np.array([1.0, 2.0, 2.0]), np.array([1, 1, -1], dtype=np.int8))
+    counts = (tally.n_window, tally.longest_run, tally.n_span_L, tally.n_span_R)
+    with pytest.raises(ValueError, match="before the last impact added"):
+        tally.add(np.array([1.5, 3.0]), np.array([1, 1], dtype=np.int8))
+    with pytest.raises(ValueError, match="within a block: t = 3.0 after t = 4.0"):
+        tally.add(np.array([2.5, 4.0, 3.0]), np.array([1, 1, 1], dtype=np.int8))
+    assert (tally.n_window, tally.longest_run, tally.n_span_L, tally.n_span_R) == counts
+    tally.add(np.array([2.0, 5.0]), np.array([-1, 1], dtype=np.int8))   # equal time: in order
+    assert (tally.n_window, tally.longest_run) == (5, 2)
+
+
 @pytest.mark.parametrize("shortcut", [False, True])
 def test_streamed_run_keeps_bounded_records(monkeypatch, shortcut):
     """A run of ~10^4 impacts through a 64-row impact buffer: the buffers never grow, only

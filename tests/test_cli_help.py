@@ -58,3 +58,46 @@ def test_help_points_to_the_docs_not_the_readme(command):
 def test_top_level_help_names_the_reference():
     text = " ".join(run_vines("--help").stdout.split())
     assert "docs/cli.md" in text and "docs/usage.md" in text
+
+
+def test_usage_and_readme_name_every_command_and_no_count():
+    """docs/usage.md names every subcommand and states no count of them (it said "seven"
+    beside nine); the README's command block has a line for each."""
+    import re
+
+    from conftest import ROOT
+    usage = (ROOT / "docs" / "usage.md").read_text()
+    readme = (ROOT / "README.md").read_text()
+    for command in COMMANDS:
+        assert f"`{command}`" in usage, command
+        assert re.search(rf"^vines {command} ", readme, re.M), command
+    numbers = "two|three|four|five|six|seven|eight|nine|ten|eleven|twelve|[0-9]+"
+    assert not re.search(rf"\b({numbers}) (sub)?commands\b", usage + readme)
+
+
+def test_continue_text_has_no_nested_brackets():
+    """The reason a branch ended may hold brackets itself ("admissibility lost for good
+    (1000 points)"): the header gives it after "ended:", not inside brackets."""
+    from vines.cli.continue_ import _text
+    d = {"param": "F", "family": "symmetric", "events": [], "switched": [], "branch": [],
+         "stopped": "admissibility lost for good (1000 points)"}
+    head = _text(d, {"start": 0.3, "stop": 0.01}).splitlines()[0]
+    assert head.endswith("0 points; ended: admissibility lost for good (1000 points)"), head
+
+
+def test_attractors_text_names_where_states_escape():
+    """``escape_to`` (JSON: attractor index -> count) reads as text, not as a raw dict."""
+    from vines.cli.attractors import _text
+    from vines.core.params import ModelParams
+    a0 = {"regime": "1:1", "basin_fraction": 0.98, "ci": [0.95, 0.99], "ke_ratio": 0.79,
+          "xmax_m": 0.002, "status": "persistent", "basin_fraction_asymptotic": 1.0,
+          "ci_asymptotic": [0.98, 1.0], "lifetime": None, "escape_to": {}}
+    a1 = dict(a0, regime="chatter", status="transient", basin_fraction_asymptotic=0.0,
+              lifetime={"mean": 3220.0, "ci": [1380.0, 9900.0]}, escape_to={"0": 36})
+    d = {"attractors": [a0, a1], "n": 256, "unsettled_fraction": 0.0, "from_rest": 0,
+         "t_max": 1e5, "from_rest_asymptotic": 0}
+    text = _text(d, ModelParams(eta=0.13, omega=1.0, F=0.1))
+    assert "{" not in text and "'" not in text, text
+    assert "states escaped: 36 to attractor 0 (1:1)" in text
+    assert "mean lifetime 3.22e+03 [1.38e+03, 9.9e+03] time units" in text
+    assert text.endswith("from rest at t_max: attractor 0 (1:1)")

@@ -1,10 +1,15 @@
 """Named constants and small helpers of the event-driven kernel (vines.core.kernel)."""
 import math
+import os
+import subprocess
+import sys
 
 import numpy as np
+import pytest
+from conftest import ROOT, SRC
 
 from vines.core import kernel as k
-from vines.core.exact import kernel_params, oscillators
+from vines.core.exact import kernel_params, oscillators, run_exact
 from vines.core.params import V_STICK_DEFAULT, ModelParams, SolverSettings
 
 
@@ -116,3 +121,64 @@ def test_interval_max_matches_a_dense_search():
             # measured 8.9e-16, 1e-14 is 90 u (u = 2^-53)
             assert abs(got - ref) <= 1e-14 * (1 + ref)
             assert k._interval_max(*ends, ref + 1e-3, np.empty(k.N_STACK)) == ref + 1e-3
+
+
+@pytest.mark.parametrize("state0,wall", [((0.0, 0.0, -1.0, -0.2), 1), ((1.0, 0.2, 0.0, 0.0), 1),
+                                         ((0.0, 0.0, 1.0, 0.2), -1)])
+def test_first_contact_from_a_wall_moving_into_it_is_an_impact_at_zero(state0, wall):
+    """The start state of ``test_start_on_a_wall_moving_into_it_is_an_impact_at_t0``
+    (test_exact.py) given to first_contact: no step is possible there; it returned
+    (0, nan, nan, nan) (the no-step exit) and now answers as run_kernel, an impact at s = 0."""
+    osc_f, _ = oscillators(ModelParams(eta=0.1, omega=1.0, F=0.0))
+    got = k.first_contact(osc_f, state0, (0.0, 1.0), 10.0, 1e-13)
+    assert got == (wall, 0.0, state0[0], state0[1])
+
+
+def test_first_contact_that_cannot_finish_says_so_with_numbers():
+    """Steps that neither meet a wall nor reach s_max (here MAX_STEPS_PER_SEGMENT steps of at
+    most 1/rate cannot cover s_max = 1e6: a flight far from both walls) end with
+    CONTACT_STALLED and the point reached, not NaN."""
+    osc_f, _ = oscillators(ModelParams(eta=0.05, omega=3.0, F=0.001))
+    wall, s, z, v = k.first_contact(osc_f, (0.0, 0.0, 0.0, 0.0), (0.0, 1.0), 1e6, 1e-13)
+    assert wall == k.CONTACT_STALLED and 0.0 < s < 1e6
+    assert math.isfinite(z) and math.isfinite(v) and abs(z) < 0.01
+
+
+@pytest.mark.parametrize("t_transient", [0.0, 1e5])
+def test_a_flight_longer_than_the_step_limit_is_no_stall(t_transient):
+    """A run without impacts whose first flight needs more than MAX_STEPS_PER_SEGMENT steps
+    (omega = 3, F = 0.001: the LO's amplitude ~1e-4 L never reaches a wall; steps <= 1/3)
+    "stalled at t = 0" (the segment's start) without the periodic shortcut: the
+    reconstructed stall of issue 52. The long segment is now cut into pieces; in a window
+    after the transient (e^(-d t / 2) ~ e^-600) the amplitude and the mean of z_m'^2 are
+    the linear steady state's."""
+    p = ModelParams(eta=0.05, omega=3.0, F=0.001)
+    st = SolverSettings(t_end=3e5, t_transient=t_transient)
+    raw = run_exact(p, st)
+    assert raw.status == "ok" and raw.n_impacts == 0 and raw.t_last == 3e5
+    if t_transient == 0.0:
+        return
+    # steady state of z'' + d z' + z = F sin(theta) + d omega F cos(theta) (core.flow):
+    # z = X sin(theta - psi), X = F |1 + i d omega| / |1 - omega^2 + i d omega|
+    X = p.F * abs(1.0 + 1j * p.d * p.omega) / abs(1.0 - p.omega**2 + 1j * p.d * p.omega)
+    assert raw.xmax_window == pytest.approx(X, rel=1e-9)
+    mean_v2 = raw.int_vm2 / (st.t_end - st.t_transient)     # (omega X)^2 / 2, to 1/(omega T)
+    assert mean_v2 == pytest.approx(0.5 * (p.omega * X) ** 2, rel=1e-5)
+
+
+def test_a_kernel_test_runs_in_pure_python_with_numba_disabled():
+    """``NUMBA_DISABLE_JIT=1`` (how a user steps through a kernel in a debugger): vines'
+    ``njit`` gives back the plain functions and a kernel test passes in pure Python (a
+    grazing contact found by the exact stepping, ~2 s)."""
+    env = {**os.environ, "NUMBA_DISABLE_JIT": "1",
+           "PYTHONPATH": os.pathsep.join([str(SRC), os.environ.get("PYTHONPATH", "")])}
+    test = "tests/test_exact.py::test_grazing_impact_is_not_missed"
+    r = subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider",
+                        test, "-c", str(ROOT / "pyproject.toml")],
+                       capture_output=True, text=True, env=env, cwd=ROOT, timeout=300)
+    assert r.returncode == 0 and "1 passed" in r.stdout, r.stdout + r.stderr
+    probe = ("import vines.core.kernel as k; import numba; "
+             "print(numba.config.DISABLE_JIT, type(k.first_contact).__name__)")
+    r = subprocess.run([sys.executable, "-c", probe], capture_output=True, text=True,
+                       env=env, cwd=ROOT, timeout=120)
+    assert r.stdout.split() == ["1", "function"], r.stdout + r.stderr

@@ -64,6 +64,24 @@ def test_junk_and_extremes_give_a_result_or_a_parameter_error(name):
     fuzz()
 
 
+#: cases whose every pass takes over ~10 s (design: arguments it ignores, such as n_eta
+#: beside a given eta, accept any value and each such call runs the whole design)
+SLOW_PASS = {"design"}
+
+
+@pytest.mark.parametrize("name", [pytest.param(n, marks=pytest.mark.slow) if n in SLOW_PASS
+                                  else n for n in sorted(CASES)])
+def test_every_junk_value_alone_in_every_argument(name):
+    """Each junk value in each argument, one at a time, the others valid. The drawn examples
+    above visit a few of these pairs only (40 of ~400 for a case, one or two arguments
+    replaced): ``continue_branch(param=None)`` escaped as a KeyError because no draw
+    happened to put None in ``param``; this pass visits every pair (~10 s in all)."""
+    fn, base, _bounded = CASES[name]
+    for arg in _arguments(fn, base):
+        for value in JUNK:
+            _check_call(fn, {**base, arg: value})
+
+
 @pytest.mark.parametrize("call, name", [
     (lambda: vines.simulate_batch(eta="", omega=1.0, F=0.05), "eta"),
     (lambda: vines.simulate_batch(eta=[0.1, 0.2], omega=[1.0, 1.1, 1.2], F=0.05), "omega"),
@@ -77,6 +95,7 @@ def test_junk_and_extremes_give_a_result_or_a_parameter_error(name):
      "simulation"),
     (lambda: CASES["find_sequence"][0]({"eta": 0.1}, "LR"), "params"),
     (lambda: CASES["continue_branch"][0]("F", 0.1, 0.09, fixed=0.5), "fixed"),
+    (lambda: CASES["continue_branch"][0](param=None, start=0.0, stop=0.0), "param"),
     (lambda: CASES["continue_branch"][0]("F", 0.1, 0.09, fixed={"eta": 0.2, "omega": 1.0},
                                          orbit="abc"), "orbit"),
     (lambda: CASES["robust_point"][0](0.05, 1.0, 0.05, threshold="x"), "threshold"),

@@ -74,14 +74,22 @@ def _text(d: dict, params: ModelParams) -> str:
         rest = "  <- from rest" if i == d["from_rest"] else ""
         lines.append(f"  {i}: {a['regime']:10s} basin {a['basin_fraction']:.3f} "
                      f"[{a['ci'][0]:.3f}, {a['ci'][1]:.3f}]  KE ratio {a['ke_ratio']:.4f}"
-                     f"  x_max {1e3 * a['xmax_m']:.4g} mm{rest}{_asymptotic_text(a)}")
+                     f"  x_max {1e3 * a['xmax_m']:.4g} mm{rest}"
+                     f"{_asymptotic_text(a, d['attractors'])}")
     if d.get("t_max") is not None:
         lines.append(f"asymptotic view to t = {d['t_max']:g}; from rest at t_max: "
-                     f"{d['from_rest_asymptotic']}")
+                     f"{_attractor_name(d['from_rest_asymptotic'], d['attractors'])}")
     return "\n".join(lines)
 
 
-def _asymptotic_text(a: dict) -> str:
+def _attractor_name(index, attractors: list) -> str:
+    """'attractor 0 (1:1)' for an index into ``attractors``; 'none' for None."""
+    if index is None:
+        return "none"
+    return f"attractor {index} ({attractors[int(index)]['regime']})"
+
+
+def _asymptotic_text(a: dict, attractors: list) -> str:
     """The asymptotic columns of one attractor (empty without --t-max)."""
     if "status" not in a:
         return ""
@@ -94,9 +102,11 @@ def _asymptotic_text(a: dict) -> str:
     life = a.get("lifetime")
     if life:
         g = _fmt
-        out += f", lifetime {g(life['mean'])} [{g(life['ci'][0])}, {g(life['ci'][1])}]"
+        out += (f", mean lifetime {g(life['mean'])} [{g(life['ci'][0])}, "
+                f"{g(life['ci'][1])}] time units")
     if a.get("escape_to"):
-        out += f", escapes to {a['escape_to']}"
+        went = [f"{n} to {_attractor_name(j, attractors)}" for j, n in a["escape_to"].items()]
+        out += f"; states escaped: {', '.join(went)}"
     return out
 
 

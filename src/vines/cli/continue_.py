@@ -212,8 +212,8 @@ def _text(d: dict, values: dict, indent: str = "", every: bool = False) -> str:
                 f"{'up' if last >= first else 'down'} to {last:.7g}")
     else:
         head = f"from {values['start']:g} towards {values['stop']:g}"
-    lines = [f"{indent}{name} branch in {param} {head}: {len(d['branch'])} points "
-             f"({d['stopped']})"]
+    lines = [f"{indent}{name} branch in {param} {head}: {len(d['branch'])} points; "
+             f"ended: {d['stopped']}"]
     pts = d["branch"] if every else _samples(d["branch"])
     if len(pts) < len(d["branch"]):
         lines.append(f"{indent}  {len(pts)} of the points (--all: every point, --json: "

@@ -74,6 +74,15 @@ def run_walls(args: argparse.Namespace) -> dict:
     return periodic_json([o.to_dict() for o in orbits], walls, periods, params.as_dict())
 
 
+#: what the columns of the text output are (dimensionless, docs/model.md)
+LEGEND_1TO1 = ("  dw_L, dw_R: relative velocity z_m' - z_b' just before the impact at L, at R; "
+               "phase_L: forcing phase omega t + phi (mod 2 pi, rad) at the L impact; flights: "
+               "L -> R and R -> L; |lambda_max|: largest Floquet multiplier (< 1: stable)")
+IMPACT_LEGEND = ("  dw: relative velocity z_m' - z_b' just before each impact; phases: forcing "
+                 "phase omega t + phi (mod 2 pi, rad) at each; |lambda_max|: largest Floquet "
+                 "multiplier (< 1: stable)")
+
+
 def _text(d: dict) -> str:
     p, sols = d["params"], d["solutions"]
     lines = [f"eta = {p['eta']:g}, omega = {p['omega']:g}, F = {p['F']:g}: "
@@ -86,6 +95,8 @@ def _text(d: dict) -> str:
                      f"dw_L = {s['dw'][0]:.6g}  dw_R = {s['dw'][1]:.6g}  "
                      f"phase_L = {s['phases'][0]:.6g}  flights = "
                      f"{s['flight_times'][0]:.6g}, {s['flight_times'][1]:.6g}")
+    if sols:
+        lines.append(LEGEND_1TO1)
     return "\n".join(lines)
 
 
@@ -103,4 +114,6 @@ def text_walls(d: dict) -> str:
         ph = ", ".join(f"{v:.4g}" for v in s["phases"])
         lines.append(f"  {sym:10s} {adm:14s} {st:8s} |lambda_max| = {s['lambda_max']:.6g}  "
                      f"dw = [{dw}]  phases = [{ph}]")
+    if sols:
+        lines.append(IMPACT_LEGEND)
     return "\n".join(lines)

@@ -96,6 +96,12 @@ def _orbit(o: dict) -> str:
             f"({o['branch']} branch of the SIM)")
 
 
+#: what the numbers of the text output are (lengths in units of L, docs/slowflow.md)
+LEGEND = ("  rho = (2/pi)(1 - r)/(1 + r): the impact loss of the slow invariant manifold (SIM); "
+          "xi_min: the LO amplitude below which no two-impact motion exists (its fold); "
+          "amplitude: max |z_m|, ball: max |z_b|, phase: forcing phase at the L impact")
+
+
 def text(d: dict) -> str:
     """A reader's summary."""
     lines = [f"slow flow: rho {d['rho']:.6g}, xi_min {d['xi_min']:.6g} (fold), "
@@ -118,4 +124,5 @@ def text(d: dict) -> str:
             lines.append(f"  SMR: LO amplitude from {d['smr']['amplitude_low']:.4g} to "
                          f"{d['smr']['amplitude_high']:.4g}")
     lines += [f"  warning: {w}" for w in d["warnings"]]
+    lines.append(LEGEND)
     return "\n".join(lines)

@@ -38,7 +38,10 @@ def oscillators(p: ModelParams) -> tuple[np.ndarray, np.ndarray]:
 
 class Trajectory:
     """Dense evaluation of a recorded trajectory (piecewise closed form); ``osc``: the
-    run's ``oscillators(params)`` when at hand (else computed)."""
+    run's ``oscillators(params)`` when at hand (else computed). A time equal to a segment
+    start (an impact, stick or release: the kernel starts the next segment at exactly the
+    recorded event time) is evaluated on the last segment starting there: the state after
+    the event."""
 
     def __init__(self, params: ModelParams, segments: np.ndarray, t_last: float,
                  osc: Oscillators | None = None):

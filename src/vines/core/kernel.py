@@ -120,10 +120,13 @@ N_SEC = S_STACK + N_STACK
 MODE_FREE = 0
 # How a segment ends (internal to run_kernel): at s_stop (t_transient or t_end), at an
 # impact, at a release from sticking, when the ball is found pressed on a wall with zero
-# relative velocity (it sticks), or stalled (step limit, or a step below ulp(s)).
+# relative velocity (it sticks), or stalled (a step below ulp(s), or the step limit
+# reached with steps far below 1/rate: ``LONG_SEGMENT_STEP``).
 EV_STOP, EV_IMPACT, EV_RELEASE, EV_STICK, EV_STALLED, EV_PAUSE = range(1, 7)
-# first_contact returns CONTACT_PRESSED * wall when the ball starts pressed on that wall.
+# first_contact returns CONTACT_PRESSED * wall when the ball starts pressed on that wall,
+# CONTACT_STALLED when its steps did not reach a contact nor s_max (``first_contact``).
 CONTACT_PRESSED = 2
+CONTACT_STALLED = 3
 # Slots of the state vector ``cur`` of run_kernel.
 CUR_T, CUR_ZM, CUR_VM, CUR_ZB, CUR_VB, CUR_MODE, CUR_RELEASED = range(7)
 
@@ -143,6 +146,11 @@ KernelParams = namedtuple("KernelParams", "osc_f osc_s eta r omega phi t_end t_t
 Segment = namedtuple("Segment", "mode released in_window t0 zm0 vm0 zb0 vb0 sth0 cth0")
 
 MAX_STEPS_PER_SEGMENT = 200_000
+# A segment that takes MAX_STEPS_PER_SEGMENT steps without an event while its mean step is at
+# least h_cap / LONG_SEGMENT_STEP (a long flight that never reaches a wall: 200000 steps
+# cover only ~67000 time units at omega = 3) ends there, and the next segment goes on from
+# that point (EV_STOP); one whose steps shrank below that is stalled
+LONG_SEGMENT_STEP = 100.0
 # evaluations of the step rule per step (``free_step_local``; odd: ends on a safe step)
 N_STEP_ITER = 3
 ROUNDOFF = 8.0 * 2.220446049250313e-16   # a few ulps: contact/release at this gap is exact
@@ -462,9 +470,12 @@ def first_contact(osc, x0, phase0, s_max, root_tol):
 
     x0 = (z_m, z_m', z_b, z_b') at s = 0, phase0 = (sin, cos) of the forcing phase there.
     Same rule as the trajectory kernel. Returns (wall, s, z_m, z_m'): wall = WALL_L (+1) or
-    WALL_R (-1) for an impact, 0 when no contact happens before s_max (then s = s_max), and
+    WALL_R (-1) for an impact, 0 when no contact happens before s_max (then s = s_max),
     CONTACT_PRESSED * wall (+2/-2) when the ball starts pressed on that wall with zero
-    relative velocity.
+    relative velocity, and CONTACT_STALLED (3) with the point reached when the steps
+    neither met a wall nor reached s_max (MAX_STEPS_PER_SEGMENT steps, or a step below
+    ulp(s)): s, z_m, z_m' are always numbers, never NaN. A start on a wall moving into it
+    (no step is possible) is an impact at s = 0, as in ``run_kernel``.
     """
     zm0, vm0, zb0, vb0 = x0
     sth0, cth0 = phase0
@@ -482,8 +493,14 @@ def first_contact(osc, x0, phase0, s_max, root_tol):
         if s + h >= s_max:
             z, v, a, j, b1 = flow(osc, zm0, vm0, sth0, cth0, s_max)
             return 0, s_max, z, v
-        if h <= 0.0:
-            break
+        if s + h <= s:   # no step at all: on a wall, approaching it (at s = 0: a start
+            wall, gap, closing = free_contact(  # state there): an impact now, as run_kernel
+                osc, (s, z, v, a, j, b1), (zb0 + vb0 * s, vb0), B2, root_tol, parts)
+            if wall == 0:
+                return CONTACT_STALLED, s, z, v
+            s = s + gap / closing
+            z, v, a, j, b1 = flow(osc, zm0, vm0, sth0, cth0, s)
+            return wall, s, z, v
         s = s + h
         z, v, a, j, b1 = flow(osc, zm0, vm0, sth0, cth0, s)
         parts = part_bounds(osc, b1, s)
@@ -493,7 +510,7 @@ def first_contact(osc, x0, phase0, s_max, root_tol):
             s = s + gap / closing
             z, v, a, j, b1 = flow(osc, zm0, vm0, sth0, cth0, s)
             return wall, s, z, v
-    return 0, math.nan, math.nan, math.nan
+    return CONTACT_STALLED, s, z, v
 
 
 # ---------------------------------------------------------------- segment helpers
@@ -551,7 +568,8 @@ def _advance_segment(osc, sg, s_stop, root_tol, acc, step0, s_pause, stack):
     and the step count in ``acc``. Returns (event, wall, pt, gap, closing, step) with
     pt = (s, z, z', z'', z''', b1) the closed form at the local time s of the event:
     EV_STICK (pressed on ``wall``), EV_IMPACT (at ``wall``),
-    EV_RELEASE (gap, closing: for the final Newton step), EV_STOP (s = s_stop), EV_STALLED,
+    EV_RELEASE (gap, closing: for the final Newton step), EV_STOP (s = s_stop, or a long
+    segment cut after MAX_STEPS_PER_SEGMENT steps: ``LONG_SEGMENT_STEP``), EV_STALLED,
     and the index of the step that would come next (last item).
     Pauses: before a step from s >= s_pause it returns EV_PAUSE; the caller stores s and
     the closed form there in acc[A_SEG_S:A_SEG_B1 + 1], and calling again with step0 = the
@@ -627,7 +645,10 @@ def _advance_segment(osc, sg, s_stop, root_tol, acc, step0, s_pause, stack):
                 return EV_RELEASE, 0, (s, z, v, a, j, b1), max(gap, 0.0), closing, steps
         if forced:
             return EV_STOP, 0, (s, z, v, a, j, b1), gap, closing, steps
-    return EV_STALLED, 0, (s, z, v, a, j, b1), gap, closing, MAX_STEPS_PER_SEGMENT + 1
+    # MAX_STEPS_PER_SEGMENT steps and no event: a long segment is cut here, the next one
+    # starts from this point; one that hardly advanced is stalled
+    event = EV_STOP if s * LONG_SEGMENT_STEP >= MAX_STEPS_PER_SEGMENT * h_cap else EV_STALLED
+    return event, 0, (s, z, v, a, j, b1), gap, closing, MAX_STEPS_PER_SEGMENT + 1
 
 
 @njit(cache=True, nogil=True, inline="always")

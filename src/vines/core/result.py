@@ -31,7 +31,8 @@ class RawRun:
     xmax_whole_run     max |z_m| over [0, t_end]
     t_stuck_window     time spent stuck inside the window; t_stuck_total over the run
     t_last             time reached (t_end unless status != "ok")
-    state_at           callable: array of times -> array (4, n) of (z_m, z_m', z_b, z_b')
+    state_at           callable: array of times -> array (4, n) of (z_m, z_m', z_b, z_b');
+                       at an event instant the state after it (post-impact)
     shortcut_time      time t_s from which the run was completed from one period of a
                        settled periodic orbit (``vines.core.shortcut``); NaN: integrated
                        to the end. shortcut_period: that period in forcing periods (0: none)
@@ -130,7 +131,13 @@ class SimulationResult:
         return self.impacts["v_m"] - self.impacts["v_b"]
 
     def state_at(self, t) -> np.ndarray:
-        """State (z_m, z_m', z_b, z_b') at absolute times ``t``: array of shape (4, n)."""
+        """State (z_m, z_m', z_b, z_b') at absolute times ``t``: array of shape (4, n).
+
+        At an event instant (a time of ``impacts["t"]``, a stick or release) the state is
+        the one *after* every event at that instant: post-impact velocities (or the common
+        velocity when the ball sticks there); any earlier time, even by one ulp, is on the
+        flight before it (the pre-impact velocities are those of ``impacts``). Both solvers,
+        and the records repeated after a periodic shortcut, follow this convention."""
         t = np.atleast_1d(np.asarray(t, dtype=float))
         if np.any(t < 0.0) or np.any(t > self.t_last):
             raise ValueError(f"times must lie in [0, {self.t_last:g}]")

@@ -29,6 +29,7 @@ class ImpactTally:
         self._run = 0
         self.n_span_L = 0          # impacts on wall L (+1) and R (-1) over the span
         self.n_span_R = 0
+        self.t_last = -math.inf    # time of the last impact added (blocks come in time order)
 
     @classmethod
     def for_window(cls, t_transient: float, strobe_t: np.ndarray) -> ImpactTally:
@@ -38,8 +39,12 @@ class ImpactTally:
 
     def add(self, t: np.ndarray, wall: np.ndarray) -> None:
         """Add a block of impacts (times t in time order, walls +-1), later than every block
-        before. The window and the span are slices of the block, found by one binary search
-        (a short run's measures cost mostly numpy calls: no masks)."""
+        before (equal times allowed); a block out of order raises ValueError (the counts of
+        runs and slices need the order). The window and the span are slices of the block,
+        found by one binary search (a short run's measures cost mostly numpy calls: no
+        masks)."""
+        if t.size:
+            self._check_order(t)
         i0, lo, hi = t.searchsorted((self.t_transient, self.lo, self.hi))
         wall = wall[i0:]
         if wall.size == 0:
@@ -54,3 +59,16 @@ class ImpactTally:
         span = wall[max(lo - i0, 0):max(hi - i0, 0)]       # lo <= t < hi
         self.n_span_L += int(np.count_nonzero(span > 0))
         self.n_span_R += int(np.count_nonzero(span < 0))
+
+    def _check_order(self, t: np.ndarray) -> None:
+        """ValueError unless t is non-decreasing and starts at or after ``t_last``; then
+        t_last = t[-1]. One comparison of neighbours: ~3 us a block of 1000 impacts (a
+        tenth of ``add``, which runs once a block, not once an impact)."""
+        if not t[0] >= self.t_last:
+            raise ValueError(f"impacts out of time order: a block starts at t = {float(t[0])!r}, "
+                             f"before the last impact added (t = {self.t_last!r})")
+        if t.size > 1 and not (t[1:] >= t[:-1]).all():
+            k = int(np.argmin(t[1:] >= t[:-1]))
+            raise ValueError(f"impacts out of time order within a block: t = {float(t[k + 1])!r} "
+                             f"after t = {float(t[k])!r}")
+        self.t_last = float(t[-1])

@@ -6,12 +6,14 @@ from __future__ import annotations
 
 import numpy as np
 import xarray as xr
+from matplotlib import patheffects
+from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
 from . import palette
 from .bifurcation import curve_handles, draw_curves
 from .checks import FigureInputError, fixed_value, load, require
-from .draw import LABELS, class_map, figure, fmt, hatch_cells, panel_label
+from .draw import LABELS, class_map, figure, fmt, panel_label
 
 #: category codes of the atlas map: 0 nothing found, 1 found but none stable, else 2 + the
 #: index of the group in palette.FAMILY_GROUPS
@@ -147,15 +149,31 @@ def _atlas_panel(ax, ds, k, curves):
     eta, W = ds["eta"].values, ds["omega"].values
     codes, coexist = atlas_codes(ds)
     class_map(ax, eta, W, codes.T, atlas_classes())
-    hatch_cells(ax, eta, W, coexist.T, hatch="xx", color="0.5")
+    _mark_coexistence(ax, eta, W, coexist)
     _axes(ax, eta, W)
     drawn = set()
     for c in curves:
-        drawn |= draw_curves(ax, c)
+        drawn |= draw_curves(ax, c, lw=CURVE_LW)
     families = sorted({fam for _, fam in drawn})
     panel_label(ax, k, rf"orbit atlas, $F$ = {fmt(float(ds.attrs['F']))}"
                 + (f"; boundaries of {', '.join(families)}" if families else ""))
     return codes, drawn
+
+
+#: width of the boundary curves on the atlas (over the class colours: wider than elsewhere)
+CURVE_LW = 2.2
+#: the mark of a point where >= 2 family groups are stable: white on a black outline, seen
+#: on every class colour (a hatch in one colour vanished on the dark ones)
+COEXIST_MARK = dict(marker="x", ls="none", color="white", ms=4.5, mew=1.3,
+                    path_effects=[patheffects.Stroke(linewidth=3.0, foreground="black"),
+                                  patheffects.Normal()])
+
+
+def _mark_coexistence(ax, eta, W, coexist):
+    """A mark at every grid point of the atlas where >= 2 family groups are stable."""
+    i, j = np.nonzero(coexist)
+    if i.size:
+        ax.plot(eta[i], W[j], **COEXIST_MARK)
 
 
 def _sim_panel(ax, grid, k):
@@ -189,14 +207,30 @@ def _report(ds, grid, regime):
 
 
 def _legend(fig, drawn_atlas, drawn_sim, any_coexist, drawn_curves):
-    """One legend of what the panels draw, in their colours."""
-    handles = [Patch(facecolor=col, edgecolor="black", lw=0.5, label=lab)
-               for lab, col in legend_entries(drawn_atlas, drawn_sim)]
-    if any_coexist:
-        handles.append(Patch(facecolor="white", edgecolor="0.5", hatch="xx",
-                             label="atlas: >= 2 groups stable"))
-    handles += curve_handles(drawn_curves, note=False)
-    fig.legend(handles=handles, loc="outside lower center", ncol=3, fontsize=7, frameon=False)
+    """One legend of what the panels draw, in their colours, in three titled columns:
+    the periodic families (both panels), what only one panel draws, the atlas's marks and
+    curves."""
+    entries = legend_entries(drawn_atlas, drawn_sim)
+    families = [Patch(facecolor=col, edgecolor="black", lw=0.5, label=lab)
+                for lab, col in entries if not lab.startswith(("atlas:", "simulation:"))]
+    one_panel = [Patch(facecolor=col, edgecolor="black", lw=0.5, label=lab)
+                 for lab, col in entries if lab.startswith(("atlas:", "simulation:"))]
+    marks = [Line2D([], [], label="atlas: >= 2 family groups stable", **COEXIST_MARK)
+             ] if any_coexist else []
+    marks += curve_handles(drawn_curves, note=False)
+    columns = [("periodic family (both panels)", families),
+               ("one panel only", one_panel), ("atlas: marks and curves", marks)]
+    columns = [(title, hs) for title, hs in columns if hs]
+    rows = max(len(hs) for _, hs in columns) + 1
+    handles = []
+    for title, hs in columns:      # column-major: each column a title, its entries, blanks
+        blank = [Patch(visible=False, label="")] * (rows - 1 - len(hs))
+        handles += [Patch(visible=False, label=title), *hs, *blank]
+    leg = fig.legend(handles=handles, loc="outside lower center", ncol=len(columns),
+                     fontsize=7, frameon=False)
+    for text, h in zip(leg.get_texts(), handles, strict=True):
+        if not h.get_visible() and text.get_text():
+            text.set_fontweight("bold")
 
 
 def atlas_figure(atlases, grids: dict, curves):

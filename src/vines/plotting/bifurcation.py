@@ -240,16 +240,19 @@ def boundaries(path) -> xr.Dataset:
     return ds
 
 
-def draw_curves(ax, ds: xr.Dataset) -> set:
+def draw_curves(ax, ds: xr.Dataset, lw: float = 1.2) -> set:
     """Draw every curve of ``ds`` on ``ax`` (axis limits kept): colour by curve type, line
-    style by family; returns the (type, family) pairs drawn."""
+    style by family, width ``lw`` (a white halo around it); returns the (type, family)
+    pairs drawn."""
     xlim, ylim = ax.get_xlim(), ax.get_ylim()
     etas, omegas = ragged_rows(ds, "eta"), ragged_rows(ds, "omega")
     kinds = list(zip(ds["curve_type"].values.tolist(), ds["family"].values.tolist(),
                      strict=True))
     for (typ, fam), e, w in zip(kinds, etas, omegas, strict=False):
         ax.plot(e, w, color=CURVE_COLOURS[typ], ls=FAMILY_STYLES.get(fam, OTHER_FAMILY_STYLE),
-                lw=1.2, path_effects=HALO)
+                lw=lw, path_effects=HALO if lw <= 1.2 else
+                [patheffects.Stroke(linewidth=lw + 1.6, foreground="white"),
+                 patheffects.Normal()])
     ax.set_xlim(xlim)
     ax.set_ylim(ylim)
     return set(kinds)

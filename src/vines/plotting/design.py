@@ -165,7 +165,7 @@ def _drift_panel(ax, ds, k):
             label=r"VI NES designed at $\delta$ = 0, from rest")
     if "vines_any_attractor" in ds:
         ax.plot(x, ds["vines_any_attractor"].values, ":", color=C_VINES, lw=1.4,
-                label="same, over attractors")
+                label=r"VI NES designed at $\delta$ = 0, worst of its attractors (census)")
     ax.plot(xr, ds["robust_vines"].values, "s--", color=C_VINES, ms=3, lw=1.4,
             label="VI NES optimised for the drift, from rest")
     ax.set_yscale("log")
@@ -173,15 +173,23 @@ def _drift_panel(ax, ds, k):
     ax.set_xlabel(r"host frequency drift $\delta$ (natural frequency $(1+\delta)\,\omega_0$)")
     ax.set_ylabel(r"worst $x_{\max}/A$ over band and amplitudes")
     ax.grid(True, which="both", lw=0.3, alpha=0.5)
-    panel_label(ax, k, _drift_designs(ds))
+    title = _drift_designs(ds)
+    if k is None:                 # the only panel: no letter
+        ax.set_title(title, loc="left", fontsize=9)
+    else:
+        panel_label(ax, k, title)
 
 
 def _drift_designs(ds) -> str:
+    """The designs at delta = 0 and those optimised for the drift, in the axes' symbols."""
     def v(name):
         return float(ds[name])
-    return (f"TMD f {v('tmd_frequency_ratio'):.3f} -> {v('robust_tmd_frequency_ratio'):.3f}; "
-            f"VI NES eta {v('vines_eta'):.3g}, L {1e3 * v('vines_clearance'):.3g} mm -> "
-            f"eta {v('robust_vines_eta'):.3g}, L {1e3 * v('robust_vines_clearance'):.3g} mm")
+    arrow = r"$\rightarrow$"
+    return (rf"at $\delta$ = 0 {arrow} for the drift: TMD "
+            rf"$f$ {v('tmd_frequency_ratio'):.3f} {arrow} {v('robust_tmd_frequency_ratio'):.3f}; "
+            rf"VI NES $\eta$ {v('vines_eta'):.3g}, $L$ {1e3 * v('vines_clearance'):.3g} mm "
+            rf"{arrow} $\eta$ {v('robust_vines_eta'):.3g}, "
+            rf"$L$ {1e3 * v('robust_vines_clearance'):.3g} mm")
 
 
 def robust_summary(ds) -> str:
@@ -198,7 +206,7 @@ def robust_figure(entries):
     chosen at delta = 0 (solid) and those optimised for the drift (dashed)."""
     fig, axes = figure(len(entries), 1, width=8.0, height=4.6 * len(entries))
     for i, ds in enumerate(entries):
-        _drift_panel(axes[i, 0], ds, i)
+        _drift_panel(axes[i, 0], ds, i if len(entries) > 1 else None)
     summary_and_legend(fig, [robust_summary(ds) for ds in entries], axes[0, 0], ncol=3)
     return fig
 
@@ -283,21 +291,74 @@ def _regime_panel(ax, ds, k):
 
 
 def uncertainty_summary(ds) -> str:
-    return (f"VI NES eta {float(ds['vines_eta']):.3g}, L "
-            f"{float(ds['vines_clearance']) * 1e3:.3g} mm: worst x_max/A mean "
+    """Two lines: the designs' mean worst ratio (exact parts), then how often the VI NES
+    wins and is in its efficient regime."""
+    return (rf"VI NES ($\eta$ {float(ds['vines_eta']):.3g}, $L$ "
+            f"{float(ds['vines_clearance']) * 1e3:.3g} mm): mean worst $x_{{\max}}/A$ "
             f"{float(ds['vines_mean']):.3g} (exact parts {float(ds['vines_nominal']):.3g}); "
-            f"TMD {float(ds['tmd_mean']):.3g} ({float(ds['tmd_nominal']):.3g}); VI NES "
-            f"better at {float(ds['vines_better_probability']):.0%} of the points; "
-            f"1:1 at the worst point {float(ds['efficient_probability']):.0%}")
+            f"TMD {float(ds['tmd_mean']):.3g} ({float(ds['tmd_nominal']):.3g})\n"
+            f"VI NES better at {float(ds['vines_better_probability']):.0%} of the points, "
+            f"in 1:1 at its worst point at {float(ds['efficient_probability']):.0%}")
+
+
+def _distribution_spec(ds, name: str) -> tuple[str, float, float] | None:
+    """(kind, a, b) of the attribute ``distribution_<name>`` ("uniform:a:b (...)",
+    "normal:mean:sd (...)"); None when absent or of another form."""
+    spec = str(ds.attrs.get(f"distribution_{name}", "")).split(" ")[0].split(":")
+    try:
+        return spec[0], float(spec[1]), float(spec[2])
+    except (IndexError, ValueError):
+        return None
+
+
+def _inputs_panel(ax, ds, k):
+    """The uncertain parts: for each, its distribution's density (line, from the dataset's
+    ``distribution_<name>`` attribute) over the histogram of the Sobol points' values, one
+    inset a part (each on its own scale)."""
+    names = [str(n) for n in ds["parameter"].values]
+    ax.set_axis_off()
+    panel_label(ax, k, "uncertain parts: density and sampled points")
+    ax.set_title(ax.get_title(loc="left"), loc="left", fontsize=9)
+    n = len(names)
+    for i, name in enumerate(names):
+        sub = ax.inset_axes([0.08, 1.0 - (i + 1) / n + 0.16 / n, 0.88, 0.62 / n])
+        vals = ds["value"].sel(parameter=name).values
+        spec = _distribution_spec(ds, name)
+        lo, hi = float(vals.min()), float(vals.max())
+        if spec is not None and spec[0] == "uniform":
+            lo, hi = spec[1], spec[2]
+        elif spec is not None and spec[0] == "normal":
+            lo, hi = spec[1] - 3 * spec[2], spec[1] + 3 * spec[2]
+        if not hi > lo:                   # a part held at one value: a line there
+            sub.axvline(lo, color="black", lw=1.2, label="density (one value)")
+            sub.set_xlim(lo - 0.5 * abs(lo) - 1e-3, lo + 0.5 * abs(lo) + 1e-3)
+            spec, lo, hi = None, lo - 1e-9 * (1 + abs(lo)), hi + 1e-9 * (1 + abs(hi))
+        sub.hist(vals, bins=np.linspace(lo, hi, 11), density=True, color="0.8",
+                 edgecolor="0.4", lw=0.5, label="Sobol points")
+        if spec is not None and spec[0] == "uniform":
+            sub.plot([lo, lo, hi, hi], [0, 1 / (hi - lo), 1 / (hi - lo), 0], color="black",
+                     lw=1.2, label="density")
+        elif spec is not None and spec[0] == "normal":
+            x = np.linspace(lo, hi, 200)
+            sub.plot(x, np.exp(-0.5 * ((x - spec[1]) / spec[2]) ** 2)
+                     / (spec[2] * np.sqrt(2 * np.pi)), color="black", lw=1.2, label="density")
+        what = str(ds.attrs.get(f"distribution_{name}", "")).partition(" ")[2].strip("()")
+        sub.set_xlabel(f"{name}" + (f" ({what})" if what else ""), fontsize=8, labelpad=1)
+        sub.tick_params(labelsize=7)
+        sub.set_yticks([])
+        if i == 0:
+            sub.legend(fontsize=7, frameon=False, loc="upper right")
 
 
 def uncertainty_figure(studies):
-    """Per study a row: the distribution of the worst ratio over the Sobol points, the
-    Sobol indices with their intervals, the VI NES's regime at its worst point."""
-    fig, axes = figure(len(studies), 3, width=15.0, height=4.4 * len(studies))
+    """Per study a row: the uncertain parts' distributions, the distribution of the worst
+    ratio over the Sobol points, the Sobol indices with their intervals, the VI NES's
+    regime at its worst point."""
+    fig, axes = figure(len(studies), 4, width=19.0, height=4.6 * len(studies))
     for i, ds in enumerate(studies):
-        _distribution_panel(axes[i, 0], ds, 3 * i)
-        _indices_panel(axes[i, 1], ds, 3 * i + 1)
-        _regime_panel(axes[i, 2], ds, 3 * i + 2)
+        _inputs_panel(axes[i, 0], ds, 4 * i)
+        _distribution_panel(axes[i, 1], ds, 4 * i + 1)
+        _indices_panel(axes[i, 2], ds, 4 * i + 2)
+        _regime_panel(axes[i, 3], ds, 4 * i + 3)
     summary_and_legend(fig, [uncertainty_summary(ds) for ds in studies])
     return fig

@@ -30,9 +30,11 @@ from ...core.params import (
     D_DEFAULT,
     MAX_INADMISSIBLE_DEFAULT,
     MAX_POINTS_DEFAULT,
+    PARAM_NAMES,
     R_DEFAULT,
     ModelParams,
     ParameterError,
+    check_choice,
 )
 from ...core.walls import WALL_L, WALL_R
 from ..family.family import MIRROR_MATRIX, ONE_TO_ONE
@@ -112,6 +114,7 @@ def continue_branch(param: str, start: float, stop: float, step: float | None = 
     (arclength, symmetric branch): also continue the asymmetric branch born at every
     symmetry-breaking point (``Branch.switched``).
     """
+    param = check_choice("param", param, PARAM_NAMES)   # required (None: settings unbound)
     cs = ContinuationSettings(param=param, start=start, stop=stop, step=step,
                               fixed=_check_fixed(fixed), min_step=min_step, event_tol=event_tol,
                               max_points=max_points, method=method, branch=branch,
