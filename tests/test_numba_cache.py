@@ -8,6 +8,7 @@ from vines._numba_cache import COMPILED_SUBPACKAGES, STAMP, refresh
 
 def _pkg(tmp_path):
     for rel, text in (("core/flow.py", "x = 1\n"), ("orbits/maps.py", "y = 2\n"),
+                      ("multimode/kernel.py", "k = 1\n"),
                       ("plotting/draw.py", "z = 3\n"), ("cli/common.py", "c = 4\n")):
         (tmp_path / rel).parent.mkdir(exist_ok=True)
         (tmp_path / rel).write_text(text)

@@ -27,7 +27,7 @@ from pathlib import Path
 
 STAMP = "numba-sources.sha256"
 #: subpackages with numba functions; those functions inline code and constants of these only
-COMPILED_SUBPACKAGES = ("core", "orbits")
+COMPILED_SUBPACKAGES = ("core", "orbits", "multimode")
 #: sources modified less than this long ago [ns] are hashed at every import until older
 RACY_NS = 2_000_000_000
 

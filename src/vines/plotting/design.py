@@ -294,7 +294,7 @@ def uncertainty_summary(ds) -> str:
     """Two lines: the designs' mean worst ratio (exact parts), then how often the VI NES
     wins and is in its efficient regime."""
     return (rf"VI NES ($\eta$ {float(ds['vines_eta']):.3g}, $L$ "
-            f"{float(ds['vines_clearance']) * 1e3:.3g} mm): mean worst $x_{{\max}}/A$ "
+            rf"{float(ds['vines_clearance']) * 1e3:.3g} mm): mean worst $x_{{\max}}/A$ "
             f"{float(ds['vines_mean']):.3g} (exact parts {float(ds['vines_nominal']):.3g}); "
             f"TMD {float(ds['tmd_mean']):.3g} ({float(ds['tmd_nominal']):.3g})\n"
             f"VI NES better at {float(ds['vines_better_probability']):.0%} of the points, "

@@ -24,6 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .. import progress as _progress
+from .shock_tmd import lo_system, tmd_system
 
 #: default window: natural periods of the LO
 N_PERIODS_DEFAULT = 10.0
@@ -218,30 +219,6 @@ def vines_decay(eta: float, r: float, d: float, v0: float, periods: float,
 
 
 # ----------------------------------------------------------------- linear systems
-
-def lo_system(d: float) -> tuple:
-    """(A, P, Q_damping, Q_absorber) of the LO alone, state (x, x'): x' = A x,
-    E = x^T P x / 2, dissipated powers x^T Q x."""
-    A = np.array([[0.0, 1.0], [-1.0, -d]])
-    Q = np.diag([0.0, d])
-    return A, np.eye(2), Q, np.zeros((2, 2))
-
-
-def tmd_system(d: float, mu: float, f: float, zeta: float) -> tuple:
-    """(A, P, Q_damping, Q_absorber) of the LO with a TMD (mass ratio mu, frequency ratio
-    f, damping ratio zeta), state (x, x', y, y') of absolute displacements, base at rest."""
-    k, c = mu * f * f, 2.0 * mu * zeta * f
-    A = np.array([[0.0, 1.0, 0.0, 0.0],
-                  [-1.0 - k, -d - c, k, c],
-                  [0.0, 0.0, 0.0, 1.0],
-                  [k / mu, c / mu, -k / mu, -c / mu]])
-    P = np.array([[1.0 + k, 0.0, -k, 0.0], [0.0, 1.0, 0.0, 0.0],
-                  [-k, 0.0, k, 0.0], [0.0, 0.0, 0.0, mu]])
-    Q_d = np.zeros((4, 4))
-    Q_d[1, 1] = d
-    u = np.array([0.0, -1.0, 0.0, 1.0])
-    return A, P, Q_d, c * np.outer(u, u)
-
 
 def _gramian(A, Q, t) -> tuple[np.ndarray, np.ndarray]:
     """(expm(A t), integral_0^t expm(A s)^T Q expm(A s) ds) by Van Loan's block exponential."""

@@ -2,7 +2,7 @@
 and the fastest tuning whose travel stays within a limit (docs/design.md, "Shocks").
 
 Linear, dimensionless as ``studies.shock``: state (x, x', y, y') of the LO and the TMD's
-mass (``shock.tmd_system``), the LO given the velocity 1 at t = 0 (travel scales with it).
+mass (``tmd_system``), the LO given the velocity 1 at t = 0 (travel scales with it).
 
 * decay rate: the slowest mode's -Re(lambda) over the eigenvalues of A (``decay_rate``).
 * fastest decay (``tmd_fastest``): the characteristic polynomial
@@ -27,7 +27,32 @@ import numpy as np
 
 from ..core.params import ParameterError, check_param, check_real
 from .design_checks import check_eta
-from .shock import tmd_system
+
+# ----------------------------------------------------------------- linear systems
+
+def lo_system(d: float) -> tuple:
+    """(A, P, Q_damping, Q_absorber) of the LO alone, state (x, x'): x' = A x,
+    E = x^T P x / 2, dissipated powers x^T Q x."""
+    A = np.array([[0.0, 1.0], [-1.0, -d]])
+    Q = np.diag([0.0, d])
+    return A, np.eye(2), Q, np.zeros((2, 2))
+
+
+def tmd_system(d: float, mu: float, f: float, zeta: float) -> tuple:
+    """(A, P, Q_damping, Q_absorber) of the LO with a TMD (mass ratio mu, frequency ratio
+    f, damping ratio zeta), state (x, x', y, y') of absolute displacements, base at rest."""
+    k, c = mu * f * f, 2.0 * mu * zeta * f
+    A = np.array([[0.0, 1.0, 0.0, 0.0],
+                  [-1.0 - k, -d - c, k, c],
+                  [0.0, 0.0, 0.0, 1.0],
+                  [k / mu, c / mu, -k / mu, -c / mu]])
+    P = np.array([[1.0 + k, 0.0, -k, 0.0], [0.0, 1.0, 0.0, 0.0],
+                  [-k, 0.0, k, 0.0], [0.0, 0.0, 0.0, mu]])
+    Q_d = np.zeros((4, 4))
+    Q_d[1, 1] = d
+    u = np.array([0.0, -1.0, 0.0, 1.0])
+    return A, P, Q_d, c * np.outer(u, u)
+
 
 #: grid steps per period of the fastest mode when stepping a free response
 STEPS_PER_PERIOD = 32
@@ -151,7 +176,7 @@ def _refine(A, ca, c, x, h) -> tuple[float, float]:
     return abs(float(c @ (_expm(A * s) @ x))), s
 
 
-#: the relative displacement y - x and the LO's own x of ``shock.tmd_system``'s state
+#: the relative displacement y - x and the LO's own x of ``tmd_system``'s state
 TRAVEL = np.array([-1.0, 0.0, 1.0, 0.0])
 LO_DISPLACEMENT = np.array([1.0, 0.0, 0.0, 0.0])
 
